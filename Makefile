@@ -1,0 +1,69 @@
+# Tessella - the two commands a newcomer needs: `make demo` and `make test`.
+SHELL := /bin/bash
+PY := /usr/bin/python3
+FREECAD_LIB := /usr/lib/freecad-python3/lib
+BUILD := build
+JOBS ?= 2
+
+# Debian bookworm packages, exactly what the build, the tests and the demo use.
+DEB_PACKAGES := g++ make cmake freecad freecad-python3 \
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev \
+  libpolyclipping-dev libtbb-dev libeigen3-dev pybind11-dev python3-dev \
+  libgtest-dev libbenchmark-dev \
+  python3-numpy python3-matplotlib python3-ezdxf python3-pytest xvfb xauth
+
+.PHONY: all deps build test test-cpp test-python test-gui demo bench install uninstall format clean
+
+all: build
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing missing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y --no-install-recommends $$missing; \
+	else echo "All Debian packages present."; fi
+
+$(BUILD)/Makefile: CMakeLists.txt
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+
+build: deps $(BUILD)/Makefile
+	cmake --build $(BUILD) -j$(JOBS)
+
+# All tests: C++ (gtest), Python under headless FreeCAD (pytest), GUI under Xvfb.
+# Ends with one summary line "N passed, M failed".
+test: build
+	$(PY) tests/run_all.py
+
+test-cpp: build
+	$(BUILD)/tessella_tests
+
+test-python: build
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) -m pytest -q tests/python
+
+test-gui: build
+	$(PY) tests/run_all.py --only gui
+
+demo: build
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) examples/demo.py --out out
+
+bench: build
+	$(BUILD)/tessella_bench
+
+# Link the repository into FreeCAD's user Mod folder (FreeCAD 0.20 path).
+MOD_DIR := $(HOME)/.local/share/FreeCAD/Mod
+install: build
+	mkdir -p $(MOD_DIR)
+	ln -sfn $(CURDIR) $(MOD_DIR)/Tessella
+	@echo "Linked $(CURDIR) -> $(MOD_DIR)/Tessella; restart FreeCAD and pick the Tessella workbench."
+
+uninstall:
+	rm -f $(MOD_DIR)/Tessella
+
+format:
+	clang-format -i cpp_core/include/tessella/*.h cpp_core/src/*.cpp bindings/*.cpp tests/cpp/*.cpp bench/*.cpp
+
+clean:
+	rm -rf $(BUILD) freecad_workbench/_core*.so out

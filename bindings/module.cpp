@@ -1,0 +1,184 @@
+// pybind11 module `freecad_workbench._core`: conversions only, no logic.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <Standard_Failure.hxx>
+
+#include "tessella/errors.h"
+#include "tessella/grid_methods.h"
+#include "tessella/panel_mesh.h"
+#include "tessella/panel_metrics.h"
+#include "tessella/shape_export.h"
+#include "tessella/surface_face.h"
+
+namespace py = pybind11;
+using namespace tessella;
+
+namespace {
+
+template <int N>
+py::array_t<double> rows(const std::vector<Eigen::Matrix<double, N, 1>>& v) {
+  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), static_cast<py::ssize_t>(N)});
+  auto m = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int k = 0; k < N; ++k) m(i, k) = v[i][k];
+  return a;
+}
+
+py::array_t<double> values(const std::vector<double>& v) {
+  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+// Releases the GIL around long core calls.
+template <class F>
+auto nogil(F f) {
+  py::gil_scoped_release release;
+  return f();
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
+
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InvalidParameter& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const InvalidGeometry& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const LimitExceeded& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const GeometryFailure& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    } catch (const Standard_Failure& e) {
+      PyErr_SetString(PyExc_RuntimeError,
+                      (std::string("geometry kernel error: ") + e.GetMessageString()).c_str());
+    }
+  });
+
+  py::class_<SurfaceFace>(m, "SurfaceFace")
+      .def_static("from_brep_string", &SurfaceFace::from_brep_string, py::arg("brep"))
+      .def("bounds",
+           [](const SurfaceFace& f) {
+             const UvBounds b = f.bounds();
+             return py::make_tuple(b.u_min, b.u_max, b.v_min, b.v_max);
+           })
+      .def("model_size", &SurfaceFace::model_size)
+      .def("area", &SurfaceFace::area)
+      .def("u_periodic", &SurfaceFace::u_periodic)
+      .def("v_periodic", &SurfaceFace::v_periodic)
+      .def("reversed", &SurfaceFace::reversed)
+      .def("point", &SurfaceFace::point, py::arg("u"), py::arg("v"))
+      .def("normal", &SurfaceFace::normal, py::arg("u"), py::arg("v"))
+      .def("is_inside", &SurfaceFace::is_inside, py::arg("u"), py::arg("v"))
+      .def("project",
+           [](const SurfaceFace& f, const Vec3& p) {
+             const Projection r = f.project(p);
+             return py::make_tuple(r.uv, r.point, r.distance);
+           })
+      .def("trim_loops", [](const SurfaceFace& f, double deflection) {
+        py::list out;
+        for (const TrimLoop& loop : f.trim_loops(deflection)) {
+          py::dict d;
+          d["uv"] = rows<2>(loop.uv);
+          d["xyz"] = rows<3>(loop.xyz);
+          d["outer"] = loop.outer;
+          out.append(d);
+        }
+        return out;
+      });
+
+  py::class_<GridClipParams>(m, "GridClipParams")
+      .def(py::init<>())
+      .def_readwrite("sliver_fraction", &GridClipParams::sliver_fraction)
+      .def_readwrite("trim_deflection", &GridClipParams::trim_deflection)
+      .def_readwrite("max_panels", &GridClipParams::max_panels);
+  py::class_<IsoGridParams>(m, "IsoGridParams")
+      .def(py::init<>())
+      .def_readwrite("u_count", &IsoGridParams::u_count)
+      .def_readwrite("v_count", &IsoGridParams::v_count)
+      .def_readwrite("size", &IsoGridParams::size)
+      .def_readwrite("clip", &IsoGridParams::clip);
+  py::class_<EqualSizeGridParams>(m, "EqualSizeGridParams")
+      .def(py::init<>())
+      .def_readwrite("size", &EqualSizeGridParams::size)
+      .def_readwrite("clip", &EqualSizeGridParams::clip);
+  py::class_<MetricsParams>(m, "MetricsParams")
+      .def(py::init<>())
+      .def_readwrite("samples", &MetricsParams::samples);
+  py::class_<IrregularParams>(m, "IrregularParams")
+      .def(py::init<>())
+      .def_readwrite("min_angle_deg", &IrregularParams::min_angle_deg)
+      .def_readwrite("min_area_fraction", &IrregularParams::min_area_fraction);
+
+  py::class_<PanelMesh>(m, "PanelMesh")
+      .def_property_readonly("uv", [](const PanelMesh& mesh) { return rows<2>(mesh.uv); })
+      .def_property_readonly("xyz", [](const PanelMesh& mesh) { return rows<3>(mesh.xyz); })
+      .def_readonly("panels", &PanelMesh::panels)
+      .def_property_readonly("rods",
+                             [](const PanelMesh& mesh) {
+                               py::array_t<long long> a(
+                                   {static_cast<py::ssize_t>(mesh.rods.size()), py::ssize_t(2)});
+                               auto r = a.mutable_unchecked<2>();
+                               for (std::size_t i = 0; i < mesh.rods.size(); ++i)
+                                 r(i, 0) = mesh.rods[i][0], r(i, 1) = mesh.rods[i][1];
+                               return a;
+                             })
+      .def_readonly("merged_slivers", &PanelMesh::merged_slivers)
+      .def_readonly("nominal_area", &PanelMesh::nominal_area);
+
+  py::class_<PanelMetrics>(m, "PanelMetrics")
+      .def_property_readonly("deviation", [](const PanelMetrics& x) { return values(x.deviation); })
+      .def_property_readonly("planarity", [](const PanelMetrics& x) { return values(x.planarity); })
+      .def_property_readonly("area", [](const PanelMetrics& x) { return values(x.area); })
+      .def_property_readonly("min_angle", [](const PanelMetrics& x) { return values(x.min_angle); })
+      .def_property_readonly("max_angle", [](const PanelMetrics& x) { return values(x.max_angle); })
+      .def_property_readonly("rod_length",
+                             [](const PanelMetrics& x) { return values(x.rod_length); });
+
+  py::class_<NodeData>(m, "NodeData")
+      .def_property_readonly("valence",
+                             [](const NodeData& n) {
+                               return py::array_t<int>(static_cast<py::ssize_t>(n.valence.size()),
+                                                       n.valence.data());
+                             })
+      .def_property_readonly("normal", [](const NodeData& n) { return rows<3>(n.normal); });
+
+  m.def("iso_grid", [](const SurfaceFace& f, const IsoGridParams& p) {
+    return nogil([&] { return iso_grid(f, p); });
+  });
+  m.def("equal_size_grid", [](const SurfaceFace& f, const EqualSizeGridParams& p) {
+    return nogil([&] { return equal_size_grid(f, p); });
+  });
+  m.def("measure_panels", [](const SurfaceFace& f, const PanelMesh& mesh, const MetricsParams& p) {
+    return nogil([&] { return measure_panels(f, mesh, p); });
+  });
+  m.def("node_data", &node_data);
+  m.def("irregular_panels", [](const PanelMesh& mesh, const PanelMetrics& metrics,
+                               const IrregularParams& p) {
+    const std::vector<bool> flags = irregular_panels(mesh, metrics, p);
+    py::array_t<bool> a(static_cast<py::ssize_t>(flags.size()));
+    auto r = a.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < flags.size(); ++i) r(i) = flags[i];
+    return a;
+  });
+  m.def("summarize", [](const std::vector<double>& v) {
+    const SummaryStats s = summarize(v);
+    py::dict d;
+    d["count"] = s.count;
+    d["mean"] = s.mean;
+    d["variance"] = s.variance;
+    d["min"] = s.min;
+    d["max"] = s.max;
+    return d;
+  });
+  m.def("panels_to_brep", [](const PanelMesh& mesh, double tol) {
+    return nogil([&] { return panels_to_brep(mesh, tol); });
+  });
+  m.def("rods_to_brep", [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
+  m.def("nodes_to_brep", [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
+}

@@ -1,0 +1,22 @@
+// Cuts a tensor grid of (u,v) lines by the trimmed face: full cells stay quads,
+// boundary cells become polygons that follow the trim loops; holes stay open.
+#pragma once
+
+#include <vector>
+
+#include "tessella/grid_methods.h"
+#include "tessella/panel_mesh.h"
+
+namespace tessella {
+
+class SurfaceFace;
+
+// u_lines and v_lines: strictly increasing, covering the face's uv bounds.
+PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
+                    const std::vector<double>& v_lines, const GridClipParams& params);
+
+// Merges panels smaller than `fraction * mesh.nominal_area` into the neighbour
+// they share the longest edge with. Returns how many were merged.
+int merge_slivers(PanelMesh& mesh, double fraction);
+
+}  // namespace tessella

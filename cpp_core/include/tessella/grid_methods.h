@@ -1,0 +1,40 @@
+// The two foundation methods: grids of iso-parameter lines, cut by the trim
+// boundary. Both return a PanelMesh with rods built and slivers merged.
+#pragma once
+
+#include "tessella/panel_mesh.h"
+
+namespace tessella {
+
+class SurfaceFace;
+
+// What every grid method shares: how the grid is cut by the trim boundary.
+struct GridClipParams {
+  // Boundary panels whose area is under this fraction of a full panel are
+  // merged into their neighbour.
+  double sliver_fraction = 0.25;
+  // Chord deflection of the trim polylines, mm. 0 = model_size * 1e-5.
+  double trim_deflection = 0.0;
+  // Refuse grids with more panels than this.
+  int max_panels = 200000;
+};
+
+// Uniform in u and v: by counts (u_count, v_count > 0), or, when size > 0, by a
+// target panel edge size in mm (counts from the mean iso-curve lengths).
+struct IsoGridParams {
+  int u_count = 0;
+  int v_count = 0;
+  double size = 0.0;
+  GridClipParams clip;
+};
+PanelMesh iso_grid(const SurfaceFace& face, const IsoGridParams& params);
+
+// Grid lines spaced by arc length (seed 001, Figure 3 right) so panel edges come
+// out near `size` mm where the parameterization is uneven.
+struct EqualSizeGridParams {
+  double size = 0.0;  // required, mm
+  GridClipParams clip;
+};
+PanelMesh equal_size_grid(const SurfaceFace& face, const EqualSizeGridParams& params);
+
+}  // namespace tessella

@@ -1,0 +1,50 @@
+// PanelMesh: the panelization result shared by every method - vertices in uv
+// and 3D, polygon panels, unique edges (the rods) and nodes.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tessella/vec.h"
+
+namespace tessella {
+
+class SurfaceFace;
+
+struct PanelMesh {
+  std::vector<Vec2> uv;
+  std::vector<Vec3> xyz;
+  // Vertex indices, counter-clockwise seen from the face normal.
+  std::vector<std::vector<int>> panels;
+  // Unique undirected panel edges (a < b), sorted; filled by build_rods().
+  std::vector<std::array<int, 2>> rods;
+
+  // What the method reports about its own run.
+  int merged_slivers = 0;      // slivers merged into a neighbour
+  double nominal_area = 0.0;   // area of a full panel (mm^2), for irregularity
+
+  std::size_t vertex_count() const { return xyz.size(); }
+};
+
+// Recomputes mesh.rods from mesh.panels.
+void build_rods(PanelMesh& mesh);
+
+// Per-node data: how many rods meet there, and the face normal.
+struct NodeData {
+  std::vector<int> valence;
+  std::vector<Vec3> normal;
+};
+NodeData node_data(const SurfaceFace& face, const PanelMesh& mesh);
+
+// Removes vertices no panel uses and renumbers panels (keeps order otherwise).
+void remove_unused_vertices(PanelMesh& mesh);
+
+// Merges vertices closer than `tolerance` in 3D (a periodic seam, a pole), then
+// drops repeated corners and panels left with fewer than three.
+void weld_coincident_vertices(PanelMesh& mesh, double tolerance);
+
+// Area of the panel as flat triangles fanned around the mean of its corners.
+double fan_area(const PanelMesh& mesh, const std::vector<int>& panel);
+
+}  // namespace tessella

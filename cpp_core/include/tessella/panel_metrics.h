@@ -1,0 +1,46 @@
+// Per-panel and per-rod measurements against the surface (see DESIGN.md glossary).
+// The panel a workshop builds is modelled as: triangle -> flat triangle,
+// quad -> bilinear patch of its corners, n-gon -> fan of flat triangles around the
+// mean of its corners. Every figure here is measured on that model.
+#pragma once
+
+#include <vector>
+
+#include "tessella/panel_mesh.h"
+
+namespace tessella {
+
+struct MetricsParams {
+  // Samples per panel edge direction (quad: n x n; each fan triangle: n(n+1)/2).
+  int samples = 8;
+};
+
+struct PanelMetrics {
+  std::vector<double> deviation;  // max distance panel -> surface (mm), projected samples
+  std::vector<double> planarity;  // quad: diagonal distance / mean edge; n-gon: max
+                                  // distance to best-fit plane / mean edge; triangle: 0
+  std::vector<double> area;       // mm^2, of the panel model above
+  std::vector<double> min_angle;  // degrees, 3D corner angles
+  std::vector<double> max_angle;
+  std::vector<double> rod_length;  // mm, in mesh.rods order
+};
+
+PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
+                            const MetricsParams& params = {});
+
+struct SummaryStats {
+  int count = 0;
+  double mean = 0, variance = 0, min = 0, max = 0;
+};
+SummaryStats summarize(const std::vector<double>& values);
+
+struct IrregularParams {
+  double min_angle_deg = 30.0;     // a corner under this makes a panel irregular
+  double min_area_fraction = 0.25; // of mesh.nominal_area
+};
+// Irregular panel: not a quad, or a corner angle under the limit, or an area under
+// the fraction of the nominal area. Returns one flag per panel.
+std::vector<bool> irregular_panels(const PanelMesh& mesh, const PanelMetrics& metrics,
+                                   const IrregularParams& params = {});
+
+}  // namespace tessella

@@ -1,0 +1,99 @@
+// SurfaceFace: read access to one trimmed face of a B-rep (any OCCT surface type:
+// B-spline, Bezier, cylinder, plane, ...). Knows nothing about FreeCAD: the face
+// arrives as a BRep string (BRepTools::Write format).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessella/vec.h"
+
+namespace tessella {
+
+struct UvBounds {
+  double u_min = 0, u_max = 0, v_min = 0, v_max = 0;
+};
+
+// A point of the surface with its first derivatives.
+struct SurfacePoint {
+  Vec3 point, du, dv;
+};
+
+// A closed trim loop: uv polyline (first point not repeated at the end), the
+// matching 3D points, and whether it is the outer loop. Orientation: the face
+// lies to the left in (u,v), i.e. the outer loop is counter-clockwise and holes
+// are clockwise.
+struct TrimLoop {
+  std::vector<Vec2> uv;
+  std::vector<Vec3> xyz;
+  bool outer = false;
+};
+
+struct ProjectionParams {
+  double distance_tolerance = 1e-9;   // eps1 of seed 004 eq. 18, relative to model size
+  double orthogonality_tolerance = 1e-10;  // eps2 of seed 004 eq. 18 (cosine)
+  int max_iterations = 30;
+};
+
+struct Projection {
+  Vec2 uv;
+  Vec3 point;
+  double distance = 0;
+  bool used_fallback = false;  // Newton failed; OCCT's Extrema answered
+};
+
+class SurfaceFace {
+ public:
+  // Throws InvalidGeometry if the string holds no face, more than one face,
+  // or a face without area.
+  static SurfaceFace from_brep_string(const std::string& brep);
+
+  SurfaceFace(SurfaceFace&&) noexcept;
+  SurfaceFace& operator=(SurfaceFace&&) noexcept;
+  ~SurfaceFace();
+
+  // Bounds of the trimmed face in (u,v) (not of the underlying surface).
+  UvBounds bounds() const;
+  // Diagonal of the face's 3D bounding box: the length tolerances scale with it.
+  double model_size() const;
+  bool u_periodic() const;
+  bool v_periodic() const;
+  double u_period() const;
+  double v_period() const;
+  // The face's orientation flips its normal relative to du x dv.
+  bool reversed() const;
+
+  Vec3 point(double u, double v) const;
+  SurfacePoint derivatives(double u, double v) const;
+  // Unit normal of the face (orientation included); falls back to a
+  // neighbouring point at a degenerate pole.
+  Vec3 normal(double u, double v) const;
+
+  // Whether (u,v) lies inside the trimmed face (on the boundary counts as inside).
+  bool is_inside(double u, double v) const;
+
+  // The trim loops as polylines whose chords stay within `deflection` (mm) of
+  // the true 3D trim curves. Seam edges and degenerate edges are kept in uv so
+  // the loops close in the parameter plane.
+  std::vector<TrimLoop> trim_loops(double deflection) const;
+
+  // Area of the trimmed face (OCCT's surface integral).
+  double area() const;
+
+  // Closest point of the surface to p: Newton iteration of seed 004 section 4
+  // (eq. 10-18) from `start`, kept inside the parameter bounds (wrapped across a
+  // periodic seam); OCCT's Extrema as a fallback when Newton does not converge
+  // or stalls at a pole.
+  Projection project(const Vec3& p, const Vec2& start,
+                     const ProjectionParams& params = {}) const;
+  // Same, without a start: the start is found by OCCT (global search).
+  Projection project(const Vec3& p) const;
+
+ private:
+  struct Impl;
+  explicit SurfaceFace(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tessella

@@ -1,0 +1,11 @@
+// Small value types shared by the whole core (Eigen fixed-size vectors).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace tessella {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+}  // namespace tessella

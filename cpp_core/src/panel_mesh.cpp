@@ -1,0 +1,110 @@
+#include "tessella/panel_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+void build_rods(PanelMesh& mesh) {
+  std::vector<std::array<int, 2>> rods;
+  for (const auto& panel : mesh.panels) {
+    for (std::size_t k = 0; k < panel.size(); ++k) {
+      const int a = panel[k], b = panel[(k + 1) % panel.size()];
+      rods.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(rods.begin(), rods.end());
+  rods.erase(std::unique(rods.begin(), rods.end()), rods.end());
+  mesh.rods = std::move(rods);
+}
+
+NodeData node_data(const SurfaceFace& face, const PanelMesh& mesh) {
+  NodeData nodes;
+  nodes.valence.assign(mesh.vertex_count(), 0);
+  for (const auto& rod : mesh.rods) {
+    ++nodes.valence[rod[0]];
+    ++nodes.valence[rod[1]];
+  }
+  nodes.normal.reserve(mesh.vertex_count());
+  for (const Vec2& q : mesh.uv) nodes.normal.push_back(face.normal(q.x(), q.y()));
+  return nodes;
+}
+
+void remove_unused_vertices(PanelMesh& mesh) {
+  std::vector<int> new_index(mesh.vertex_count(), -1);
+  for (const auto& panel : mesh.panels)
+    for (int v : panel) new_index[v] = 0;
+  int next = 0;
+  for (std::size_t v = 0; v < new_index.size(); ++v) {
+    if (new_index[v] < 0) continue;
+    new_index[v] = next;
+    mesh.uv[next] = mesh.uv[v];
+    mesh.xyz[next] = mesh.xyz[v];
+    ++next;
+  }
+  mesh.uv.resize(next);
+  mesh.xyz.resize(next);
+  for (auto& panel : mesh.panels)
+    for (int& v : panel) v = new_index[v];
+  for (auto& rod : mesh.rods) rod = {new_index[rod[0]], new_index[rod[1]]};
+}
+
+void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {
+  // Bucket by a grid of cell `tolerance`; compare with the 27 neighbours.
+  using Key = std::tuple<long long, long long, long long>;
+  std::map<Key, std::vector<int>> buckets;
+  auto key = [&](const Vec3& p) {
+    return Key(std::llround(std::floor(p.x() / tolerance)),
+               std::llround(std::floor(p.y() / tolerance)),
+               std::llround(std::floor(p.z() / tolerance)));
+  };
+  std::vector<int> target(mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    target[v] = int(v);
+    const Key k = key(mesh.xyz[v]);
+    bool found = false;
+    for (long long dx = -1; dx <= 1 && !found; ++dx)
+      for (long long dy = -1; dy <= 1 && !found; ++dy)
+        for (long long dz = -1; dz <= 1 && !found; ++dz) {
+          auto it = buckets.find(Key(std::get<0>(k) + dx, std::get<1>(k) + dy,
+                                     std::get<2>(k) + dz));
+          if (it == buckets.end()) continue;
+          for (int w : it->second) {
+            if ((mesh.xyz[w] - mesh.xyz[v]).norm() <= tolerance) {
+              target[v] = w;
+              found = true;
+              break;
+            }
+          }
+        }
+    if (!found) buckets[k].push_back(int(v));
+  }
+  std::vector<std::vector<int>> kept;
+  for (auto& panel : mesh.panels) {
+    std::vector<int> ids;
+    for (int v : panel) {
+      const int t = target[v];
+      if (ids.empty() || ids.back() != t) ids.push_back(t);
+    }
+    while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back();
+    if (ids.size() >= 3) kept.push_back(std::move(ids));
+  }
+  mesh.panels = std::move(kept);
+}
+
+double fan_area(const PanelMesh& mesh, const std::vector<int>& panel) {
+  Vec3 c = Vec3::Zero();
+  for (int i : panel) c += mesh.xyz[i];
+  c /= double(panel.size());
+  double a = 0;
+  for (std::size_t k = 0; k < panel.size(); ++k) {
+    a += 0.5 * (mesh.xyz[panel[k]] - c).cross(mesh.xyz[panel[(k + 1) % panel.size()]] - c).norm();
+  }
+  return a;
+}
+
+}  // namespace tessella

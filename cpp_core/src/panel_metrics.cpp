@@ -1,0 +1,179 @@
+#include "tessella/panel_metrics.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tessella/errors.h"
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Corner (u,v)s of a panel made continuous across a periodic seam, so that
+// interpolating between them stays on the panel's side of the seam.
+std::vector<Vec2> unwrapped_uv(const SurfaceFace& face, const PanelMesh& mesh,
+                               const std::vector<int>& panel) {
+  std::vector<Vec2> uv;
+  for (int v : panel) uv.push_back(mesh.uv[v]);
+  const double pu = face.u_period(), pv = face.v_period();
+  for (std::size_t k = 1; k < uv.size(); ++k) {
+    if (pu > 0) uv[k].x() -= pu * std::round((uv[k].x() - uv[0].x()) / pu);
+    if (pv > 0) uv[k].y() -= pv * std::round((uv[k].y() - uv[0].y()) / pv);
+  }
+  return uv;
+}
+
+double mean_edge(const std::vector<Vec3>& p) {
+  double sum = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) sum += (p[(k + 1) % p.size()] - p[k]).norm();
+  return sum / double(p.size());
+}
+
+double planarity(const std::vector<Vec3>& p) {
+  const double edge = mean_edge(p);
+  if (p.size() < 4 || edge <= 0) return 0.0;
+  if (p.size() == 4) {
+    // Distance between the diagonals as skew lines.
+    const Vec3 d1 = p[2] - p[0], d2 = p[3] - p[1];
+    const Vec3 n = d1.cross(d2);
+    if (n.norm() <= 1e-300) return 0.0;
+    return std::abs((p[1] - p[0]).dot(n)) / n.norm() / edge;
+  }
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& q : p) c += q;
+  c /= double(p.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec3& q : p) cov += (q - c) * (q - c).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Vec3 normal = eig.eigenvectors().col(0);
+  double worst = 0;
+  for (const Vec3& q : p) worst = std::max(worst, std::abs((q - c).dot(normal)));
+  return worst / edge;
+}
+
+// Area of the bilinear patch by 4x4 Gauss-Legendre quadrature.
+double bilinear_area(const std::vector<Vec3>& p) {
+  static const double x[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281,
+                              0.9305681557970263};
+  static const double w[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731,
+                              0.1739274225687269};
+  double area = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const double s = x[i], t = x[j];
+      const Vec3 ds = (1 - t) * (p[1] - p[0]) + t * (p[2] - p[3]);
+      const Vec3 dt = (1 - s) * (p[3] - p[0]) + s * (p[2] - p[1]);
+      area += w[i] * w[j] * ds.cross(dt).norm();
+    }
+  }
+  return area;
+}
+
+// Largest distance from sample points of the panel model to the surface.
+double deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
+                 const std::vector<Vec2>& uv, int n) {
+  double worst = 0;
+  auto probe = [&](const Vec3& x, const Vec2& start) {
+    worst = std::max(worst, face.project(x, start).distance);
+  };
+  if (p.size() == 4) {
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; j <= n; ++j) {
+        const double s = double(i) / n, t = double(j) / n;
+        const double w0 = (1 - s) * (1 - t), w1 = s * (1 - t), w2 = s * t, w3 = (1 - s) * t;
+        probe(w0 * p[0] + w1 * p[1] + w2 * p[2] + w3 * p[3],
+              w0 * uv[0] + w1 * uv[1] + w2 * uv[2] + w3 * uv[3]);
+      }
+    }
+    return worst;
+  }
+  // Triangle: itself; n-gon: fan around the mean corner.
+  Vec3 c = Vec3::Zero();
+  Vec2 cuv = Vec2::Zero();
+  for (std::size_t k = 0; k < p.size(); ++k) c += p[k], cuv += uv[k];
+  c /= double(p.size());
+  cuv /= double(p.size());
+  const std::size_t fans = p.size() == 3 ? 1 : p.size();
+  for (std::size_t k = 0; k < fans; ++k) {
+    const std::size_t k1 = (k + 1) % p.size();
+    const Vec3& a = p.size() == 3 ? p[2] : c;
+    const Vec2& auv = p.size() == 3 ? uv[2] : cuv;
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; i + j <= n; ++j) {
+        const double s = double(i) / n, t = double(j) / n, r = 1 - s - t;
+        probe(r * a + s * p[k] + t * p[k1], r * auv + s * uv[k] + t * uv[k1]);
+      }
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
+                            const MetricsParams& params) {
+  require_in_range("samples", params.samples, 1, 64);
+  PanelMetrics m;
+  const std::size_t np = mesh.panels.size();
+  m.deviation.resize(np);
+  m.planarity.resize(np);
+  m.area.resize(np);
+  m.min_angle.resize(np);
+  m.max_angle.resize(np);
+  for (std::size_t k = 0; k < np; ++k) {
+    const auto& panel = mesh.panels[k];
+    std::vector<Vec3> p;
+    for (int v : panel) p.push_back(mesh.xyz[v]);
+    const std::vector<Vec2> uv = unwrapped_uv(face, mesh, panel);
+    m.deviation[k] = deviation(face, p, uv, params.samples);
+    m.planarity[k] = planarity(p);
+    m.area[k] = p.size() == 4 ? bilinear_area(p) : fan_area(mesh, panel);
+    double lo = 180.0, hi = 0.0;
+    for (std::size_t c = 0; c < p.size(); ++c) {
+      const Vec3 a = p[(c + p.size() - 1) % p.size()] - p[c];
+      const Vec3 b = p[(c + 1) % p.size()] - p[c];
+      const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
+      lo = std::min(lo, angle);
+      hi = std::max(hi, angle);
+    }
+    m.min_angle[k] = lo;
+    m.max_angle[k] = hi;
+  }
+  m.rod_length.reserve(mesh.rods.size());
+  for (const auto& rod : mesh.rods) m.rod_length.push_back((mesh.xyz[rod[0]] - mesh.xyz[rod[1]]).norm());
+  return m;
+}
+
+SummaryStats summarize(const std::vector<double>& values) {
+  SummaryStats s;
+  s.count = int(values.size());
+  if (values.empty()) return s;
+  s.min = *std::min_element(values.begin(), values.end());
+  s.max = *std::max_element(values.begin(), values.end());
+  double sum = 0;
+  for (double v : values) sum += v;
+  s.mean = sum / values.size();
+  double sq = 0;
+  for (double v : values) sq += (v - s.mean) * (v - s.mean);
+  s.variance = sq / values.size();
+  return s;
+}
+
+std::vector<bool> irregular_panels(const PanelMesh& mesh, const PanelMetrics& metrics,
+                                   const IrregularParams& params) {
+  require_in_range("min_angle", params.min_angle_deg, 0.0, 90.0);
+  require_in_range("min_area_fraction", params.min_area_fraction, 0.0, 1.0);
+  std::vector<bool> flags(mesh.panels.size());
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    flags[k] = mesh.panels[k].size() != 4 || metrics.min_angle[k] < params.min_angle_deg ||
+               metrics.area[k] < params.min_area_fraction * mesh.nominal_area;
+  }
+  return flags;
+}
+
+}  // namespace tessella

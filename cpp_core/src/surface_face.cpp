@@ -1,0 +1,338 @@
+#include "tessella/surface_face.h"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Curve2d.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepGProp.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GCPnts_QuasiUniformDeflection.hxx>
+#include <GProp_GProps.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_Surface.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <TopoDS_Wire.hxx>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "tessella/errors.h"
+
+namespace tessella {
+
+namespace {
+
+Vec3 to_vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
+Vec3 to_vec(const gp_Vec& v) { return {v.X(), v.Y(), v.Z()}; }
+
+double signed_area(const std::vector<Vec2>& poly) {
+  double a = 0;
+  for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
+    const Vec2& p = poly[i];
+    const Vec2& q = poly[(i + 1) % n];
+    a += p.x() * q.y() - q.x() * p.y();
+  }
+  return 0.5 * a;
+}
+
+}  // namespace
+
+struct SurfaceFace::Impl {
+  TopoDS_Face face;
+  Handle(Geom_Surface) surface;
+  UvBounds bounds;
+  // Where projection may go: the face bounds grown by a margin, cut to the
+  // surface's own finite bounds; periodic directions wrap instead.
+  UvBounds search;
+  double model_size = 0;
+  double area = 0;
+  bool reversed = false;
+  std::unique_ptr<BRepTopAdaptor_FClass2d> classifier;
+
+  double wrap_u(double u) const {
+    if (!surface->IsUPeriodic()) return std::clamp(u, search.u_min, search.u_max);
+    const double p = surface->UPeriod();
+    const double lo = bounds.u_min;
+    return lo + std::fmod(std::fmod(u - lo, p) + p, p);
+  }
+  double wrap_v(double v) const {
+    if (!surface->IsVPeriodic()) return std::clamp(v, search.v_min, search.v_max);
+    const double p = surface->VPeriod();
+    const double lo = bounds.v_min;
+    return lo + std::fmod(std::fmod(v - lo, p) + p, p);
+  }
+};
+
+SurfaceFace::SurfaceFace(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+SurfaceFace::SurfaceFace(SurfaceFace&&) noexcept = default;
+SurfaceFace& SurfaceFace::operator=(SurfaceFace&&) noexcept = default;
+SurfaceFace::~SurfaceFace() = default;
+
+SurfaceFace SurfaceFace::from_brep_string(const std::string& brep) {
+  TopoDS_Shape shape;
+  try {
+    std::istringstream in(brep);
+    BRep_Builder builder;
+    BRepTools::Read(shape, in, builder);
+  } catch (const Standard_Failure& e) {
+    throw InvalidGeometry(std::string("cannot read the BRep string: ") + e.GetMessageString());
+  }
+  if (shape.IsNull()) throw InvalidGeometry("the BRep string holds no shape");
+  int face_count = 0;
+  TopoDS_Face face;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    ++face_count;
+    face = TopoDS::Face(ex.Current());
+  }
+  if (face_count == 0) throw InvalidGeometry("the shape has no face: select a face");
+  if (face_count > 1) {
+    throw InvalidGeometry("the shape has " + std::to_string(face_count) +
+                          " faces: pass exactly one face");
+  }
+  auto impl = std::make_unique<Impl>();
+  try {
+    impl->face = face;
+    impl->surface = BRep_Tool::Surface(face);  // location applied
+    if (impl->surface.IsNull()) throw InvalidGeometry("the face has no surface");
+    impl->reversed = face.Orientation() == TopAbs_REVERSED;
+    BRepTools::UVBounds(face, impl->bounds.u_min, impl->bounds.u_max, impl->bounds.v_min,
+                        impl->bounds.v_max);
+    Bnd_Box box;
+    BRepBndLib::Add(face, box);
+    if (box.IsVoid()) throw InvalidGeometry("the face has no extent");
+    double x0, y0, z0, x1, y1, z1;
+    box.Get(x0, y0, z0, x1, y1, z1);
+    impl->model_size = std::sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0) +
+                                 (z1 - z0) * (z1 - z0));
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(face, props);
+    impl->area = std::abs(props.Mass());
+  } catch (const Standard_Failure& e) {
+    throw InvalidGeometry(std::string("the face cannot be evaluated: ") + e.GetMessageString());
+  }
+  const UvBounds& b = impl->bounds;
+  const double du = b.u_max - b.u_min, dv = b.v_max - b.v_min;
+  if (!(du > 0) || !(dv > 0) || !std::isfinite(du) || !std::isfinite(dv)) {
+    throw InvalidGeometry("the face is degenerate: its parameter range is empty or infinite");
+  }
+  if (!(impl->model_size > 0) || !std::isfinite(impl->model_size) ||
+      !(impl->area > 1e-12 * impl->model_size * impl->model_size)) {
+    throw InvalidGeometry("the face is degenerate: it has no area");
+  }
+  double su0, su1, sv0, sv1;
+  impl->surface->Bounds(su0, su1, sv0, sv1);
+  impl->search = {std::max(su0, b.u_min - 0.1 * du), std::min(su1, b.u_max + 0.1 * du),
+                  std::max(sv0, b.v_min - 0.1 * dv), std::min(sv1, b.v_max + 0.1 * dv)};
+  // Tolerance of the uv classifier: a tiny fraction of the parameter span.
+  impl->classifier =
+      std::make_unique<BRepTopAdaptor_FClass2d>(face, 1e-9 * std::max(du, dv));
+  return SurfaceFace(std::move(impl));
+}
+
+UvBounds SurfaceFace::bounds() const { return impl_->bounds; }
+double SurfaceFace::model_size() const { return impl_->model_size; }
+bool SurfaceFace::u_periodic() const { return impl_->surface->IsUPeriodic(); }
+bool SurfaceFace::v_periodic() const { return impl_->surface->IsVPeriodic(); }
+double SurfaceFace::u_period() const {
+  return u_periodic() ? impl_->surface->UPeriod() : 0.0;
+}
+double SurfaceFace::v_period() const {
+  return v_periodic() ? impl_->surface->VPeriod() : 0.0;
+}
+bool SurfaceFace::reversed() const { return impl_->reversed; }
+double SurfaceFace::area() const { return impl_->area; }
+
+Vec3 SurfaceFace::point(double u, double v) const {
+  return to_vec(impl_->surface->Value(u, v));
+}
+
+SurfacePoint SurfaceFace::derivatives(double u, double v) const {
+  gp_Pnt p;
+  gp_Vec du, dv;
+  impl_->surface->D1(u, v, p, du, dv);
+  return {to_vec(p), to_vec(du), to_vec(dv)};
+}
+
+Vec3 SurfaceFace::normal(double u, double v) const {
+  const UvBounds& b = impl_->bounds;
+  const double sign = impl_->reversed ? -1.0 : 1.0;
+  // At a pole du x dv vanishes: step towards the middle of the face until the
+  // normal is defined (the limit normal of the pole).
+  for (double t : {0.0, 1e-7, 1e-5, 1e-3}) {
+    const double uu = u + t * (0.5 * (b.u_min + b.u_max) - u);
+    const double vv = v + t * (0.5 * (b.v_min + b.v_max) - v);
+    const SurfacePoint d = derivatives(uu, vv);
+    const Vec3 n = d.du.cross(d.dv);
+    const double scale = d.du.norm() * d.dv.norm();
+    if (n.norm() > 1e-12 * scale && n.norm() > 0) return sign * n.normalized();
+  }
+  throw GeometryFailure("the surface normal is undefined near (" + std::to_string(u) + ", " +
+                        std::to_string(v) + ")");
+}
+
+bool SurfaceFace::is_inside(double u, double v) const {
+  return impl_->classifier->Perform(gp_Pnt2d(u, v)) != TopAbs_OUT;
+}
+
+std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
+  require_in_range("trim deflection", deflection, 1e-12 * impl_->model_size,
+                   impl_->model_size);
+  const TopoDS_Wire outer = BRepTools::OuterWire(impl_->face);
+  std::vector<TrimLoop> loops;
+  try {
+    for (TopExp_Explorer wx(impl_->face, TopAbs_WIRE); wx.More(); wx.Next()) {
+      const TopoDS_Wire wire = TopoDS::Wire(wx.Current());
+      TrimLoop loop;
+      loop.outer = wire.IsSame(outer);
+      for (BRepTools_WireExplorer ex(wire, impl_->face); ex.More(); ex.Next()) {
+        const TopoDS_Edge& edge = ex.Current();
+        BRepAdaptor_Curve2d pcurve(edge, impl_->face);
+        std::vector<double> params;
+        if (BRep_Tool::Degenerated(edge)) {
+          // A pole: the edge has no length in 3D but spans uv; a few uv points
+          // keep the loop closed in the parameter plane.
+          for (int i = 0; i <= 8; ++i) {
+            params.push_back(pcurve.FirstParameter() +
+                             (pcurve.LastParameter() - pcurve.FirstParameter()) * i / 8.0);
+          }
+        } else {
+          BRepAdaptor_Curve curve(edge);
+          GCPnts_QuasiUniformDeflection sampler(curve, deflection);
+          if (!sampler.IsDone() || sampler.NbPoints() < 2) {
+            throw GeometryFailure("cannot discretize a trim edge of the face");
+          }
+          for (int i = 1; i <= sampler.NbPoints(); ++i) params.push_back(sampler.Parameter(i));
+        }
+        if (edge.Orientation() == TopAbs_REVERSED) std::reverse(params.begin(), params.end());
+        // The first point of each edge repeats the last of the previous one.
+        for (std::size_t i = loop.uv.empty() ? 0 : 1; i < params.size(); ++i) {
+          const gp_Pnt2d q = pcurve.Value(params[i]);
+          loop.uv.emplace_back(q.X(), q.Y());
+        }
+      }
+      // Drop the closing duplicate and repeated points.
+      std::vector<Vec2> clean;
+      const double eps = 1e-12 * std::max(impl_->bounds.u_max - impl_->bounds.u_min,
+                                          impl_->bounds.v_max - impl_->bounds.v_min);
+      for (const Vec2& q : loop.uv) {
+        if (clean.empty() || (q - clean.back()).norm() > eps) clean.push_back(q);
+      }
+      while (clean.size() > 1 && (clean.front() - clean.back()).norm() <= eps) clean.pop_back();
+      if (clean.size() < 3) continue;
+      const double a = signed_area(clean);
+      if ((loop.outer && a < 0) || (!loop.outer && a > 0)) std::reverse(clean.begin(), clean.end());
+      loop.uv = std::move(clean);
+      loop.xyz.reserve(loop.uv.size());
+      for (const Vec2& q : loop.uv) loop.xyz.push_back(point(q.x(), q.y()));
+      loops.push_back(std::move(loop));
+    }
+  } catch (const Standard_Failure& e) {
+    throw GeometryFailure(std::string("cannot discretize the trim loops: ") +
+                          e.GetMessageString());
+  }
+  // Outer loop first, then holes in the order of the B-rep.
+  std::stable_sort(loops.begin(), loops.end(),
+                   [](const TrimLoop& a, const TrimLoop& b) { return a.outer && !b.outer; });
+  return loops;
+}
+
+Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
+                                const ProjectionParams& params) const {
+  const Impl& s = *impl_;
+  double u = s.wrap_u(start.x()), v = s.wrap_v(start.y());
+  const double eps1 = params.distance_tolerance * s.model_size;
+  bool converged = false;
+  for (int it = 0; it < params.max_iterations; ++it) {
+    gp_Pnt P;
+    gp_Vec Su, Sv, Suu, Svv, Suv;
+    s.surface->D2(u, v, P, Su, Sv, Suu, Svv, Suv);
+    const Vec3 r = to_vec(P) - p;
+    const Vec3 su = to_vec(Su), sv = to_vec(Sv);
+    const double rn = r.norm();
+    // Eq. 18: r is orthogonal to both tangents (or r vanishes: p is on the surface).
+    if (rn <= eps1 || (std::abs(su.dot(r)) <= params.orthogonality_tolerance * su.norm() * rn &&
+                       std::abs(sv.dot(r)) <= params.orthogonality_tolerance * sv.norm() * rn)) {
+      converged = true;
+      break;
+    }
+    // Eq. 12-15: J delta = -kappa.
+    const double f = r.dot(su), g = r.dot(sv);
+    const double a = su.squaredNorm() + r.dot(to_vec(Suu));
+    const double b = su.dot(sv) + r.dot(to_vec(Suv));
+    const double d = sv.squaredNorm() + r.dot(to_vec(Svv));
+    const double det = a * d - b * b;
+    if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) break;  // pole or flat spot
+    const double du = -(d * f - b * g) / det;
+    const double dv = -(a * g - b * f) / det;
+    const double nu = s.wrap_u(u + du), nv = s.wrap_v(v + dv);
+    // Eq. 17 measured in 3D: the step moved the surface point by less than eps1.
+    const double step3d = (su * (nu - u) + sv * (nv - v)).norm();
+    u = nu;
+    v = nv;
+    if (step3d <= eps1) {
+      converged = true;
+      break;
+    }
+  }
+  Projection result;
+  if (converged) {
+    result.uv = {u, v};
+    result.point = point(u, v);
+    result.distance = (result.point - p).norm();
+    // Newton finds a stationary point; a saddle or a far local minimum is
+    // caught by comparing with the global answer only when cheap checks fail.
+    return result;
+  }
+  result = project(p);
+  result.used_fallback = true;
+  return result;
+}
+
+Projection SurfaceFace::project(const Vec3& p) const {
+  const Impl& s = *impl_;
+  Projection result;
+  try {
+    GeomAPI_ProjectPointOnSurf proj(gp_Pnt(p.x(), p.y(), p.z()), s.surface, s.search.u_min,
+                                    s.search.u_max, s.search.v_min, s.search.v_max);
+    if (proj.NbPoints() > 0) {
+      double u, v;
+      proj.LowerDistanceParameters(u, v);
+      result.uv = {u, v};
+      result.point = point(u, v);
+      result.distance = (result.point - p).norm();
+      return result;
+    }
+  } catch (const Standard_Failure&) {
+    // fall through to sampling
+  }
+  // No orthogonal foot point (e.g. the closest point is on the boundary of the
+  // search range): best of a dense sample.
+  double best = std::numeric_limits<double>::infinity();
+  const int n = 64;
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      const double u = s.search.u_min + (s.search.u_max - s.search.u_min) * i / n;
+      const double v = s.search.v_min + (s.search.v_max - s.search.v_min) * j / n;
+      const Vec3 q = point(u, v);
+      const double d = (q - p).norm();
+      if (d < best) {
+        best = d;
+        result.uv = {u, v};
+        result.point = q;
+        result.distance = d;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace tessella

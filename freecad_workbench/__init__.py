@@ -1,0 +1,23 @@
+"""Tessella: panels, rods and nodes from freeform surfaces.
+
+Console API (no document needed):
+
+    import FreeCAD, Part
+    import freecad_workbench as tessella
+    r = tessella.panelize(face, method="iso_grid", size=1500.0)
+
+Document objects (need FreeCAD):
+
+    obj = tessella.make_panelization((doc_obj, "Face1"), method="equal_size_grid", size=2000.0)
+"""
+
+__version__ = "0.1.0"
+
+from .api import METHODS, PanelizeResult, panelize  # noqa: F401,E402
+
+
+def make_panelization(*args, **kwargs):
+    """Create a parametric Panelization object (see freecad_workbench.make)."""
+    from .make import make_panelization as _make
+
+    return _make(*args, **kwargs)

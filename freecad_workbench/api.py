@@ -1,0 +1,213 @@
+"""Document-free console API: a face in, numpy arrays out.
+
+    import freecad_workbench as tessella
+    r = tessella.panelize(face, method="iso_grid", size=1500.0)
+    r.vertices, r.uv, r.panels, r.rods, r.metrics, r.summary
+
+`face` may be a Part.Face, a Part.Shape holding exactly one face, or a
+(document_object, "FaceN") pair as FreeCAD's selection gives it.
+All lengths are in mm.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import core
+
+#: Methods and the keyword parameters each accepts (besides the common ones).
+METHODS = {
+    "iso_grid": ("size", "u_count", "v_count"),
+    "equal_size_grid": ("size",),
+}
+#: Keyword parameters every method accepts.
+COMMON_PARAMS = ("sliver_fraction", "trim_deflection", "max_panels", "min_angle", "samples")
+
+PANEL_ID_FORMAT = "P-{:04d}"
+ROD_ID_FORMAT = "R-{:04d}"
+NODE_ID_FORMAT = "N-{:04d}"
+
+
+@dataclass
+class PanelizeResult:
+    """Everything one panelization produced. Arrays are numpy, lengths in mm."""
+
+    method: str
+    params: dict
+    vertices: np.ndarray  # (N,3) float64
+    uv: np.ndarray  # (N,2) float64
+    normals: np.ndarray  # (N,3) unit face normals at the nodes
+    panels: list  # list of tuples of vertex indices, CCW seen from the normal
+    rods: np.ndarray  # (E,2) int64, unique undirected edges, a < b
+    metrics: dict  # name -> numpy array (see METRIC_NAMES)
+    irregular: np.ndarray  # (P,) bool
+    summary: dict = field(default_factory=dict)
+    _mesh: object = field(default=None, repr=False)
+
+    @property
+    def panel_ids(self):
+        return [PANEL_ID_FORMAT.format(i + 1) for i in range(len(self.panels))]
+
+    @property
+    def rod_ids(self):
+        return [ROD_ID_FORMAT.format(i + 1) for i in range(len(self.rods))]
+
+    @property
+    def node_ids(self):
+        return [NODE_ID_FORMAT.format(i + 1) for i in range(len(self.vertices))]
+
+    def panels_brep(self, planar_tolerance=None):
+        """BRep string of a compound with one sub-shape per panel (panel order)."""
+        if planar_tolerance is None:
+            planar_tolerance = 1e-6 * max(self.summary.get("model_size", 1.0), 1.0)
+        return core.panels_to_brep(self._mesh, planar_tolerance)
+
+    def rods_brep(self):
+        """BRep string of a compound with one edge per rod (rod order)."""
+        return core.rods_to_brep(self._mesh)
+
+    def nodes_brep(self):
+        """BRep string of a compound with one vertex per node (vertex order)."""
+        return core.nodes_to_brep(self._mesh)
+
+
+METRIC_NAMES = (
+    "panel_deviation",
+    "panel_planarity",
+    "panel_area",
+    "panel_min_angle",
+    "panel_max_angle",
+    "rod_length",
+    "node_valence",
+)
+
+
+def face_to_brep(face):
+    """BRep string of one face from a Part.Face, a one-face shape or (obj, 'FaceN')."""
+    import Part  # FreeCAD's; imported late so `import FreeCAD` comes first
+
+    if isinstance(face, (tuple, list)) and len(face) == 2 and isinstance(face[1], str):
+        obj, sub = face
+        shape = getattr(obj, "Shape", None)
+        if shape is None or shape.isNull():
+            raise ValueError(f"{getattr(obj, 'Label', obj)!r} has no shape")
+        if not sub.startswith("Face"):
+            raise ValueError(f"{sub!r} is not a face: select a face, not an edge or a vertex")
+        try:
+            face = shape.getElement(sub)
+        except Exception as exc:
+            raise ValueError(f"{getattr(obj, 'Label', obj)} has no {sub}") from exc
+    if not isinstance(face, Part.Shape):
+        raise TypeError(
+            "face must be a Part.Face, a shape with one face or (object, 'FaceN'), "
+            f"not {type(face).__name__}"
+        )
+    if face.isNull():
+        raise ValueError("the shape is empty")
+    if face.ShapeType != "Face":
+        faces = face.Faces
+        if len(faces) != 1:
+            raise ValueError(
+                f"the shape has {len(faces)} faces: pass exactly one face (e.g. shape.Faces[0])"
+            )
+        face = faces[0]
+    return face.exportBrepToString()
+
+
+def _check_kwargs(method, params):
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
+    allowed = set(METHODS[method]) | set(COMMON_PARAMS)
+    unknown = sorted(set(params) - allowed)
+    if unknown:
+        raise ValueError(
+            f"unknown parameter(s) {unknown} for method {method!r}; accepted: {sorted(allowed)}"
+        )
+
+
+def _set(struct, name, value, kind):
+    try:
+        value = kind(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    setattr(struct, name, value)
+
+
+def _method_params(method, params):
+    clip = core.GridClipParams()
+    for name, kind in (("sliver_fraction", float), ("trim_deflection", float), ("max_panels", int)):
+        if name in params:
+            _set(clip, name, params[name], kind)
+    if method == "iso_grid":
+        p = core.IsoGridParams()
+        for name, kind in (("size", float), ("u_count", int), ("v_count", int)):
+            if name in params:
+                _set(p, name, params[name], kind)
+    else:
+        p = core.EqualSizeGridParams()
+        if "size" in params:
+            _set(p, "size", params["size"], float)
+    p.clip = clip
+    return p
+
+
+def panelize(face, method="iso_grid", **params):
+    """Panelize one face. See the module docstring and README for parameters.
+
+    Raises ValueError for a bad parameter or an unusable face (the message names
+    the parameter and its accepted range), RuntimeError if the geometry kernel fails.
+    """
+    _check_kwargs(method, params)
+    brep = face_to_brep(face)
+    surface = core.SurfaceFace.from_brep_string(brep)
+    method_params = _method_params(method, params)
+    run = core.iso_grid if method == "iso_grid" else core.equal_size_grid
+    mesh = run(surface, method_params)
+
+    mp = core.MetricsParams()
+    if "samples" in params:
+        _set(mp, "samples", params["samples"], int)
+    m = core.measure_panels(surface, mesh, mp)
+    ip = core.IrregularParams()
+    if "min_angle" in params:
+        _set(ip, "min_angle_deg", params["min_angle"], float)
+    if "sliver_fraction" in params:
+        ip.min_area_fraction = float(params["sliver_fraction"])
+    irregular = np.asarray(core.irregular_panels(mesh, m, ip), dtype=bool)
+    nodes = core.node_data(surface, mesh)
+
+    metrics = {
+        "panel_deviation": np.asarray(m.deviation),
+        "panel_planarity": np.asarray(m.planarity),
+        "panel_area": np.asarray(m.area),
+        "panel_min_angle": np.asarray(m.min_angle),
+        "panel_max_angle": np.asarray(m.max_angle),
+        "rod_length": np.asarray(m.rod_length),
+        "node_valence": np.asarray(nodes.valence),
+    }
+    summary = {
+        "panel_count": len(mesh.panels),
+        "rod_count": int(mesh.rods.shape[0]),
+        "node_count": int(mesh.xyz.shape[0]),
+        "merged_slivers": int(mesh.merged_slivers),
+        "irregular_count": int(irregular.sum()),
+        "quad_share": float(np.mean([len(p) == 4 for p in mesh.panels])) if mesh.panels else 0.0,
+        "nominal_area": float(mesh.nominal_area),
+        "face_area": float(surface.area()),
+        "model_size": float(surface.model_size()),
+    }
+    for name in ("panel_deviation", "panel_planarity", "panel_area", "rod_length"):
+        summary[name] = core.summarize(metrics[name])
+    return PanelizeResult(
+        method=method,
+        params=dict(params),
+        vertices=np.asarray(mesh.xyz),
+        uv=np.asarray(mesh.uv),
+        normals=np.asarray(nodes.normal),
+        panels=[tuple(p) for p in mesh.panels],
+        rods=np.asarray(mesh.rods, dtype=np.int64),
+        metrics=metrics,
+        irregular=irregular,
+        summary=summary,
+        _mesh=mesh,
+    )

@@ -1,0 +1,29 @@
+"""The only importer of the compiled module `_core` (built by CMake into this folder)."""
+
+try:
+    from . import _core  # noqa: F401
+except ImportError as exc:  # pragma: no cover - message for a user without a build
+    raise ImportError(
+        "Tessella's compiled core is missing: run 'make build' in the repository "
+        "(it builds freecad_workbench/_core*.so with /usr/bin/python3). "
+        f"Original error: {exc}"
+    ) from exc
+
+from ._core import (  # noqa: E402,F401
+    EqualSizeGridParams,
+    GridClipParams,
+    IrregularParams,
+    IsoGridParams,
+    MetricsParams,
+    PanelMesh,
+    SurfaceFace,
+    equal_size_grid,
+    irregular_panels,
+    iso_grid,
+    measure_panels,
+    node_data,
+    nodes_to_brep,
+    panels_to_brep,
+    rods_to_brep,
+    summarize,
+)
