@@ -22,6 +22,7 @@
 #include <unordered_map>
 
 #include "tessella/errors.h"
+#include "tessella/panel_model.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -154,6 +155,36 @@ std::vector<char> row_inside(const Paths& domain, const std::vector<cInt>& X, do
   return inside;
 }
 
+// Trim points where the trim runs straight in (u,v) - along an iso-line, as
+// the natural boundary of an untrimmed face does - add nothing: the panel edge
+// there is the same chord of an iso-curve as every inner rod. A point used by
+// one panel only, collinear in (u,v) with its two neighbours, is removed.
+void drop_straight_boundary_points(PanelMesh& mesh) {
+  std::vector<int> uses(mesh.vertex_count(), 0);
+  for (const auto& panel : mesh.panels)
+    for (int v : panel) ++uses[v];
+  for (auto& panel : mesh.panels) {
+    bool removed = true;
+    while (removed && panel.size() > 3) {
+      removed = false;
+      for (std::size_t k = 0; k < panel.size() && panel.size() > 3; ++k) {
+        const int v = panel[k];
+        if (uses[v] != 1) continue;
+        const Vec2& a = mesh.uv[panel[(k + panel.size() - 1) % panel.size()]];
+        const Vec2& b = mesh.uv[v];
+        const Vec2& c = mesh.uv[panel[(k + 1) % panel.size()]];
+        const Vec2 ab = b - a, ac = c - a;
+        const double cross = ab.x() * ac.y() - ab.y() * ac.x();
+        if (std::abs(cross) <= 1e-12 * ac.squaredNorm() && ab.dot(ac) > 0 &&
+            ab.squaredNorm() < ac.squaredNorm()) {
+          panel.erase(panel.begin() + static_cast<long>(k));
+          removed = true;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
@@ -258,6 +289,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
     return id;
   };
   std::vector<char> panel_full;
+  std::vector<std::size_t> panel_cell;
   for (std::size_t c = 0; c < cell_polys.size(); ++c) {
     for (Path& poly : cell_polys[c]) {
       if (!ClipperLib::Orientation(poly)) std::reverse(poly.begin(), poly.end());
@@ -270,6 +302,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
       if (ids.size() < 3) continue;
       mesh.panels.push_back(std::move(ids));
       panel_full.push_back(full[c]);
+      panel_cell.push_back(c);
     }
   }
 
@@ -313,16 +346,27 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   int n = 0;
   for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
     if (!panel_full[k]) continue;
-    sum += fan_area(mesh, mesh.panels[k]);
+    sum += panel_area(mesh, k);
     ++n;
   }
   mesh.nominal_area = n > 0 ? sum / n : face.area() / std::max(cells, 1.0);
 
-  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
-  if (face.reversed()) {
-    for (auto& panel : mesh.panels) std::reverse(panel.begin(), panel.end());
+  // A sliver is a cut piece much smaller than the cell it was cut from (cells
+  // differ in size, e.g. towards a pole, so compare with its own cell).
+  std::vector<double> cell_area(mesh.panels.size(), 0.0);
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    if (panel_full[k]) continue;
+    const std::size_t i = panel_cell[k] % nu, j = panel_cell[k] / nu;
+    const std::vector<Vec2> uv = {{u_lines[i], v_lines[j]}, {u_lines[i + 1], v_lines[j]},
+                                  {u_lines[i + 1], v_lines[j + 1]}, {u_lines[i], v_lines[j + 1]}};
+    std::vector<Vec3> xyz;
+    for (const Vec2& q : uv) xyz.push_back(face.point(q.x(), q.y()));
+    cell_area[k] = panel_model_area(xyz, uv);
   }
-  mesh.merged_slivers = merge_slivers(mesh, params.sliver_fraction);
+  drop_straight_boundary_points(mesh);
+  mesh.merged_slivers = merge_slivers(mesh, params.sliver_fraction, cell_area);
+  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  if (face.reversed()) reverse_panels(mesh);
   remove_unused_vertices(mesh);
   build_rods(mesh);
   return mesh;

@@ -84,27 +84,36 @@ void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {
     if (!found) buckets[k].push_back(int(v));
   }
   std::vector<std::vector<int>> kept;
-  for (auto& panel : mesh.panels) {
+  std::vector<std::vector<Vec2>> kept_uv;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+    const std::vector<Vec2> before = panel_corner_uv(mesh, p);
     std::vector<int> ids;
-    for (int v : panel) {
-      const int t = target[v];
-      if (ids.empty() || ids.back() != t) ids.push_back(t);
+    std::vector<Vec2> uv;
+    for (std::size_t k = 0; k < mesh.panels[p].size(); ++k) {
+      const int t = target[mesh.panels[p][k]];
+      if (!ids.empty() && ids.back() == t) continue;
+      ids.push_back(t);
+      uv.push_back(before[k]);
     }
-    while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back();
-    if (ids.size() >= 3) kept.push_back(std::move(ids));
+    while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back(), uv.pop_back();
+    if (ids.size() < 3) continue;
+    kept.push_back(std::move(ids));
+    kept_uv.push_back(std::move(uv));
   }
   mesh.panels = std::move(kept);
+  mesh.corner_uv = std::move(kept_uv);
 }
 
-double fan_area(const PanelMesh& mesh, const std::vector<int>& panel) {
-  Vec3 c = Vec3::Zero();
-  for (int i : panel) c += mesh.xyz[i];
-  c /= double(panel.size());
-  double a = 0;
-  for (std::size_t k = 0; k < panel.size(); ++k) {
-    a += 0.5 * (mesh.xyz[panel[k]] - c).cross(mesh.xyz[panel[(k + 1) % panel.size()]] - c).norm();
-  }
-  return a;
+std::vector<Vec2> panel_corner_uv(const PanelMesh& mesh, std::size_t p) {
+  if (p < mesh.corner_uv.size()) return mesh.corner_uv[p];
+  std::vector<Vec2> uv;
+  for (int v : mesh.panels[p]) uv.push_back(mesh.uv[v]);
+  return uv;
+}
+
+void reverse_panels(PanelMesh& mesh) {
+  for (auto& panel : mesh.panels) std::reverse(panel.begin(), panel.end());
+  for (auto& uv : mesh.corner_uv) std::reverse(uv.begin(), uv.end());
 }
 
 }  // namespace tessella

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "tessella/errors.h"
+#include "tessella/panel_model.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -13,20 +14,6 @@ namespace tessella {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// Corner (u,v)s of a panel made continuous across a periodic seam, so that
-// interpolating between them stays on the panel's side of the seam.
-std::vector<Vec2> unwrapped_uv(const SurfaceFace& face, const PanelMesh& mesh,
-                               const std::vector<int>& panel) {
-  std::vector<Vec2> uv;
-  for (int v : panel) uv.push_back(mesh.uv[v]);
-  const double pu = face.u_period(), pv = face.v_period();
-  for (std::size_t k = 1; k < uv.size(); ++k) {
-    if (pu > 0) uv[k].x() -= pu * std::round((uv[k].x() - uv[0].x()) / pu);
-    if (pv > 0) uv[k].y() -= pv * std::round((uv[k].y() - uv[0].y()) / pv);
-  }
-  return uv;
-}
 
 double mean_edge(const std::vector<Vec3>& p) {
   double sum = 0;
@@ -56,24 +43,6 @@ double planarity(const std::vector<Vec3>& p) {
   return worst / edge;
 }
 
-// Area of the bilinear patch by 4x4 Gauss-Legendre quadrature.
-double bilinear_area(const std::vector<Vec3>& p) {
-  static const double x[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281,
-                              0.9305681557970263};
-  static const double w[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731,
-                              0.1739274225687269};
-  double area = 0;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      const double s = x[i], t = x[j];
-      const Vec3 ds = (1 - t) * (p[1] - p[0]) + t * (p[2] - p[3]);
-      const Vec3 dt = (1 - s) * (p[3] - p[0]) + s * (p[2] - p[1]);
-      area += w[i] * w[j] * ds.cross(dt).norm();
-    }
-  }
-  return area;
-}
-
 // Largest distance from sample points of the panel model to the surface.
 double deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
                  const std::vector<Vec2>& uv, int n) {
@@ -92,21 +61,12 @@ double deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
     }
     return worst;
   }
-  // Triangle: itself; n-gon: fan around the mean corner.
-  Vec3 c = Vec3::Zero();
-  Vec2 cuv = Vec2::Zero();
-  for (std::size_t k = 0; k < p.size(); ++k) c += p[k], cuv += uv[k];
-  c /= double(p.size());
-  cuv /= double(p.size());
-  const std::size_t fans = p.size() == 3 ? 1 : p.size();
-  for (std::size_t k = 0; k < fans; ++k) {
-    const std::size_t k1 = (k + 1) % p.size();
-    const Vec3& a = p.size() == 3 ? p[2] : c;
-    const Vec2& auv = p.size() == 3 ? uv[2] : cuv;
+  // Triangle or n-gon: the triangles of its (u,v) outline.
+  for (const auto& t : triangulate_polygon(uv)) {
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; i + j <= n; ++j) {
-        const double s = double(i) / n, t = double(j) / n, r = 1 - s - t;
-        probe(r * a + s * p[k] + t * p[k1], r * auv + s * uv[k] + t * uv[k1]);
+        const double s = double(i) / n, r = double(j) / n, q = 1 - s - r;
+        probe(q * p[t[0]] + s * p[t[1]] + r * p[t[2]], q * uv[t[0]] + s * uv[t[1]] + r * uv[t[2]]);
       }
     }
   }
@@ -129,10 +89,10 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
     const auto& panel = mesh.panels[k];
     std::vector<Vec3> p;
     for (int v : panel) p.push_back(mesh.xyz[v]);
-    const std::vector<Vec2> uv = unwrapped_uv(face, mesh, panel);
+    const std::vector<Vec2> uv = panel_corner_uv(mesh, k);
     m.deviation[k] = deviation(face, p, uv, params.samples);
     m.planarity[k] = planarity(p);
-    m.area[k] = p.size() == 4 ? bilinear_area(p) : fan_area(mesh, panel);
+    m.area[k] = panel_model_area(p, uv);
     double lo = 180.0, hi = 0.0;
     for (std::size_t c = 0; c < p.size(); ++c) {
       const Vec3 a = p[(c + p.size() - 1) % p.size()] - p[c];

@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "tessella/errors.h"
+#include "tessella/panel_model.h"
 
 namespace tessella {
 
@@ -54,7 +55,8 @@ TopoDS_Face oriented(TopoDS_Face face, const Vec3& wanted) {
   return face;
 }
 
-TopoDS_Shape panel_shape(const std::vector<Vec3>& p, double planar_tolerance) {
+TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
+                         double planar_tolerance) {
   BRepBuilderAPI_MakePolygon polygon;
   for (const Vec3& q : p) polygon.Add(pnt(q));
   polygon.Close();
@@ -68,25 +70,24 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, double planar_tolerance) {
   if (planar.IsDone()) return oriented(planar.Face(), normal);
   if (p.size() == 4) {
     // Bent quad: its bilinear patch, exact through the four corners.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Warray-bounds"  // GCC 12 false positive in NCollection_Array2
     TColgp_Array2OfPnt poles(1, 2, 1, 2);
     poles(1, 1) = pnt(p[0]);
     poles(2, 1) = pnt(p[1]);
     poles(2, 2) = pnt(p[2]);
     poles(1, 2) = pnt(p[3]);
     Handle(Geom_BezierSurface) patch = new Geom_BezierSurface(poles);
+#pragma GCC diagnostic pop
     BRepBuilderAPI_MakeFace bilinear(patch, 0.0, 1.0, 0.0, 1.0, 1e-7);
     if (bilinear.IsDone()) return oriented(bilinear.Face(), normal);
   }
-  // Bent n-gon: flat triangles around the mean corner, grouped in a compound.
-  Vec3 c = Vec3::Zero();
-  for (const Vec3& q : p) c += q;
-  c /= double(p.size());
+  // Bent n-gon: the flat triangles of its (u,v) triangulation, in a compound.
   BRep_Builder builder;
   TopoDS_Compound fan;
   builder.MakeCompound(fan);
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const Vec3& a = p[k];
-    const Vec3& b = p[(k + 1) % p.size()];
+  for (const auto& t : triangulate_polygon(uv)) {
+    const Vec3 &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
     BRepBuilderAPI_MakePolygon tri(pnt(a), pnt(b), pnt(c), Standard_True);
     if (!tri.IsDone()) continue;
     BRepBuilderAPI_MakeFace f(tri.Wire(), Standard_True);
@@ -103,10 +104,10 @@ std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance) {
     BRep_Builder builder;
     TopoDS_Compound all;
     builder.MakeCompound(all);
-    for (const auto& panel : mesh.panels) {
+    for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
       std::vector<Vec3> p;
-      for (int v : panel) p.push_back(mesh.xyz[v]);
-      builder.Add(all, panel_shape(p, planar_tolerance));
+      for (int v : mesh.panels[k]) p.push_back(mesh.xyz[v]);
+      builder.Add(all, panel_shape(p, panel_corner_uv(mesh, k), planar_tolerance));
     }
     return to_brep(all);
   } catch (const Standard_Failure& e) {

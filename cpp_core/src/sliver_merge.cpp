@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "tessella/errors.h"
+#include "tessella/panel_model.h"
 #include "tessella/grid_clipping.h"
 
 namespace tessella {
@@ -45,12 +46,11 @@ bool merge_pair(const std::vector<int>& a, const std::vector<int>& b, std::vecto
 
 }  // namespace
 
-int merge_slivers(PanelMesh& mesh, double fraction) {
+int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& reference_area) {
   require_in_range("sliver_fraction", fraction, 0.0, 1.0);
-  if (fraction <= 0 || mesh.nominal_area <= 0) return 0;
-  const double limit = fraction * mesh.nominal_area;
+  if (fraction <= 0) return 0;
   std::vector<double> area(mesh.panels.size());
-  for (std::size_t p = 0; p < mesh.panels.size(); ++p) area[p] = fan_area(mesh, mesh.panels[p]);
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) area[p] = panel_area(mesh, p);
   std::vector<char> alive(mesh.panels.size(), 1);
   // Directed edge -> panel, kept up to date as panels merge.
   std::map<std::pair<int, int>, int> owner;
@@ -64,7 +64,7 @@ int merge_slivers(PanelMesh& mesh, double fraction) {
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return area[a] < area[b]; });
   int merged = 0;
   for (int s : order) {
-    if (!alive[s] || area[s] >= limit) continue;
+    if (!alive[s] || area[s] >= fraction * reference_area[s]) continue;
     // Neighbour with the longest shared boundary (3D length).
     std::map<int, double> shared_length;
     const auto& poly = mesh.panels[s];

@@ -15,8 +15,9 @@ class SurfaceFace;
 PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
                     const std::vector<double>& v_lines, const GridClipParams& params);
 
-// Merges panels smaller than `fraction * mesh.nominal_area` into the neighbour
-// they share the longest edge with. Returns how many were merged.
-int merge_slivers(PanelMesh& mesh, double fraction);
+// Merges each panel p smaller than `fraction * reference_area[p]` into the
+// neighbour it shares the longest edge with (reference_area[p] = 0: never).
+// Returns how many were merged.
+int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& reference_area);
 
 }  // namespace tessella

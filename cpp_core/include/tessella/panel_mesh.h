@@ -19,6 +19,10 @@ struct PanelMesh {
   std::vector<std::vector<int>> panels;
   // Unique undirected panel edges (a < b), sorted; filled by build_rods().
   std::vector<std::array<int, 2>> rods;
+  // (u,v) of each panel corner as seen from that panel, parallel to `panels`.
+  // Differs from uv[vertex] only where welding merged vertices (a periodic
+  // seam, a pole); empty until weld_coincident_vertices() fills it.
+  std::vector<std::vector<Vec2>> corner_uv;
 
   // What the method reports about its own run.
   int merged_slivers = 0;      // slivers merged into a neighbour
@@ -41,10 +45,14 @@ NodeData node_data(const SurfaceFace& face, const PanelMesh& mesh);
 void remove_unused_vertices(PanelMesh& mesh);
 
 // Merges vertices closer than `tolerance` in 3D (a periodic seam, a pole), then
-// drops repeated corners and panels left with fewer than three.
+// drops repeated corners and panels left with fewer than three. Fills
+// mesh.corner_uv from the (u,v) the corners had before welding.
 void weld_coincident_vertices(PanelMesh& mesh, double tolerance);
 
-// Area of the panel as flat triangles fanned around the mean of its corners.
-double fan_area(const PanelMesh& mesh, const std::vector<int>& panel);
+// Corner (u,v)s of panel p (mesh.corner_uv if filled, else the vertices' uv).
+std::vector<Vec2> panel_corner_uv(const PanelMesh& mesh, std::size_t p);
+
+// Reverses every panel's corner order (and corner_uv with it).
+void reverse_panels(PanelMesh& mesh);
 
 }  // namespace tessella
