@@ -126,7 +126,7 @@ SummaryStats summarize(const std::vector<double>& values) {
 
 std::vector<bool> irregular_panels(const PanelMesh& mesh, const PanelMetrics& metrics,
                                    const IrregularParams& params) {
-  require_in_range("min_angle", params.min_angle_deg, 0.0, 90.0);
+  require_in_range("min_angle", params.min_angle_deg, 0.0, 180.0);
   require_in_range("min_area_fraction", params.min_area_fraction, 0.0, 1.0);
   std::vector<bool> flags(mesh.panels.size());
   for (std::size_t k = 0; k < mesh.panels.size(); ++k) {

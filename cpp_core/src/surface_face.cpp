@@ -251,45 +251,49 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
   double u = s.wrap_u(start.x()), v = s.wrap_v(start.y());
   const double eps1 = params.distance_tolerance * s.model_size;
   bool converged = false;
-  for (int it = 0; it < params.max_iterations; ++it) {
+  for (int it = 0; it <= params.max_iterations; ++it) {
     gp_Pnt P;
     gp_Vec Su, Sv, Suu, Svv, Suv;
     s.surface->D2(u, v, P, Su, Sv, Suu, Svv, Suv);
     const Vec3 r = to_vec(P) - p;
     const Vec3 su = to_vec(Su), sv = to_vec(Sv);
     const double rn = r.norm();
-    // Eq. 18: r is orthogonal to both tangents (or r vanishes: p is on the surface).
-    if (rn <= eps1 || (std::abs(su.dot(r)) <= params.orthogonality_tolerance * su.norm() * rn &&
-                       std::abs(sv.dot(r)) <= params.orthogonality_tolerance * sv.norm() * rn)) {
-      converged = true;
-      break;
-    }
-    // Eq. 12-15: J delta = -kappa.
+    // Eq. 12-14: J is the Hessian of |r|^2 / 2, kappa its gradient.
     const double f = r.dot(su), g = r.dot(sv);
     const double a = su.squaredNorm() + r.dot(to_vec(Suu));
     const double b = su.dot(sv) + r.dot(to_vec(Suv));
     const double d = sv.squaredNorm() + r.dot(to_vec(Svv));
     const double det = a * d - b * b;
-    if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) break;  // pole or flat spot
+    if (rn <= eps1) {
+      converged = true;  // p lies on the surface
+      break;
+    }
+    // Eq. 18: r orthogonal to both tangents. Newton also stops on maxima and
+    // saddles of the distance, so a foot point must be a minimum (J positive
+    // definite); a pole (a tangent vanishes) is left to the fallback.
+    const double tol = params.orthogonality_tolerance * rn;
+    if (su.norm() > 0 && sv.norm() > 0 && std::abs(f) <= tol * su.norm() &&
+        std::abs(g) <= tol * sv.norm()) {
+      converged = a > 0 && det > 0;
+      break;
+    }
+    if (it == params.max_iterations || !(std::abs(det) > 1e-300) || !std::isfinite(det)) break;
+    // Eq. 15-16: J delta = -kappa, then step.
     const double du = -(d * f - b * g) / det;
     const double dv = -(a * g - b * f) / det;
     const double nu = s.wrap_u(u + du), nv = s.wrap_v(v + dv);
-    // Eq. 17 measured in 3D: the step moved the surface point by less than eps1.
+    // Eq. 17 in 3D: a step that no longer moves the point ends the iteration
+    // (clamped at the border of the search range, or stalled).
     const double step3d = (su * (nu - u) + sv * (nv - v)).norm();
     u = nu;
     v = nv;
-    if (step3d <= eps1) {
-      converged = true;
-      break;
-    }
+    if (step3d <= 1e-3 * eps1) break;
   }
   Projection result;
   if (converged) {
     result.uv = {u, v};
     result.point = point(u, v);
     result.distance = (result.point - p).norm();
-    // Newton finds a stationary point; a saddle or a far local minimum is
-    // caught by comparing with the global answer only when cheap checks fail.
     return result;
   }
   result = project(p);

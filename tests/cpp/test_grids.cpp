@@ -1,0 +1,198 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "tessella/errors.h"
+#include "tessella/grid_methods.h"
+#include "tessella/panel_metrics.h"
+#include "tessella/panel_model.h"
+#include "test_faces.h"
+
+using namespace tessella;
+using namespace tessella::test;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+IsoGridParams counts(int nu, int nv) {
+  IsoGridParams p;
+  p.u_count = nu;
+  p.v_count = nv;
+  return p;
+}
+}  // namespace
+
+TEST(IsoGrid, ClosedCylinderIsAllQuadsWeldedAcrossTheSeam) {
+  const SurfaceFace f = cylinder_face(5000, 8000);
+  const PanelMesh m = iso_grid(f, counts(24, 8));
+  ASSERT_EQ(m.panels.size(), 24u * 8u);
+  for (const auto& p : m.panels) EXPECT_EQ(p.size(), 4u);
+  EXPECT_EQ(m.vertex_count(), 24u * 9u);          // seam welded: no duplicate column
+  EXPECT_EQ(m.rods.size(), 24u * 9u + 24u * 8u);  // rings + verticals
+  for (const Vec3& x : m.xyz) EXPECT_NEAR(std::hypot(x.x(), x.y()), 5000.0, 1e-9);
+}
+
+TEST(IsoGrid, CylinderDeviationIsTheSagittaOfTheChord) {
+  const double r = 5000;
+  const SurfaceFace f = cylinder_face(r, 2000);
+  for (int n : {6, 12, 31}) {
+    const PanelMesh m = iso_grid(f, counts(n, 2));
+    const PanelMetrics metrics = measure_panels(f, m);
+    // Flat rectangles on a circle: the largest gap is at mid-chord.
+    const double sagitta = r * (1 - std::cos(kPi / n));
+    for (double d : metrics.deviation) EXPECT_NEAR(d, sagitta, 1e-6 * r) << n;
+    for (double p : metrics.planarity) EXPECT_NEAR(p, 0.0, 1e-9);
+    for (double a : metrics.min_angle) EXPECT_NEAR(a, 90.0, 1e-6);
+    // Panel edge along the circle: chord 2 r sin(pi/n); along the axis 1000.
+    for (double len : metrics.rod_length) {
+      const bool chord = std::abs(len - 2 * r * std::sin(kPi / n)) < 1e-6;
+      const bool axial = std::abs(len - 1000.0) < 1e-6;
+      EXPECT_TRUE(chord || axial) << len;
+    }
+  }
+}
+
+TEST(IsoGrid, SpherePolesBecomeTrianglesAndEveryNodeIsOnTheSphere) {
+  const SurfaceFace f = sphere_face(3000);
+  const PanelMesh m = iso_grid(f, counts(12, 6));
+  int triangles = 0;
+  for (const auto& p : m.panels) triangles += p.size() == 3;
+  EXPECT_EQ(triangles, 24);  // one ring of 12 at each pole
+  EXPECT_EQ(m.panels.size(), 72u);
+  EXPECT_EQ(m.vertex_count(), 12u * 5u + 2u);
+  for (const Vec3& x : m.xyz) EXPECT_NEAR(x.norm(), 3000.0, 1e-9);
+  const PanelMetrics metrics = measure_panels(f, m);
+  for (double d : metrics.deviation) {
+    EXPECT_GT(d, 0.0);
+    EXPECT_LT(d, 3000.0 * (1 - std::cos(kPi / 6)) * 1.5);  // panels span at most 30 deg
+  }
+}
+
+TEST(IsoGrid, HoleStaysOpenAndAreaIsExactOnAPlate) {
+  const SurfaceFace f = plate_with_square_hole(1000, 330, 670);
+  const PanelMesh m = iso_grid(f, counts(10, 10));
+  const PanelMetrics metrics = measure_panels(f, m);
+  double area = 0;
+  for (double a : metrics.area) area += a;
+  EXPECT_NEAR(area, 1000.0 * 1000.0 - 340.0 * 340.0, 1e-6);
+  for (const Vec3& x : m.xyz) {
+    EXPECT_NEAR(x.z(), 0.0, 1e-12);
+    const bool in_hole = x.x() > 330 + 1e-9 && x.x() < 670 - 1e-9 && x.y() > 330 + 1e-9 &&
+                         x.y() < 670 - 1e-9;
+    EXPECT_FALSE(in_hole) << x.transpose();
+  }
+  // Each panel's uv triangulation centroids lie inside the face.
+  for (std::size_t p = 0; p < m.panels.size(); ++p) {
+    const std::vector<Vec2> uv = panel_corner_uv(m, p);
+    for (const auto& t : triangulate_polygon(uv)) {
+      const Vec2 c = (uv[t[0]] + uv[t[1]] + uv[t[2]]) / 3.0;
+      EXPECT_TRUE(f.is_inside(c.x(), c.y()));
+    }
+  }
+}
+
+TEST(IsoGrid, SliversNextToAHoleMergeIntoTheOuterRing) {
+  // Hole [105,895]^2 in a 10 x 10 grid of 100 mm cells: the ring of cells
+  // around it keeps 5 mm strips (28 slivers) that merge into the 36 outer cells.
+  const SurfaceFace f = plate_with_square_hole(1000, 105, 895);
+  const PanelMesh m = iso_grid(f, counts(10, 10));
+  EXPECT_EQ(m.merged_slivers, 28);
+  EXPECT_EQ(m.panels.size(), 36u);
+  IsoGridParams keep = counts(10, 10);
+  keep.clip.sliver_fraction = 0.0;
+  const PanelMesh unmerged = iso_grid(f, keep);
+  EXPECT_EQ(unmerged.merged_slivers, 0);
+  EXPECT_EQ(unmerged.panels.size(), 64u);
+  double a1 = 0, a2 = 0;
+  for (double a : measure_panels(f, m).area) a1 += a;
+  for (double a : measure_panels(f, unmerged).area) a2 += a;
+  EXPECT_NEAR(a1, 1e6 - 790.0 * 790.0, 1e-6);
+  EXPECT_NEAR(a2, a1, 1e-6);
+}
+
+TEST(IsoGrid, NoTJunctionsEveryEdgeHasAtMostTwoPanels) {
+  const SurfaceFace f = plate_with_square_hole(1000, 333, 667);
+  const PanelMesh m = iso_grid(f, counts(7, 9));
+  std::map<std::array<int, 2>, int> uses;
+  for (const auto& p : m.panels)
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const int a = p[k], b = p[(k + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  // Boundary edges: used once; their total length is the two perimeters.
+  double boundary = 0;
+  for (const auto& [e, n] : uses) {
+    EXPECT_LE(n, 2);
+    if (n == 1) boundary += (m.xyz[e[0]] - m.xyz[e[1]]).norm();
+  }
+  EXPECT_NEAR(boundary, 4000.0 + 4 * 334.0, 1e-6);
+}
+
+TEST(IsoGrid, BySizeGivesEdgesNearTheSize) {
+  const SurfaceFace f = cylinder_face(5000, 8000);
+  IsoGridParams p;
+  p.size = 1000;
+  const PanelMesh m = iso_grid(f, p);
+  const PanelMetrics metrics = measure_panels(f, m);
+  for (double len : metrics.rod_length) EXPECT_NEAR(len, 1000.0, 20.0);
+}
+
+TEST(IsoGrid, BadParametersAreRejectedWithTheirName) {
+  const SurfaceFace f = cylinder_face(5000, 8000);
+  IsoGridParams p;
+  p.size = -1;
+  try {
+    iso_grid(f, p);
+    FAIL();
+  } catch (const InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find("size"), std::string::npos);
+  }
+  EXPECT_THROW(iso_grid(f, IsoGridParams{}), InvalidParameter);  // nothing given
+  IsoGridParams both = counts(3, 3);
+  both.size = 100;
+  EXPECT_THROW(iso_grid(f, both), InvalidParameter);
+  IsoGridParams tiny;
+  tiny.size = 1.0;  // 31 416 x 8 000 panels
+  EXPECT_THROW(iso_grid(f, tiny), LimitExceeded);
+  IsoGridParams capped = counts(100, 100);
+  capped.clip.max_panels = 9999;
+  EXPECT_THROW(iso_grid(f, capped), LimitExceeded);
+  IsoGridParams nan_size;
+  nan_size.size = std::nan("");
+  EXPECT_THROW(iso_grid(f, nan_size), InvalidParameter);
+}
+
+TEST(IsoGrid, IsDeterministic) {
+  const SurfaceFace f = plate_with_square_hole(1000, 123, 456);
+  const PanelMesh a = iso_grid(f, counts(13, 11));
+  const PanelMesh b = iso_grid(f, counts(13, 11));
+  ASSERT_EQ(a.xyz.size(), b.xyz.size());
+  for (std::size_t i = 0; i < a.xyz.size(); ++i) EXPECT_EQ(a.xyz[i], b.xyz[i]);
+  EXPECT_EQ(a.panels, b.panels);
+}
+
+TEST(EqualSizeGrid, EvensOutAnUnevenParameterization) {
+  const SurfaceFace f = stretched_plate();
+  IsoGridParams iso;
+  iso.size = 100;
+  EqualSizeGridParams eq;
+  eq.size = 100;
+  auto x_edges = [&](const PanelMesh& m) {
+    std::vector<double> out;
+    for (const auto& rod : m.rods) {
+      const Vec3 d = m.xyz[rod[1]] - m.xyz[rod[0]];
+      if (std::abs(d.y()) < 1e-9) out.push_back(std::abs(d.x()));
+    }
+    return out;
+  };
+  const std::vector<double> iso_x = x_edges(iso_grid(f, iso));
+  const std::vector<double> eq_x = x_edges(equal_size_grid(f, eq));
+  ASSERT_FALSE(eq_x.empty());
+  // x(u) = 400u + 600u^2 with 10 columns: uniform u gives widths 46..154 mm.
+  EXPECT_LT(*std::min_element(iso_x.begin(), iso_x.end()), 50.0);
+  EXPECT_GT(*std::max_element(iso_x.begin(), iso_x.end()), 150.0);
+  for (double w : eq_x) EXPECT_NEAR(w, 100.0, 0.5);
+  EqualSizeGridParams missing;
+  EXPECT_THROW(equal_size_grid(f, missing), InvalidParameter);
+}

@@ -1,0 +1,106 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tessella/errors.h"
+#include "tessella/surface_face.h"
+#include "test_faces.h"
+
+using namespace tessella;
+using namespace tessella::test;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+double loop_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec2& q = p[(i + 1) % p.size()];
+    a += p[i].x() * q.y() - q.x() * p[i].y();
+  }
+  return 0.5 * a;
+}
+}  // namespace
+
+TEST(SurfaceFace, RejectsGarbageAndEmptyShapes) {
+  EXPECT_THROW(SurfaceFace::from_brep_string("not a brep"), InvalidGeometry);
+  EXPECT_THROW(SurfaceFace::from_brep_string(""), InvalidGeometry);
+  BRepBuilderAPI_MakePolygon p(gp_Pnt(0, 0, 0), gp_Pnt(1, 0, 0));
+  EXPECT_THROW(SurfaceFace::from_brep_string(brep(p.Wire())), InvalidGeometry);  // no face
+}
+
+TEST(SurfaceFace, CylinderPointNormalAndPeriod) {
+  const SurfaceFace f = cylinder_face(5000, 8000);
+  EXPECT_TRUE(f.u_periodic());
+  EXPECT_NEAR(f.u_period(), 2 * kPi, 1e-12);
+  for (double u : {0.0, 1.0, 3.0, 6.0}) {
+    const Vec3 p = f.point(u, 1234.0);
+    EXPECT_NEAR(std::hypot(p.x(), p.y()), 5000.0, 1e-9);
+    EXPECT_NEAR(p.z(), 1234.0, 1e-9);
+    const Vec3 n = f.normal(u, 1234.0);
+    // The lateral face of a solid cylinder points outwards.
+    EXPECT_NEAR(n.dot(Vec3(p.x(), p.y(), 0).normalized()), 1.0, 1e-12);
+  }
+  EXPECT_NEAR(f.area(), 2 * kPi * 5000 * 8000, 1e-6 * 2 * kPi * 5000 * 8000);
+}
+
+TEST(SurfaceFace, InsideTestAndTrimLoopsOfAPlateWithAHole) {
+  const SurfaceFace f = plate_with_square_hole(1000, 300, 700);
+  const UvBounds b = f.bounds();
+  // The plane's (u,v) are x,y here: check on the grid of the plate.
+  EXPECT_NEAR(b.u_max - b.u_min, 1000, 1e-9);
+  EXPECT_TRUE(f.is_inside(b.u_min + 100, b.v_min + 100));
+  EXPECT_FALSE(f.is_inside(b.u_min + 500, b.v_min + 500));  // in the hole
+  EXPECT_FALSE(f.is_inside(b.u_min - 10, b.v_min + 500));   // outside
+  const auto loops = f.trim_loops(0.01);
+  ASSERT_EQ(loops.size(), 2u);
+  EXPECT_TRUE(loops[0].outer);
+  EXPECT_FALSE(loops[1].outer);
+  EXPECT_NEAR(loop_area(loops[0].uv), 1000.0 * 1000.0, 1e-6);   // counter-clockwise
+  EXPECT_NEAR(loop_area(loops[1].uv), -400.0 * 400.0, 1e-6);    // clockwise
+  EXPECT_NEAR(f.area(), 1000.0 * 1000.0 - 400.0 * 400.0, 1e-6);
+}
+
+TEST(SurfaceFace, TrimLoopChordsStayWithinTheDeflection) {
+  const SurfaceFace f = cylinder_face(1000, 500);
+  for (double deflection : {1.0, 0.01}) {
+    for (const TrimLoop& loop : f.trim_loops(deflection)) {
+      for (std::size_t i = 0; i < loop.xyz.size(); ++i) {
+        const Vec3 m = 0.5 * (loop.xyz[i] + loop.xyz[(i + 1) % loop.xyz.size()]);
+        // Chord midpoint to the circle of radius 1000 (closed form).
+        if (std::abs(m.z()) < 1e-9 || std::abs(m.z() - 500) < 1e-9) {
+          EXPECT_LE(1000.0 - std::hypot(m.x(), m.y()), deflection * 1.0001);
+        }
+      }
+    }
+  }
+}
+
+TEST(SurfaceFace, NewtonProjectionMatchesTheSphereInClosedForm) {
+  const SurfaceFace f = sphere_face(3000);
+  const Vec3 points[] = {{4000, 100, 200}, {-100, 2500, -1000}, {10, 20, 5000}, {0, 0, -3500},
+                         {1000, -200, 300}};
+  for (const Vec3& p : points) {
+    const Projection r = f.project(p, Vec2(1.0, 0.2));
+    EXPECT_NEAR(r.distance, std::abs(p.norm() - 3000.0), 1e-6) << p.transpose();
+    EXPECT_NEAR(r.point.norm(), 3000.0, 1e-6);
+    EXPECT_NEAR((r.point.normalized() - p.normalized()).norm(), 0.0, 1e-6);
+  }
+}
+
+TEST(SurfaceFace, ProjectionAcrossTheSeamWraps) {
+  const SurfaceFace f = cylinder_face(1000, 100);
+  // A point just before the seam (angle -0.01) from a start just after it.
+  const Vec3 p(1100 * std::cos(-0.01), 1100 * std::sin(-0.01), 50);
+  const Projection r = f.project(p, Vec2(0.02, 50));
+  EXPECT_NEAR(r.distance, 100.0, 1e-6);
+  EXPECT_NEAR(std::atan2(r.point.y(), r.point.x()), -0.01, 1e-9);
+  EXPECT_GE(r.uv.x(), 0.0);
+  EXPECT_LE(r.uv.x(), 2 * kPi);
+}
+
+TEST(SurfaceFace, NormalIsDefinedAtAPole) {
+  const SurfaceFace f = sphere_face(2000);
+  const Vec3 n = f.normal(0.3, kPi / 2);
+  EXPECT_NEAR(n.z(), 1.0, 1e-3);
+}
