@@ -199,7 +199,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
                         ": choose a larger size or raise max_panels");
   }
   const double deflection =
-      params.trim_deflection > 0 ? params.trim_deflection : 1e-5 * face.model_size();
+      params.trim_deflection > 0 ? params.trim_deflection : 1e-6 * face.model_size();
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   if (loops.empty()) throw InvalidGeometry("the face has no usable trim loop");
 

@@ -45,12 +45,13 @@ double planarity(const std::vector<Vec3>& p) {
 
 // Largest distance from sample points of the panel model to the surface.
 double deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
-                 const std::vector<Vec2>& uv, int n) {
+                 const std::vector<Vec2>& uv, int samples) {
   double worst = 0;
   auto probe = [&](const Vec3& x, const Vec2& start) {
     worst = std::max(worst, face.project(x, start).distance);
   };
   if (p.size() == 4) {
+    const int n = samples;
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; j <= n; ++j) {
         const double s = double(i) / n, t = double(j) / n;
@@ -61,8 +62,15 @@ double deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
     }
     return worst;
   }
-  // Triangle or n-gon: the triangles of its (u,v) outline.
+  // Triangle or n-gon: the triangles of its (u,v) outline, each sampled as
+  // densely as its size asks (a boundary panel has many thin triangles).
+  double extent = 0;
+  for (const Vec3& a : p)
+    for (const Vec3& b : p) extent = std::max(extent, (a - b).norm());
   for (const auto& t : triangulate_polygon(uv)) {
+    const double longest = std::max({(p[t[0]] - p[t[1]]).norm(), (p[t[1]] - p[t[2]]).norm(),
+                                     (p[t[2]] - p[t[0]]).norm()});
+    const int n = std::max(1, static_cast<int>(std::ceil(samples * longest / extent)));
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; i + j <= n; ++j) {
         const double s = double(i) / n, r = double(j) / n, q = 1 - s - r;

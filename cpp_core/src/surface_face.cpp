@@ -287,7 +287,13 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
     const double step3d = (su * (nu - u) + sv * (nv - v)).norm();
     u = nu;
     v = nv;
-    if (step3d <= 1e-3 * eps1) break;
+    if (step3d <= eps1) {
+      // Newton's step has vanished: a foot point if it is a minimum and not a
+      // pole (where a vanishing tangent also makes every step short).
+      const double t = std::min(su.norm(), sv.norm()) / std::max(su.norm(), sv.norm());
+      converged = a > 0 && det > 0 && t > 1e-6;
+      break;
+    }
   }
   Projection result;
   if (converged) {

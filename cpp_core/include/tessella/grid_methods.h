@@ -13,7 +13,8 @@ struct GridClipParams {
   // Boundary panels whose area is under this fraction of a full panel are
   // merged into their neighbour.
   double sliver_fraction = 0.25;
-  // Chord deflection of the trim polylines, mm. 0 = model_size * 1e-5.
+  // Chord deflection of the trim polylines, mm. 0 = model_size * 1e-6, so every
+  // boundary node lies within 1e-6 of the model size of the true trim curve.
   double trim_deflection = 0.0;
   // Refuse grids with more panels than this.
   int max_panels = 200000;

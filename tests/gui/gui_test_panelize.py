@@ -1,0 +1,352 @@
+"""GUI test of the Tessella workbench and its Tessella_Panelize command.
+
+Run (as root add QTWEBENGINE_DISABLE_SANDBOX=1):
+
+    TESSELLA_GUI_RESULT=/tmp/gui.json xvfb-run -a freecad tests/gui/gui_test_panelize.py
+
+Writes {"passed": N, "failed": M, "failures": [...], ...} to $TESSELLA_GUI_RESULT
+(default: tessella_gui_test_result.json in the temp directory), then closes its documents and
+quits FreeCAD. If the repository is not installed as a Mod folder, the workbench is
+registered the way FreeCAD would do it (repository on sys.path, InitGui.py run).
+"""
+
+import json
+import os
+import sys
+import tempfile
+import traceback
+
+import FreeCAD
+import FreeCADGui as Gui
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = (os.environ.get("TESSELLA_ROOT") or os.environ.get("TESSELLA_REPO")
+        or os.path.dirname(os.path.dirname(HERE)))
+RESULT = os.environ.get("TESSELLA_GUI_RESULT") or os.path.join(
+    tempfile.gettempdir(), "tessella_gui_test_result.json")
+
+results = {"passed": 0, "failed": 0, "failures": [], "checks": [], "registration": None}
+
+
+def check(name, condition, detail=""):
+    results["checks"].append(name)
+    if condition:
+        results["passed"] += 1
+    else:
+        results["failed"] += 1
+        results["failures"].append(f"{name}: {detail}" if detail else name)
+    return bool(condition)
+
+
+def process_events():
+    from PySide import QtGui
+
+    QtGui.QApplication.processEvents()
+
+
+class DialogCatcher:
+    """Closes modal message boxes while a command runs and remembers their text."""
+
+    def __init__(self):
+        from PySide import QtCore
+
+        self.texts = []
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(50)
+        self.timer.timeout.connect(self._close)
+
+    def _close(self):
+        from PySide import QtGui
+
+        w = QtGui.QApplication.activeModalWidget()
+        if w is not None and isinstance(w, QtGui.QMessageBox):
+            self.texts.append(w.text())
+            w.done(0)
+
+    def __enter__(self):
+        self.texts.clear()
+        self.timer.start()
+        return self
+
+    def __exit__(self, *exc):
+        process_events()
+        self.timer.stop()
+        return False
+
+
+def ensure_workbench():
+    if "TessellaWorkbench" in Gui.listWorkbenches():
+        results["registration"] = "Mod folder"
+        return
+    # What FreeCAD does for a Mod folder: the folder on sys.path, InitGui.py
+    # exec()'d with names that its functions cannot see (strict: empty globals).
+    if REPO not in sys.path:
+        sys.path.insert(0, REPO)
+    with open(os.path.join(REPO, "InitGui.py"), encoding="utf-8") as f:
+        source = f.read()
+    exec(compile(source, os.path.join(REPO, "InitGui.py"), "exec"),
+         {"__builtins__": __builtins__}, {})
+    results["registration"] = "manual (InitGui.py executed by the test)"
+
+
+def bspline_face_with_hole():
+    import Part
+
+    heights = [[0, 700, 700, 0], [500, 1800, 1600, 400], [400, 1500, 1900, 600],
+               [0, 600, 800, 100]]
+    poles = [[FreeCAD.Vector(3000.0 * i, 2500.0 * j, heights[i][j]) for j in range(4)]
+             for i in range(4)]
+    surf = Part.BSplineSurface()
+    surf.buildFromPolesMultsKnots(poles, [4, 4], [4, 4], [0.0, 1.0], [0.0, 1.0],
+                                  False, False, 3, 3)
+    cyl = Part.makeCylinder(1200.0, 10000.0, FreeCAD.Vector(4500.0, 3750.0, -5000.0))
+    cut = surf.toShape().cut(cyl)
+    return cut.Faces[0]
+
+
+def panelizations(doc):
+    from freecad_workbench.features.panelization import is_panelization
+
+    return [o for o in doc.Objects if is_panelization(o)]
+
+
+def run_command_expecting_nothing(doc, label):
+    before = sorted(o.Name for o in doc.Objects)
+    undo_before = doc.UndoCount
+    with DialogCatcher() as dc:
+        Gui.runCommand("Tessella_Panelize")
+    check(f"{label}: nothing created", sorted(o.Name for o in doc.Objects) == before,
+          f"objects now {sorted(o.Name for o in doc.Objects)}")
+    check(f"{label}: no undo step", doc.UndoCount == undo_before,
+          f"UndoCount {undo_before} -> {doc.UndoCount}")
+    check(f"{label}: the user is told to select one face",
+          any("face" in t.lower() for t in dc.texts), f"message boxes: {dc.texts}")
+
+
+def test_workbench():
+    ensure_workbench()
+    check("workbench registered", "TessellaWorkbench" in Gui.listWorkbenches())
+    import freecad_workbench
+
+    package = os.path.realpath(os.path.dirname(freecad_workbench.__file__))
+    check("the checkout under test is the one imported",
+          package == os.path.realpath(os.path.join(REPO, "freecad_workbench")),
+          f"{package} (another copy linked in the Mod folder?)")
+    Gui.activateWorkbench("TessellaWorkbench")
+    process_events()
+    wb = Gui.activeWorkbench()
+    check("workbench active", wb.name() == "TessellaWorkbench", wb.name())
+    check("workbench MenuText", getattr(wb, "MenuText", "") == "Tessella")
+    icon = getattr(wb, "Icon", "")
+    check("workbench icon file exists", bool(icon) and os.path.isfile(icon), repr(icon))
+    check("command registered", "Tessella_Panelize" in Gui.listCommands())
+    toolbars, menus = wb.listToolbars(), wb.listMenus()
+    check("toolbar Tessella", "Tessella" in toolbars, str(toolbars))
+    check("menu Tessella", "Tessella" in menus, str(menus))
+    items = wb.getToolbarItems()
+    check("toolbar holds Tessella_Panelize",
+          "Tessella_Panelize" in items.get("Tessella", []), str(items.get("Tessella")))
+
+
+def test_command():
+    doc = FreeCAD.newDocument("TessellaGuiTest")
+    try:
+        Gui.activateWorkbench("TessellaWorkbench")
+        check("undo enabled in the GUI", doc.UndoMode == 1, str(doc.UndoMode))
+        surf = doc.addObject("Part::Feature", "Surface")
+        surf.Shape = bspline_face_with_hole()
+        doc.recompute()
+        doc.clearUndos()
+        Gui.SendMsgToActiveView("ViewFit")
+        process_events()
+
+        Gui.Selection.clearSelection()
+        run_command_expecting_nothing(doc, "no selection")
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Edge1")
+        run_command_expecting_nothing(doc, "edge selected")
+        Gui.Selection.clearSelection()
+
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
+        check("face selected", len(Gui.Selection.getSelectionEx()) == 1)
+        names_before = sorted(o.Name for o in doc.Objects)
+        echoed = []
+        original_do_command = Gui.doCommand
+
+        def recording_do_command(line):
+            echoed.append(line)
+            return original_do_command(line)
+
+        Gui.doCommand = recording_do_command
+        try:
+            with DialogCatcher() as dc:
+                Gui.runCommand("Tessella_Panelize")
+        finally:
+            Gui.doCommand = original_do_command
+        check("Python echoed through Gui.doCommand",
+              any("make_panelization(" in line for line in echoed), str(echoed))
+        check("no message box on success", not dc.texts, str(dc.texts))
+        ps = panelizations(doc)
+        if not check("one Panelization created", len(ps) == 1, f"{len(ps)} found"):
+            return
+        p = ps[0]
+        from freecad_workbench.features.panelization import ROLES, children_of
+
+        kids = children_of(p)
+        check("three children", [k.Role for k in kids] == list(ROLES),
+              str([k.Role for k in kids]))
+        check("four new objects", len(doc.Objects) == len(names_before) + 4)
+        check("parent valid", p.isValid(), str(p.State))
+        check("source is the selected face",
+              p.Source[0] == surf and list(p.Source[1]) == ["Face1"], str(p.Source))
+        check("panels built", p.PanelCount > 0, str(p.PanelCount))
+        if len(kids) == 3:
+            pan, rod, nod = kids
+            check("panel shapes = PanelCount", len(pan.Shape.childShapes()) == p.PanelCount)
+            check("rod shapes = RodCount", len(rod.Shape.childShapes()) == p.RodCount)
+            check("node shapes = NodeCount", len(nod.Shape.childShapes()) == p.NodeCount)
+            check("panel IDs", len(pan.PanelIds) == p.PanelCount and pan.PanelIds[0] == "P-0001")
+            vp = p.ViewObject.Proxy
+            check("parent view provider", type(vp).__name__ == "ViewProviderPanelization",
+                  type(vp).__name__)
+            claimed = vp.claimChildren() if vp is not None else []
+            check("tree: parent claims the children",
+                  [c.Name for c in claimed] == [k.Name for k in kids], str(claimed))
+            for obj in [p] + kids:
+                icon = obj.ViewObject.Proxy.getIcon() if obj.ViewObject.Proxy else ""
+                check(f"icon of {obj.Label}", bool(icon) and os.path.isfile(icon), repr(icon))
+            check("panels visible", pan.ViewObject.Visibility)
+        check("one undo step", doc.UndoCount == 1, f"UndoCount {doc.UndoCount} {doc.UndoNames}")
+        doc.undo()
+        process_events()
+        check("undo removes all four", sorted(o.Name for o in doc.Objects) == names_before,
+              str(sorted(o.Name for o in doc.Objects)))
+        # The echoed lines replay like a macro and give the same result.
+        counts = (p.PanelCount, p.RodCount, p.NodeCount)
+        namespace = {"FreeCAD": FreeCAD, "App": FreeCAD}
+        for line in echoed:
+            exec(line, namespace)
+        replayed = panelizations(doc)
+        check("replayed macro builds the same panelization", len(replayed) == 1
+              and (replayed[0].PanelCount, replayed[0].RodCount, replayed[0].NodeCount) == counts,
+              str([(r.PanelCount, r.RodCount, r.NodeCount) for r in replayed]) + f" vs {counts}")
+        doc.undo()
+        check("undo of the replay", sorted(o.Name for o in doc.Objects) == names_before)
+        doc.redo()
+        process_events()
+        check("redo brings them back", len(panelizations(doc)) == 1)
+
+        # Save and reopen in the GUI: the view providers come back.
+        path = os.path.join(tempfile.mkdtemp(prefix="tessella_gui_"), "gui_test.FCStd")
+        doc.recompute()
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+        process_events()
+        ps = panelizations(doc)
+        if check("reopened: Panelization found", len(ps) == 1):
+            p = ps[0]
+            vp = p.ViewObject.Proxy
+            check("reopened: view provider restored",
+                  type(vp).__name__ == "ViewProviderPanelization", type(vp).__name__)
+            claimed = vp.claimChildren() if vp is not None else []
+            check("reopened: children claimed", len(claimed) == 3, str(claimed))
+            doc.getObject("Surface").Placement.Base = FreeCAD.Vector(0, 0, 250)
+            doc.recompute()
+            check("reopened: recompute after a source change", p.isValid()
+                  and all(k.isValid() for k in claimed), str(p.State))
+    finally:
+        Gui.Selection.clearSelection()
+        for name in list(FreeCAD.listDocuments()):
+            FreeCAD.closeDocument(name)
+
+
+def test_command_failure():
+    """A panelization that fails inside the command: message, nothing created."""
+    from freecad_workbench.gui import commands
+
+    doc = FreeCAD.newDocument("TessellaGuiFail")
+    original = commands.default_size
+    try:
+        Gui.activateWorkbench("TessellaWorkbench")
+        surf = doc.addObject("Part::Feature", "Surface")
+        surf.Shape = bspline_face_with_hole()
+        doc.recompute()
+        doc.clearUndos()
+        before = sorted(o.Name for o in doc.Objects)
+        commands.default_size = lambda face, panels_across=8: 1.0  # millions of panels
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Panelize")
+        check("failure: nothing created", sorted(o.Name for o in doc.Objects) == before,
+              str(sorted(o.Name for o in doc.Objects)))
+        check("failure: no undo step", doc.UndoCount == 0, str(doc.UndoNames))
+        check("failure: the reason is shown",
+              any("max_panels" in t or "panels" in t.lower() for t in dc.texts), str(dc.texts))
+    finally:
+        commands.default_size = original
+        Gui.Selection.clearSelection()
+        FreeCAD.closeDocument(doc.Name)
+
+
+HEADLESS_SCRIPT = r"""
+import sys
+sys.path[:0] = [{lib!r}, {repo!r}]
+import FreeCAD, Part
+import freecad_workbench as tessella
+doc = FreeCAD.newDocument("Headless")
+surf = doc.addObject("Part::Feature", "Surface")
+surf.Shape = Part.makePlane(4000, 3000)
+doc.recompute()
+tessella.make_panelization((surf, "Face1"), size=1000.0)
+doc.saveAs({path!r})
+"""
+
+
+def test_open_headless_document():
+    """A document made without the GUI gets its view providers when opened."""
+    import subprocess
+
+    path = os.path.join(tempfile.mkdtemp(prefix="tessella_gui_"), "headless.FCStd")
+    script = HEADLESS_SCRIPT.format(lib="/usr/lib/freecad-python3/lib", repo=REPO, path=path)
+    proc = subprocess.run(["/usr/bin/python3", "-c", script], capture_output=True, text=True,
+                          timeout=300)
+    if not check("headless document written", proc.returncode == 0 and os.path.exists(path),
+                 proc.stderr[-2000:]):
+        return
+    doc = FreeCAD.openDocument(path)
+    try:
+        process_events()
+        ps = panelizations(doc)
+        if not check("headless doc: Panelization found", len(ps) == 1):
+            return
+        p = ps[0]
+        vp = p.ViewObject.Proxy
+        check("headless doc: view provider attached on open",
+              type(vp).__name__ == "ViewProviderPanelization", type(vp).__name__)
+        claimed = vp.claimChildren() if vp is not None else []
+        check("headless doc: children claimed", len(claimed) == 3, str(claimed))
+        check("headless doc: panels = 4 x 3", p.PanelCount == 12, str(p.PanelCount))
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def main():
+    for test in (test_workbench, test_command, test_command_failure, test_open_headless_document):
+        try:
+            test()
+        except Exception:
+            check(test.__name__ + " raised", False, traceback.format_exc())
+    with open(RESULT, "w", encoding="utf-8") as f:
+        json.dump(results, f, indent=1)
+    FreeCAD.Console.PrintMessage(
+        f"Tessella GUI test: {results['passed']} passed, {results['failed']} failed\n")
+
+
+try:
+    main()
+finally:
+    sys.stdout.flush()
+    sys.stderr.flush()
+    # Quit without the save prompts and without waiting for the event loop.
+    os._exit(0 if results["failed"] == 0 else 1)

@@ -1,0 +1,44 @@
+"""Shared fixtures: FreeCAD must be imported before Part (else segfault)."""
+import FreeCAD  # noqa: F401  (first, always)
+import Part  # noqa: F401
+import pytest
+
+
+@pytest.fixture(scope="session")
+def freeform_face():
+    """A doubly curved B-spline face, NOT one of the bundled examples: irregular
+    curved outline (common with an ellipse-and-notch prism) and two holes."""
+    return make_freeform_face()
+
+
+def make_freeform_face():
+    import math
+
+    nu, nv = 6, 5
+    surf = Part.BSplineSurface()
+    poles = []
+    for i in range(nu):
+        row = []
+        for j in range(nv):
+            x, y = 3000.0 * i, 2500.0 * j
+            z = 1800.0 * math.sin(0.9 * i) * math.cos(0.7 * j) + 150.0 * i * j
+            row.append(FreeCAD.Vector(x, y, z))
+        poles.append(row)
+    # Uneven knots: the parameterization is not proportional to length.
+    surf.buildFromPolesMultsKnots(
+        poles, [4, 1, 1, 4], [4, 1, 4], [0.0, 0.15, 0.3, 1.0], [0.0, 0.7, 1.0], False, False, 3, 3
+    )
+    base = surf.toShape()
+    # Irregular outline: an ellipse with a bite taken out, extruded through the surface.
+    ell = Part.Ellipse(FreeCAD.Vector(7600, 5000, -5000), 7000, 4600)
+    outline = Part.Face(Part.Wire(ell.toShape())).extrude(FreeCAD.Vector(0, 0, 12000))
+    bite = Part.makeCylinder(1500, 12000, FreeCAD.Vector(14000, 5200, -5000))
+    hole1 = Part.makeCylinder(1100, 12000, FreeCAD.Vector(5000, 4000, -5000))
+    hole2 = Part.makeBox(1800, 1200, 12000, FreeCAD.Vector(9000, 6000, -5000))
+    hole2 = hole2.rotate(FreeCAD.Vector(9900, 6600, 0), FreeCAD.Vector(0, 0, 1), 30)
+    face = base.common(outline).cut(bite).cut(hole1).cut(hole2)
+    faces = face.Faces
+    assert len(faces) == 1, len(faces)
+    f = faces[0]
+    assert f.isValid() and len(f.Wires) == 3
+    return f
