@@ -1,0 +1,59 @@
+# Tessella - FreeCAD GUI initialization: registers the Tessella workbench.
+#
+# FreeCAD 0.20 runs this file with exec() inside a function, without __file__:
+# names defined at the top level here are not visible inside the class's methods,
+# so the methods import what they need themselves.
+
+import FreeCADGui
+
+
+class TessellaWorkbench(FreeCADGui.Workbench):
+    """Panels, rods and nodes from freeform surfaces."""
+
+    MenuText = "Tessella"
+    ToolTip = "Panelize freeform surfaces into panels, rods and nodes"
+    Icon = ""
+
+    def Initialize(self):
+        import FreeCAD
+
+        try:
+            from freecad_workbench.gui import commands
+        except ImportError as exc:
+            FreeCAD.Console.PrintError(f"Tessella: the workbench cannot load: {exc}\n")
+            return
+        self.appendToolbar("Tessella", list(commands.COMMANDS))
+        self.appendMenu("Tessella", list(commands.COMMANDS))
+
+    def Activated(self):
+        pass
+
+    def Deactivated(self):
+        pass
+
+    def ContextMenu(self, recipient):
+        try:
+            from freecad_workbench.gui import commands
+        except ImportError:
+            return
+        if recipient == "View":
+            self.appendContextMenu("Tessella", list(commands.COMMANDS))
+
+    def GetClassName(self):
+        return "Gui::PythonWorkbench"
+
+
+def _tessella_icon():
+    """resources/icons/Tessella.svg, found through the package (no __file__ here)."""
+    import importlib.util
+    import os
+
+    spec = importlib.util.find_spec("freecad_workbench")  # does not import it
+    if spec is None or not spec.submodule_search_locations:
+        return ""
+    root = os.path.dirname(os.path.abspath(list(spec.submodule_search_locations)[0]))
+    return os.path.join(root, "resources", "icons", "Tessella.svg")
+
+
+TessellaWorkbench.Icon = _tessella_icon()
+FreeCADGui.addWorkbench(TessellaWorkbench())

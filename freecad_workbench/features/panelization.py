@@ -1,0 +1,391 @@
+"""App proxies of the parametric Panelization feature and its three children.
+
+Document layout (one Panelization = four objects):
+
+    Panelization  (App::FeaturePython, proxy `Panelization`)
+        Source -> (face owner, ["FaceN"]), Method, Size, UCount, VCount, ...
+        read-only summary: PanelCount, RodCount, NodeCount, ...
+    Panels        (Part::FeaturePython, proxy `PanelizationPart`, Role "Panels")
+    Rods          (Part::FeaturePython, proxy `PanelizationPart`, Role "Rods")
+    Nodes         (Part::FeaturePython, proxy `PanelizationPart`, Role "Nodes")
+
+Each child links to its parent (`Base`), so FreeCAD's dependency graph always
+recomputes the parent first. The parent keeps the panelization result in a cache
+on its proxy; a child's execute takes its shape from that cache, recomputing it
+on demand (e.g. after a document was reopened and only a child is touched).
+The three shapes are all built inside the parent's execute, so a failure leaves
+every child as it was (never a half-built set).
+
+FROZEN: the module path `freecad_workbench.features.panelization` and the class
+names `Panelization` and `PanelizationPart` are stored in every saved .FCStd.
+"""
+
+import hashlib
+import json
+
+import FreeCAD
+
+#: Version of the properties layout; onDocumentRestored upgrades older documents.
+SCHEMA_VERSION = 1
+
+#: Roles of the children, in tree order.
+ROLES = ("Panels", "Rods", "Nodes")
+
+# Property status bits (App::PropertyType) for addProperty's `attr` argument.
+_PROP_READONLY = 1
+_PROP_OUTPUT = 8
+_READONLY_OUTPUT = _PROP_READONLY | _PROP_OUTPUT
+
+
+def _api():
+    from .. import api
+
+    return api
+
+
+def _core_defaults():
+    """Defaults of the core's parameter structs (one source of truth)."""
+    from .. import core
+
+    clip = core.GridClipParams()
+    irregular = core.IrregularParams()
+    return {
+        "sliver_fraction": float(clip.sliver_fraction),
+        "max_panels": int(clip.max_panels),
+        "min_angle": float(irregular.min_angle_deg),
+    }
+
+
+def value_of(quantity):
+    """Float value of a property that may be a Base.Quantity (mm, deg) or a number."""
+    return float(getattr(quantity, "Value", quantity))
+
+
+def add_property(obj, type_name, name, group, doc, default=None, attr=0, enum=None):
+    """Add a property only if it is missing (so old documents can be upgraded).
+
+    Returns True when the property was added (and the default applied).
+    """
+    if name in obj.PropertiesList:
+        return False
+    obj.addProperty(type_name, name, group, doc, attr)
+    if enum is not None:
+        setattr(obj, name, list(enum))
+    if default is not None:
+        setattr(obj, name, default)
+    return True
+
+
+def is_panelization(obj):
+    return isinstance(getattr(obj, "Proxy", None), Panelization)
+
+
+def is_panelization_part(obj, role=None):
+    proxy = getattr(obj, "Proxy", None)
+    if not isinstance(proxy, PanelizationPart):
+        return False
+    return role is None or getattr(obj, "Role", None) == role
+
+
+def children_of(parent):
+    """The Panels, Rods and Nodes objects of a Panelization, in ROLES order."""
+    found = {}
+    for o in parent.InList:
+        if is_panelization_part(o) and getattr(o, "Base", None) == parent:
+            found.setdefault(o.Role, o)
+    return [found[r] for r in ROLES if r in found]
+
+
+class _Cache:
+    """A panelization result and the shapes built from it (not saved)."""
+
+    def __init__(self, signature, result, shapes):
+        self.signature = signature
+        self.result = result
+        self.shapes = shapes
+
+
+class _StateMixin:
+    """JSON-safe persistence for FreeCAD 0.20 on Python 3.11 (both protocols)."""
+
+    def _state(self):
+        return {"schema": SCHEMA_VERSION}
+
+    def _restore(self, state):
+        self._cache = None
+        self._failed = None
+        if isinstance(state, dict):
+            self.schema = int(state.get("schema", SCHEMA_VERSION))
+        else:
+            self.schema = SCHEMA_VERSION
+
+    def _ensure_runtime(self):
+        for name in ("_cache", "_failed"):
+            if not hasattr(self, name):
+                setattr(self, name, None)
+        if not hasattr(self, "schema"):
+            self.schema = SCHEMA_VERSION
+
+    def dumps(self):
+        return self._state()
+
+    def loads(self, state):
+        self._restore(state)
+        return None
+
+    def __getstate__(self):
+        return self._state()
+
+    def __setstate__(self, state):
+        self._restore(state)
+
+
+class Panelization(_StateMixin):
+    """Proxy of the parent object: parameters, the face link and the summary."""
+
+    def __init__(self, obj):
+        self._restore(None)
+        self.setup_properties(obj)
+        obj.Proxy = self
+
+    # ---------------------------------------------------------------- properties
+    def setup_properties(self, obj):
+        """Add every property this version knows (missing ones only)."""
+        api = _api()
+        d = _core_defaults()
+        add_property(obj, "App::PropertyLinkSub", "Source", "Input",
+                     "The face to panelize: (object, ['FaceN'])")
+        add_property(obj, "App::PropertyEnumeration", "Method", "Panelization",
+                     "iso_grid: uniform in (u,v); equal_size_grid: lines spaced by arc length",
+                     default="iso_grid", enum=list(api.METHODS))
+        add_property(obj, "App::PropertyLength", "Size", "Panelization",
+                     "Target panel edge length (equal_size_grid; iso_grid when "
+                     "UCount and VCount are 0)", default=0.0)
+        add_property(obj, "App::PropertyInteger", "UCount", "Panelization",
+                     "iso_grid: panels across u; with VCount, replaces Size "
+                     "(0 = use Size)", default=0)
+        add_property(obj, "App::PropertyInteger", "VCount", "Panelization",
+                     "iso_grid: panels across v; with UCount, replaces Size "
+                     "(0 = use Size)", default=0)
+        add_property(obj, "App::PropertyFloat", "SliverFraction", "Panelization",
+                     "Boundary panels smaller than this fraction of a full panel are merged "
+                     "into a neighbour (also the area limit of an irregular panel)",
+                     default=d["sliver_fraction"])
+        add_property(obj, "App::PropertyAngle", "MinAngle", "Panelization",
+                     "A panel with a corner angle below this is irregular",
+                     default=d["min_angle"])
+        add_property(obj, "App::PropertyInteger", "MaxPanels", "Panelization",
+                     "Refuse to build more panels than this", default=d["max_panels"])
+        add_property(obj, "App::PropertyLength", "TrimDeflection", "Advanced",
+                     "Chord deflection of the trim polylines (0 = automatic)", default=0.0)
+        add_property(obj, "App::PropertyInteger", "Samples", "Advanced",
+                     "Samples per panel edge for the deviation measure (0 = core default)",
+                     default=0)
+        ro = _READONLY_OUTPUT
+        for name, type_name, doc in (
+            ("PanelCount", "App::PropertyInteger", "Number of panels"),
+            ("RodCount", "App::PropertyInteger", "Number of rods (panel edges)"),
+            ("NodeCount", "App::PropertyInteger", "Number of nodes"),
+            ("MergedSlivers", "App::PropertyInteger", "Boundary slivers merged into neighbours"),
+            ("IrregularPanels", "App::PropertyInteger",
+             "Panels that are not quads, too skewed or too small"),
+            ("MaxDeviation", "App::PropertyLength", "Largest panel-to-surface distance"),
+            ("MeanDeviation", "App::PropertyLength", "Mean of the per-panel deviations"),
+            ("QuadShare", "App::PropertyFloat", "Fraction of panels that are quads (0..1)"),
+        ):
+            add_property(obj, type_name, name, "Summary", doc, attr=ro)
+        self._update_editor_modes(obj)
+
+    def _update_editor_modes(self, obj):
+        if "Method" not in obj.PropertiesList:
+            return
+        hide = 0 if obj.Method == "iso_grid" else 2
+        for name in ("UCount", "VCount"):
+            if name in obj.PropertiesList:
+                obj.setEditorMode(name, hide)
+
+    def onChanged(self, obj, prop):
+        if prop == "Method":
+            self._update_editor_modes(obj)
+
+    def onDocumentRestored(self, obj):
+        self._ensure_runtime()
+        self.setup_properties(obj)
+        _attach_view_provider(obj, "ViewProviderPanelization")
+
+    # ------------------------------------------------------------ computation
+    def source_face(self, obj):
+        """(Part.Face, label) of the linked face; ValueError when unusable."""
+        src = obj.Source
+        if not src or src[0] is None:
+            raise ValueError(f"{obj.Label}: no source face (set Source to a face)")
+        owner, subs = src[0], [s for s in (src[1] or []) if s]
+        if len(subs) > 1:
+            raise ValueError(f"{obj.Label}: Source must name exactly one face, got {subs}")
+        if subs:
+            face_arg = (owner, subs[0])
+            label = f"{owner.Label}.{subs[0]}"
+        else:
+            face_arg = owner.Shape
+            label = owner.Label
+        return face_arg, label
+
+    def parameters(self, obj):
+        """(method, keyword parameters for api.panelize) from the properties."""
+        method = obj.Method
+        if method == "iso_grid" and (obj.UCount or obj.VCount):
+            # Counts replace the size (the core takes one or the other).
+            params = {"u_count": int(obj.UCount), "v_count": int(obj.VCount)}
+        else:
+            params = {"size": value_of(obj.Size)}
+        params["sliver_fraction"] = float(obj.SliverFraction)
+        params["min_angle"] = value_of(obj.MinAngle)
+        params["max_panels"] = int(obj.MaxPanels)
+        if value_of(obj.TrimDeflection) > 0:
+            params["trim_deflection"] = value_of(obj.TrimDeflection)
+        if obj.Samples:
+            params["samples"] = int(obj.Samples)
+        return method, params
+
+    def _signature(self, obj):
+        api = _api()
+        face_arg, _ = self.source_face(obj)
+        brep = api.face_to_brep(face_arg)
+        method, params = self.parameters(obj)
+        digest = hashlib.sha1(brep.encode("utf-8", "surrogateescape")).hexdigest()
+        key = json.dumps([method, sorted(params.items()), digest])
+        return key, face_arg, method, params
+
+    def result(self, obj):
+        """The cached result for the current face and parameters (built if needed).
+
+        Raises ValueError / RuntimeError with a readable message when the
+        panelization cannot be built.
+        """
+        import Part
+
+        api = _api()
+        signature, face_arg, method, params = self._signature(obj)
+        cache = getattr(self, "_cache", None)
+        if cache is not None and cache.signature == signature:
+            return cache
+        failed = getattr(self, "_failed", None)
+        if failed is not None and failed[0] == signature:
+            raise failed[1](failed[2])
+        try:
+            res = api.panelize(face_arg, method=method, **params)
+            expected = {
+                "Panels": len(res.panels),
+                "Rods": len(res.rods),
+                "Nodes": len(res.vertices),
+            }
+            shapes = {}
+            for role, make in (("Panels", res.panels_brep), ("Rods", res.rods_brep),
+                               ("Nodes", res.nodes_brep)):
+                shape = Part.Shape()
+                shape.importBrepFromString(make(), False)
+                n = len(shape.childShapes()) if not shape.isNull() else 0
+                if n != expected[role]:
+                    raise RuntimeError(
+                        f"{role}: the core built {n} shapes for {expected[role]} items")
+                shapes[role] = shape
+        except (ValueError, TypeError, RuntimeError) as exc:
+            self._cache = None
+            self._failed = (signature, type(exc), str(exc))
+            raise
+        self._failed = None
+        self._cache = _Cache(signature, res, shapes)
+        return self._cache
+
+    def execute(self, obj):
+        try:
+            cache = self.result(obj)
+        except Exception as exc:
+            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {exc}\n")
+            raise
+        res = cache.result
+        s = res.summary
+        dev = res.metrics.get("panel_deviation")
+        obj.PanelCount = int(s.get("panel_count", len(res.panels)))
+        obj.RodCount = int(s.get("rod_count", len(res.rods)))
+        obj.NodeCount = int(s.get("node_count", len(res.vertices)))
+        obj.MergedSlivers = int(s.get("merged_slivers", 0))
+        obj.IrregularPanels = int(s.get("irregular_count", int(res.irregular.sum())))
+        obj.MaxDeviation = float(dev.max()) if dev is not None and len(dev) else 0.0
+        obj.MeanDeviation = float(dev.mean()) if dev is not None and len(dev) else 0.0
+        obj.QuadShare = float(s.get("quad_share", 0.0))
+
+
+class PanelizationPart(_StateMixin):
+    """Proxy of the Panels, Rods and Nodes children (Role tells which)."""
+
+    def __init__(self, obj, parent=None, role="Panels"):
+        if role not in ROLES:
+            raise ValueError(f"role must be one of {ROLES}, got {role!r}")
+        self._restore(None)
+        add_property(obj, "App::PropertyString", "Role", "Base",
+                     "Panels, Rods or Nodes", default=role, attr=_PROP_READONLY)
+        self.setup_properties(obj)
+        if parent is not None:
+            obj.Base = parent
+        obj.Proxy = self
+
+    def setup_properties(self, obj):
+        role = obj.Role
+        add_property(obj, "App::PropertyLink", "Base", "Base",
+                     "The Panelization this part belongs to", attr=_PROP_READONLY)
+        ro = _READONLY_OUTPUT
+        if role == "Panels":
+            add_property(obj, "App::PropertyStringList", "PanelIds", "Data",
+                         "Panel IDs, one per sub-shape", attr=ro)
+        elif role == "Rods":
+            add_property(obj, "App::PropertyStringList", "RodIds", "Data",
+                         "Rod IDs, one per edge", attr=ro)
+            add_property(obj, "App::PropertyFloatList", "RodLengths", "Data",
+                         "Rod lengths in mm, one per edge", attr=ro)
+        elif role == "Nodes":
+            add_property(obj, "App::PropertyStringList", "NodeIds", "Data",
+                         "Node IDs, one per vertex", attr=ro)
+            add_property(obj, "App::PropertyIntegerList", "Valence", "Data",
+                         "Number of rods meeting at each node", attr=ro)
+
+    def onDocumentRestored(self, obj):
+        self._ensure_runtime()
+        self.setup_properties(obj)
+        _attach_view_provider(obj, "ViewProviderPanelizationPart")
+
+    def execute(self, obj):
+        parent = obj.Base
+        try:
+            if parent is None or not is_panelization(parent):
+                raise ValueError("Base must link to a Panelization object")
+            cache = parent.Proxy.result(parent)
+        except Exception as exc:
+            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {exc}\n")
+            raise
+        res = cache.result
+        role = obj.Role
+        obj.Shape = cache.shapes[role]
+        if role == "Panels":
+            obj.PanelIds = list(res.panel_ids)
+        elif role == "Rods":
+            obj.RodIds = list(res.rod_ids)
+            obj.RodLengths = [float(x) for x in res.metrics["rod_length"]]
+        elif role == "Nodes":
+            obj.NodeIds = list(res.node_ids)
+            obj.Valence = [int(x) for x in res.metrics["node_valence"]]
+
+
+def _attach_view_provider(obj, class_name):
+    """Give an object made without the GUI (or by an older version) its view provider."""
+    if not FreeCAD.GuiUp:
+        return
+    vobj = getattr(obj, "ViewObject", None)
+    if vobj is None or getattr(vobj, "Proxy", None) is not None:
+        return
+    try:
+        from ..gui import view_providers
+
+        getattr(view_providers, class_name)(vobj)
+    except Exception as exc:  # a missing icon must not stop a document from opening
+        FreeCAD.Console.PrintWarning(f"Tessella: no view provider for {obj.Label}: {exc}\n")

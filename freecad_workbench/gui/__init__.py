@@ -1,0 +1,1 @@
+"""GUI side of Tessella: commands, view providers (imported only when FreeCAD.GuiUp)."""

@@ -1,0 +1,121 @@
+"""GUI commands. Importing this module registers them with FreeCADGui.
+
+Every command echoes the equivalent Python through Gui.doCommand, so a recorded
+macro replays it without the GUI.
+"""
+
+import math
+
+import FreeCAD
+import FreeCADGui as Gui
+
+from .view_providers import icon_path
+
+#: The message shown when the selection is not exactly one face.
+SELECT_ONE_FACE = (
+    "Select exactly one face to panelize (click a face of a surface in the 3D view), "
+    "then run Panelize again."
+)
+
+
+def _nice_round(x):
+    """x rounded down to 1, 2, 2.5 or 5 times a power of ten."""
+    if not (x > 0 and math.isfinite(x)):
+        return 0.0
+    exp = math.floor(math.log10(x))
+    base = 10.0**exp
+    for step in (5.0, 2.5, 2.0, 1.0):
+        if x >= step * base:
+            return step * base
+    return base
+
+
+def default_size(face, panels_across=8):
+    """A panel size giving roughly panels_across x panels_across panels on the face."""
+    try:
+        area = face.Area
+    except Exception:
+        area = 0.0
+    size = _nice_round(math.sqrt(area) / panels_across) if area > 0 else 0.0
+    if size <= 0:
+        size = _nice_round(face.BoundBox.DiagonalLength / (1.5 * panels_across))
+    return size or 1.0
+
+
+def selected_face():
+    """(object, 'FaceN') when exactly one face is selected, else None.
+
+    A selected object without a sub-element counts when its shape has one face.
+    """
+    picks = []
+    for sel in Gui.Selection.getSelectionEx():
+        names = [n for n in sel.SubElementNames if n]
+        if names:
+            picks.extend((sel.Object, n) for n in names)
+        else:
+            shape = getattr(sel.Object, "Shape", None)
+            if shape is not None and not shape.isNull() and len(shape.Faces) == 1:
+                picks.append((sel.Object, "Face1"))
+            else:
+                picks.append((sel.Object, None))
+    if len(picks) != 1 or not picks[0][1] or not picks[0][1].startswith("Face"):
+        return None
+    return picks[0]
+
+
+def _warn(title, text):
+    FreeCAD.Console.PrintWarning(f"Tessella: {text}\n")
+    try:
+        from PySide import QtGui
+
+        QtGui.QMessageBox.warning(Gui.getMainWindow(), title, text)
+    except ImportError:
+        pass
+
+
+class PanelizeCommand:
+    """Tessella_Panelize: panelize the selected face with an iso grid."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": icon_path("Tessella_Panelize"),
+            "MenuText": "Panelize face",
+            "ToolTip": (
+                "Cut the selected face into panels, rods and nodes "
+                "(iso grid; change Method, Size and the other parameters in the property view)"
+            ),
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self):
+        pick = selected_face()
+        if pick is None:
+            _warn("Tessella: Panelize", SELECT_ONE_FACE)
+            return
+        obj, sub = pick
+        try:
+            face = obj.Shape.getElement(sub)
+        except Exception:
+            _warn("Tessella: Panelize", f"{obj.Label} has no {sub}. " + SELECT_ONE_FACE)
+            return
+        size = default_size(face)
+        call = (
+            "tessella.make_panelization("
+            f"(FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}), {sub!r}), "
+            f"method='iso_grid', size={size!r})"
+        )
+        try:
+            Gui.doCommand("import freecad_workbench as tessella")
+            Gui.doCommand(call)
+        except Exception as exc:
+            _warn("Tessella: Panelize", f"Panelize failed: {exc}")
+            return
+        Gui.Selection.clearSelection()
+
+
+Gui.addCommand("Tessella_Panelize", PanelizeCommand())
+
+#: Command names, in toolbar order (used by InitGui.py).
+COMMANDS = ["Tessella_Panelize"]

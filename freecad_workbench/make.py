@@ -1,0 +1,137 @@
+"""make_* factories: create parametric Tessella objects from the console or a command.
+
+    import freecad_workbench as tessella
+    p = tessella.make_panelization((doc.Surface, "Face1"), method="iso_grid", size=1500)
+    p.PanelCount        # summary on the parent
+    p.Size = 1000       # parametric: change, then doc.recompute()
+
+The children (Panels, Rods, Nodes) are listed by
+freecad_workbench.features.panelization.children_of(p).
+"""
+
+import FreeCAD
+
+#: make_panelization keyword -> Panelization property.
+_PARAM_TO_PROPERTY = {
+    "size": "Size",
+    "u_count": "UCount",
+    "v_count": "VCount",
+    "sliver_fraction": "SliverFraction",
+    "min_angle": "MinAngle",
+    "max_panels": "MaxPanels",
+    "trim_deflection": "TrimDeflection",
+    "samples": "Samples",
+}
+
+_VIEW_STYLE = {
+    "Panels": {"ShapeColor": (0.80, 0.68, 0.42), "LineColor": (0.35, 0.30, 0.20), "LineWidth": 1.0},
+    "Rods": {"LineColor": (0.15, 0.20, 0.35), "LineWidth": 3.0, "PointSize": 1.0},
+    "Nodes": {"PointColor": (0.80, 0.10, 0.10), "PointSize": 6.0},
+}
+
+
+def _split_source(source):
+    """(document object, 'FaceN') from (obj, 'FaceN'), (obj, ['FaceN']) or a one-face obj."""
+    if isinstance(source, (tuple, list)) and len(source) == 2:
+        obj, sub = source
+        if isinstance(sub, (tuple, list)):
+            if len(sub) != 1:
+                raise ValueError(f"select exactly one face, got sub-elements {list(sub)}")
+            sub = sub[0]
+        if not isinstance(sub, str):
+            raise TypeError(f"the sub-element must be a name like 'Face1', not {sub!r}")
+    else:
+        obj, sub = source, None
+    if not isinstance(obj, FreeCAD.DocumentObject):
+        raise TypeError(
+            "source must be a document object or (object, 'FaceN'), "
+            f"not {type(obj).__name__}"
+        )
+    shape = getattr(obj, "Shape", None)
+    if shape is None or shape.isNull():
+        raise ValueError(f"{obj.Label!r} has no shape")
+    if sub is None:
+        if len(shape.Faces) != 1:
+            raise ValueError(
+                f"{obj.Label!r} has {len(shape.Faces)} faces: pass (object, 'FaceN') "
+                "to choose one"
+            )
+        sub = "Face1"
+    return obj, sub
+
+
+def make_panelization(source, method="iso_grid", doc=None, **params):
+    """Create a Panelization (parent) and its Panels, Rods and Nodes children.
+
+    source: (document object, "FaceN") or a document object with one face.
+    method: one of freecad_workbench.api.METHODS.
+    params: the keyword parameters of freecad_workbench.panelize (size, u_count,
+        v_count, sliver_fraction, min_angle, max_panels, trim_deflection, samples).
+
+    The parameters are checked by running the panelization once before anything is
+    created: a bad parameter or an unusable face raises ValueError and leaves the
+    document untouched. The four objects are created in one transaction ("Panelize",
+    one undo step) and the document is recomputed. Returns the parent object.
+    """
+    from . import api
+    from .features import panelization as feat
+
+    obj, sub = _split_source(source)
+    if doc is None:
+        doc = obj.Document
+    elif doc is not obj.Document:
+        raise ValueError(
+            f"the source {obj.Label!r} is in document {obj.Document.Name!r}, "
+            f"not in {doc.Name!r}"
+        )
+    # Validate everything (method, parameter names and ranges, the face) first.
+    api.panelize((obj, sub), method=method, **params)
+    unmapped = sorted(set(params) - set(_PARAM_TO_PROPERTY))
+    if unmapped:  # the api accepts a parameter the feature has no property for
+        raise ValueError(f"parameter(s) {unmapped} cannot be stored on a Panelization yet")
+
+    created = []
+    doc.openTransaction("Panelize")
+    try:
+        parent = doc.addObject("App::FeaturePython", "Panelization")
+        created.append(parent.Name)
+        feat.Panelization(parent)
+        parent.Source = (obj, [sub])
+        parent.Method = method
+        for key, value in params.items():
+            setattr(parent, _PARAM_TO_PROPERTY[key], value)
+        children = []
+        for role in feat.ROLES:
+            child = doc.addObject("Part::FeaturePython", role)
+            created.append(child.Name)
+            feat.PanelizationPart(child, parent, role)
+            children.append(child)
+        if FreeCAD.GuiUp:
+            _attach_gui(parent, children)
+        doc.recompute()
+        broken = [o for o in [parent] + children if not o.isValid() or "Touched" in o.State]
+        if broken:
+            raise RuntimeError(
+                "the panelization did not recompute: "
+                + ", ".join(f"{o.Label} ({', '.join(o.State)})" for o in broken)
+            )
+    except BaseException:
+        doc.abortTransaction()
+        # Without undo (UndoMode 0) the abort leaves the objects: remove them.
+        for name in reversed(created):
+            if doc.getObject(name) is not None:
+                doc.removeObject(name)
+        raise
+    doc.commitTransaction()
+    return parent
+
+
+def _attach_gui(parent, children):
+    from .gui import view_providers as vp
+
+    vp.ViewProviderPanelization(parent.ViewObject)
+    for child in children:
+        vp.ViewProviderPanelizationPart(child.ViewObject)
+        for name, value in _VIEW_STYLE.get(child.Role, {}).items():
+            if hasattr(child.ViewObject, name):
+                setattr(child.ViewObject, name, value)
