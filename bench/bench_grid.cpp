@@ -59,7 +59,28 @@ void BM_Panelize(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK_TEMPLATE(BM_Panelize, false, false)->Name("iso_grid/mesh")->Arg(1000)->Arg(500)->Arg(250)->Arg(125)->Arg(60)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Panelize, false, true)->Name("iso_grid/mesh+metrics")->Arg(1000)->Arg(500)->Arg(250)->Arg(125)->Arg(60)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Panelize, true, true)->Name("equal_size_grid/mesh+metrics")->Arg(1000)->Arg(500)->Arg(250)->Arg(125)->Arg(60)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Panelize, false, false)
+    ->Name("iso_grid/mesh")
+    ->Arg(1000)
+    ->Arg(500)
+    ->Arg(250)
+    ->Arg(125)
+    ->Arg(60)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Panelize, false, true)
+    ->Name("iso_grid/mesh+metrics")
+    ->Arg(1000)
+    ->Arg(500)
+    ->Arg(250)
+    ->Arg(125)
+    ->Arg(60)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Panelize, true, true)
+    ->Name("equal_size_grid/mesh+metrics")
+    ->Arg(1000)
+    ->Arg(500)
+    ->Arg(250)
+    ->Arg(125)
+    ->Arg(60)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -119,15 +119,15 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("uv", [](const PanelMesh& mesh) { return rows<2>(mesh.uv); })
       .def_property_readonly("xyz", [](const PanelMesh& mesh) { return rows<3>(mesh.xyz); })
       .def_readonly("panels", &PanelMesh::panels)
-      .def_property_readonly("rods",
-                             [](const PanelMesh& mesh) {
-                               py::array_t<long long> a(
-                                   {static_cast<py::ssize_t>(mesh.rods.size()), py::ssize_t(2)});
-                               auto r = a.mutable_unchecked<2>();
-                               for (std::size_t i = 0; i < mesh.rods.size(); ++i)
-                                 r(i, 0) = mesh.rods[i][0], r(i, 1) = mesh.rods[i][1];
-                               return a;
-                             })
+      .def_property_readonly(
+          "rods",
+          [](const PanelMesh& mesh) {
+            py::array_t<long long> a({static_cast<py::ssize_t>(mesh.rods.size()), py::ssize_t(2)});
+            auto r = a.mutable_unchecked<2>();
+            for (std::size_t i = 0; i < mesh.rods.size(); ++i)
+              r(i, 0) = mesh.rods[i][0], r(i, 1) = mesh.rods[i][1];
+            return a;
+          })
       .def_readonly("merged_slivers", &PanelMesh::merged_slivers)
       .def_readonly("nominal_area", &PanelMesh::nominal_area);
 
@@ -158,14 +158,14 @@ PYBIND11_MODULE(_core, m) {
     return nogil([&] { return measure_panels(f, mesh, p); });
   });
   m.def("node_data", &node_data);
-  m.def("irregular_panels", [](const PanelMesh& mesh, const PanelMetrics& metrics,
-                               const IrregularParams& p) {
-    const std::vector<bool> flags = irregular_panels(mesh, metrics, p);
-    py::array_t<bool> a(static_cast<py::ssize_t>(flags.size()));
-    auto r = a.mutable_unchecked<1>();
-    for (std::size_t i = 0; i < flags.size(); ++i) r(i) = flags[i];
-    return a;
-  });
+  m.def("irregular_panels",
+        [](const PanelMesh& mesh, const PanelMetrics& metrics, const IrregularParams& p) {
+          const std::vector<bool> flags = irregular_panels(mesh, metrics, p);
+          py::array_t<bool> a(static_cast<py::ssize_t>(flags.size()));
+          auto r = a.mutable_unchecked<1>();
+          for (std::size_t i = 0; i < flags.size(); ++i) r(i) = flags[i];
+          return a;
+        });
   m.def("summarize", [](const std::vector<double>& v) {
     const SummaryStats s = summarize(v);
     py::dict d;
@@ -179,6 +179,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("panels_to_brep", [](const PanelMesh& mesh, double tol) {
     return nogil([&] { return panels_to_brep(mesh, tol); });
   });
-  m.def("rods_to_brep", [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
-  m.def("nodes_to_brep", [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
+  m.def("rods_to_brep",
+        [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
+  m.def("nodes_to_brep",
+        [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
 }

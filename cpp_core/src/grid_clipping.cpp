@@ -14,9 +14,8 @@
 // T-junctions even where a hole forced a cell to be split.
 #include "tessella/grid_clipping.h"
 
-#include <clipper.hpp>
-
 #include <algorithm>
+#include <clipper.hpp>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -40,9 +39,7 @@ struct PointHash {
   }
 };
 struct PointEq {
-  bool operator()(const IntPoint& a, const IntPoint& b) const {
-    return a.X == b.X && a.Y == b.Y;
-  }
+  bool operator()(const IntPoint& a, const IntPoint& b) const { return a.X == b.X && a.Y == b.Y; }
 };
 
 constexpr double kIntRange = 1125899906842624.0;  // 2^50
@@ -77,8 +74,7 @@ void clip_cell(const Paths& subject, cInt x0, cInt y0, cInt x1, cInt y1, int dep
   clipper.AddPaths(subject, ClipperLib::ptSubject, true);
   clipper.AddPath(rectangle(x0, y0, x1, y1), ClipperLib::ptClip, true);
   ClipperLib::PolyTree tree;
-  clipper.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero,
-                  ClipperLib::pftNonZero);
+  clipper.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   for (const ClipperLib::PolyNode* outer : tree.Childs) {
     if (outer->Childs.empty() || depth > 16) {
       out.push_back(outer->Contour);
@@ -114,9 +110,9 @@ std::vector<char> cells_near_trim(const Paths& domain, const std::vector<cInt>& 
   auto range = [](const std::vector<cInt>& L, cInt lo, cInt hi) {
     const long first = std::max<long>(
         0, static_cast<long>(std::lower_bound(L.begin(), L.end(), lo) - L.begin()) - 1);
-    const long last = std::min<long>(
-        static_cast<long>(L.size()) - 2,
-        static_cast<long>(std::upper_bound(L.begin(), L.end(), hi) - L.begin()) - 1);
+    const long last =
+        std::min<long>(static_cast<long>(L.size()) - 2,
+                       static_cast<long>(std::upper_bound(L.begin(), L.end(), hi) - L.begin()) - 1);
     return std::make_pair(first, last);
   };
   for (const Path& loop : domain) {
@@ -335,8 +331,10 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
       fixed.push_back(a);
       const IntPoint& pa = int_points[a];
       const IntPoint& pb = int_points[b];
-      if (pa.X == pb.X && on_x.count(pa.X)) insert_between(on_x[pa.X], pa.Y, pb.Y, fixed);
-      else if (pa.Y == pb.Y && on_y.count(pa.Y)) insert_between(on_y[pa.Y], pa.X, pb.X, fixed);
+      if (pa.X == pb.X && on_x.count(pa.X))
+        insert_between(on_x[pa.X], pa.Y, pb.Y, fixed);
+      else if (pa.Y == pb.Y && on_y.count(pa.Y))
+        insert_between(on_y[pa.Y], pa.X, pb.X, fixed);
     }
     panel = std::move(fixed);
   }
@@ -357,8 +355,10 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
     if (panel_full[k]) continue;
     const std::size_t i = panel_cell[k] % nu, j = panel_cell[k] / nu;
-    const std::vector<Vec2> uv = {{u_lines[i], v_lines[j]}, {u_lines[i + 1], v_lines[j]},
-                                  {u_lines[i + 1], v_lines[j + 1]}, {u_lines[i], v_lines[j + 1]}};
+    const std::vector<Vec2> uv = {{u_lines[i], v_lines[j]},
+                                  {u_lines[i + 1], v_lines[j]},
+                                  {u_lines[i + 1], v_lines[j + 1]},
+                                  {u_lines[i], v_lines[j + 1]}};
     std::vector<Vec3> xyz;
     for (const Vec2& q : uv) xyz.push_back(face.point(q.x(), q.y()));
     cell_area[k] = panel_model_area(xyz, uv);

@@ -58,7 +58,8 @@ std::vector<double> cumulative_arc_length(const SurfaceFace& face, bool along_u)
   }
   std::vector<double> cumulative(kAlong + 1, 0.0);
   const double h = (a1 - a0) / kAlong;
-  for (int i = 1; i <= kAlong; ++i) cumulative[i] = cumulative[i - 1] + 0.5 * h * (speed[i - 1] + speed[i]);
+  for (int i = 1; i <= kAlong; ++i)
+    cumulative[i] = cumulative[i - 1] + 0.5 * h * (speed[i - 1] + speed[i]);
   return cumulative;
 }
 

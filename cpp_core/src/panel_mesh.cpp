@@ -70,8 +70,8 @@ void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {
     for (long long dx = -1; dx <= 1 && !found; ++dx)
       for (long long dy = -1; dy <= 1 && !found; ++dy)
         for (long long dz = -1; dz <= 1 && !found; ++dz) {
-          auto it = buckets.find(Key(std::get<0>(k) + dx, std::get<1>(k) + dy,
-                                     std::get<2>(k) + dz));
+          auto it =
+              buckets.find(Key(std::get<0>(k) + dx, std::get<1>(k) + dy, std::get<2>(k) + dz));
           if (it == buckets.end()) continue;
           for (int w : it->second) {
             if ((mesh.xyz[w] - mesh.xyz[v]).norm() <= tolerance) {

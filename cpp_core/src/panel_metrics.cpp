@@ -44,8 +44,8 @@ double planarity(const std::vector<Vec3>& p) {
 }
 
 // Largest distance from sample points of the panel model to the surface.
-double deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
-                 const std::vector<Vec2>& uv, int samples) {
+double deviation(const SurfaceFace& face, const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
+                 int samples) {
   double worst = 0;
   auto probe = [&](const Vec3& x, const Vec2& start) {
     worst = std::max(worst, face.project(x, start).distance);
@@ -68,8 +68,8 @@ double deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
   for (const Vec3& a : p)
     for (const Vec3& b : p) extent = std::max(extent, (a - b).norm());
   for (const auto& t : triangulate_polygon(uv)) {
-    const double longest = std::max({(p[t[0]] - p[t[1]]).norm(), (p[t[1]] - p[t[2]]).norm(),
-                                     (p[t[2]] - p[t[0]]).norm()});
+    const double longest = std::max(
+        {(p[t[0]] - p[t[1]]).norm(), (p[t[1]] - p[t[2]]).norm(), (p[t[2]] - p[t[0]]).norm()});
     const int n = std::max(1, static_cast<int>(std::ceil(samples * longest / extent)));
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; i + j <= n; ++j) {
@@ -113,7 +113,8 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
     m.max_angle[k] = hi;
   }
   m.rod_length.reserve(mesh.rods.size());
-  for (const auto& rod : mesh.rods) m.rod_length.push_back((mesh.xyz[rod[0]] - mesh.xyz[rod[1]]).norm());
+  for (const auto& rod : mesh.rods)
+    m.rod_length.push_back((mesh.xyz[rod[0]] - mesh.xyz[rod[1]]).norm());
   return m;
 }
 

@@ -121,7 +121,8 @@ std::string rods_to_brep(const PanelMesh& mesh) {
     TopoDS_Compound all;
     builder.MakeCompound(all);
     for (const auto& rod : mesh.rods) {
-      builder.Add(all, BRepBuilderAPI_MakeEdge(pnt(mesh.xyz[rod[0]]), pnt(mesh.xyz[rod[1]])).Edge());
+      builder.Add(all,
+                  BRepBuilderAPI_MakeEdge(pnt(mesh.xyz[rod[0]]), pnt(mesh.xyz[rod[1]])).Edge());
     }
     return to_brep(all);
   } catch (const Standard_Failure& e) {

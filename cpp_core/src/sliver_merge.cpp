@@ -5,8 +5,8 @@
 #include <numeric>
 
 #include "tessella/errors.h"
-#include "tessella/panel_model.h"
 #include "tessella/grid_clipping.h"
+#include "tessella/panel_model.h"
 
 namespace tessella {
 

@@ -111,8 +111,8 @@ SurfaceFace SurfaceFace::from_brep_string(const std::string& brep) {
     if (box.IsVoid()) throw InvalidGeometry("the face has no extent");
     double x0, y0, z0, x1, y1, z1;
     box.Get(x0, y0, z0, x1, y1, z1);
-    impl->model_size = std::sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0) +
-                                 (z1 - z0) * (z1 - z0));
+    impl->model_size =
+        std::sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0) + (z1 - z0) * (z1 - z0));
     GProp_GProps props;
     BRepGProp::SurfaceProperties(face, props);
     impl->area = std::abs(props.Mass());
@@ -133,8 +133,7 @@ SurfaceFace SurfaceFace::from_brep_string(const std::string& brep) {
   impl->search = {std::max(su0, b.u_min - 0.1 * du), std::min(su1, b.u_max + 0.1 * du),
                   std::max(sv0, b.v_min - 0.1 * dv), std::min(sv1, b.v_max + 0.1 * dv)};
   // Tolerance of the uv classifier: a tiny fraction of the parameter span.
-  impl->classifier =
-      std::make_unique<BRepTopAdaptor_FClass2d>(face, 1e-9 * std::max(du, dv));
+  impl->classifier = std::make_unique<BRepTopAdaptor_FClass2d>(face, 1e-9 * std::max(du, dv));
   return SurfaceFace(std::move(impl));
 }
 
@@ -142,18 +141,12 @@ UvBounds SurfaceFace::bounds() const { return impl_->bounds; }
 double SurfaceFace::model_size() const { return impl_->model_size; }
 bool SurfaceFace::u_periodic() const { return impl_->surface->IsUPeriodic(); }
 bool SurfaceFace::v_periodic() const { return impl_->surface->IsVPeriodic(); }
-double SurfaceFace::u_period() const {
-  return u_periodic() ? impl_->surface->UPeriod() : 0.0;
-}
-double SurfaceFace::v_period() const {
-  return v_periodic() ? impl_->surface->VPeriod() : 0.0;
-}
+double SurfaceFace::u_period() const { return u_periodic() ? impl_->surface->UPeriod() : 0.0; }
+double SurfaceFace::v_period() const { return v_periodic() ? impl_->surface->VPeriod() : 0.0; }
 bool SurfaceFace::reversed() const { return impl_->reversed; }
 double SurfaceFace::area() const { return impl_->area; }
 
-Vec3 SurfaceFace::point(double u, double v) const {
-  return to_vec(impl_->surface->Value(u, v));
-}
+Vec3 SurfaceFace::point(double u, double v) const { return to_vec(impl_->surface->Value(u, v)); }
 
 SurfacePoint SurfaceFace::derivatives(double u, double v) const {
   gp_Pnt p;
@@ -184,8 +177,7 @@ bool SurfaceFace::is_inside(double u, double v) const {
 }
 
 std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
-  require_in_range("trim deflection", deflection, 1e-12 * impl_->model_size,
-                   impl_->model_size);
+  require_in_range("trim deflection", deflection, 1e-12 * impl_->model_size, impl_->model_size);
   const TopoDS_Wire outer = BRepTools::OuterWire(impl_->face);
   std::vector<TrimLoop> loops;
   try {
@@ -236,8 +228,7 @@ std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
       loops.push_back(std::move(loop));
     }
   } catch (const Standard_Failure& e) {
-    throw GeometryFailure(std::string("cannot discretize the trim loops: ") +
-                          e.GetMessageString());
+    throw GeometryFailure(std::string("cannot discretize the trim loops: ") + e.GetMessageString());
   }
   // Outer loop first, then holes in the order of the B-rep.
   std::stable_sort(loops.begin(), loops.end(),

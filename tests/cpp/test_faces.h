@@ -7,12 +7,11 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
-#include <TopExp_Explorer.hxx>
-#include <TopoDS.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <gp_Pln.hxx>
-
 #include <sstream>
 #include <string>
 
@@ -26,7 +25,8 @@ inline std::string brep(const TopoDS_Shape& s) {
   return out.str();
 }
 
-inline TopoDS_Face first_face(const TopoDS_Shape& s, TopAbs_Orientation skip_none = TopAbs_EXTERNAL) {
+inline TopoDS_Face first_face(const TopoDS_Shape& s,
+                              TopAbs_Orientation skip_none = TopAbs_EXTERNAL) {
   (void)skip_none;
   return TopoDS::Face(TopExp_Explorer(s, TopAbs_FACE).Current());
 }
@@ -45,9 +45,11 @@ inline SurfaceFace sphere_face(double r) {
 inline TopoDS_Wire rect_wire(double x0, double y0, double x1, double y1, bool clockwise) {
   BRepBuilderAPI_MakePolygon p;
   if (clockwise) {
-    p.Add(gp_Pnt(x0, y0, 0)), p.Add(gp_Pnt(x0, y1, 0)), p.Add(gp_Pnt(x1, y1, 0)), p.Add(gp_Pnt(x1, y0, 0));
+    p.Add(gp_Pnt(x0, y0, 0)), p.Add(gp_Pnt(x0, y1, 0)), p.Add(gp_Pnt(x1, y1, 0)),
+        p.Add(gp_Pnt(x1, y0, 0));
   } else {
-    p.Add(gp_Pnt(x0, y0, 0)), p.Add(gp_Pnt(x1, y0, 0)), p.Add(gp_Pnt(x1, y1, 0)), p.Add(gp_Pnt(x0, y1, 0));
+    p.Add(gp_Pnt(x0, y0, 0)), p.Add(gp_Pnt(x1, y0, 0)), p.Add(gp_Pnt(x1, y1, 0)),
+        p.Add(gp_Pnt(x0, y1, 0));
   }
   p.Close();
   return p.Wire();

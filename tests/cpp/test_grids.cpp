@@ -78,8 +78,8 @@ TEST(IsoGrid, HoleStaysOpenAndAreaIsExactOnAPlate) {
   EXPECT_NEAR(area, 1000.0 * 1000.0 - 340.0 * 340.0, 1e-6);
   for (const Vec3& x : m.xyz) {
     EXPECT_NEAR(x.z(), 0.0, 1e-12);
-    const bool in_hole = x.x() > 330 + 1e-9 && x.x() < 670 - 1e-9 && x.y() > 330 + 1e-9 &&
-                         x.y() < 670 - 1e-9;
+    const bool in_hole =
+        x.x() > 330 + 1e-9 && x.x() < 670 - 1e-9 && x.y() > 330 + 1e-9 && x.y() < 670 - 1e-9;
     EXPECT_FALSE(in_hole) << x.transpose();
   }
   // Each panel's uv triangulation centroids lie inside the face.

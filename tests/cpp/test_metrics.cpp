@@ -1,14 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <BRep_Builder.hxx>
+#include <TopoDS_Iterator.hxx>
 #include <cmath>
 
 #include "tessella/panel_metrics.h"
 #include "tessella/panel_model.h"
 #include "tessella/shape_export.h"
 #include "test_faces.h"
-
-#include <BRep_Builder.hxx>
-#include <TopoDS_Iterator.hxx>
 
 using namespace tessella;
 using namespace tessella::test;

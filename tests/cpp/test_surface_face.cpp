@@ -56,8 +56,8 @@ TEST(SurfaceFace, InsideTestAndTrimLoopsOfAPlateWithAHole) {
   ASSERT_EQ(loops.size(), 2u);
   EXPECT_TRUE(loops[0].outer);
   EXPECT_FALSE(loops[1].outer);
-  EXPECT_NEAR(loop_area(loops[0].uv), 1000.0 * 1000.0, 1e-6);   // counter-clockwise
-  EXPECT_NEAR(loop_area(loops[1].uv), -400.0 * 400.0, 1e-6);    // clockwise
+  EXPECT_NEAR(loop_area(loops[0].uv), 1000.0 * 1000.0, 1e-6);  // counter-clockwise
+  EXPECT_NEAR(loop_area(loops[1].uv), -400.0 * 400.0, 1e-6);   // clockwise
   EXPECT_NEAR(f.area(), 1000.0 * 1000.0 - 400.0 * 400.0, 1e-6);
 }
 
@@ -78,8 +78,8 @@ TEST(SurfaceFace, TrimLoopChordsStayWithinTheDeflection) {
 
 TEST(SurfaceFace, NewtonProjectionMatchesTheSphereInClosedForm) {
   const SurfaceFace f = sphere_face(3000);
-  const Vec3 points[] = {{4000, 100, 200}, {-100, 2500, -1000}, {10, 20, 5000}, {0, 0, -3500},
-                         {1000, -200, 300}};
+  const Vec3 points[] = {
+      {4000, 100, 200}, {-100, 2500, -1000}, {10, 20, 5000}, {0, 0, -3500}, {1000, -200, 300}};
   for (const Vec3& p : points) {
     const Projection r = f.project(p, Vec2(1.0, 0.2));
     EXPECT_NEAR(r.distance, std::abs(p.norm() - 3000.0), 1e-6) << p.transpose();

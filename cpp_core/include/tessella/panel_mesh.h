@@ -25,8 +25,8 @@ struct PanelMesh {
   std::vector<std::vector<Vec2>> corner_uv;
 
   // What the method reports about its own run.
-  int merged_slivers = 0;      // slivers merged into a neighbour
-  double nominal_area = 0.0;   // area of a full panel (mm^2), for irregularity
+  int merged_slivers = 0;     // slivers merged into a neighbour
+  double nominal_area = 0.0;  // area of a full panel (mm^2), for irregularity
 
   std::size_t vertex_count() const { return xyz.size(); }
 };

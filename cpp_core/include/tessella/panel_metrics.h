@@ -35,8 +35,8 @@ struct SummaryStats {
 SummaryStats summarize(const std::vector<double>& values);
 
 struct IrregularParams {
-  double min_angle_deg = 30.0;     // a corner under this makes a panel irregular
-  double min_area_fraction = 0.25; // of mesh.nominal_area
+  double min_angle_deg = 30.0;      // a corner under this makes a panel irregular
+  double min_area_fraction = 0.25;  // of mesh.nominal_area
 };
 // Irregular panel: not a quad, or a corner angle under the limit, or an area under
 // the fraction of the nominal area. Returns one flag per panel.

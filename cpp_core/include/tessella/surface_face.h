@@ -31,7 +31,7 @@ struct TrimLoop {
 };
 
 struct ProjectionParams {
-  double distance_tolerance = 1e-9;   // eps1 of seed 004 eq. 18, relative to model size
+  double distance_tolerance = 1e-9;        // eps1 of seed 004 eq. 18, relative to model size
   double orthogonality_tolerance = 1e-10;  // eps2 of seed 004 eq. 18 (cosine)
   int max_iterations = 30;
 };
@@ -85,8 +85,7 @@ class SurfaceFace {
   // (eq. 10-18) from `start`, kept inside the parameter bounds (wrapped across a
   // periodic seam); OCCT's Extrema as a fallback when Newton does not converge
   // or stalls at a pole.
-  Projection project(const Vec3& p, const Vec2& start,
-                     const ProjectionParams& params = {}) const;
+  Projection project(const Vec3& p, const Vec2& start, const ProjectionParams& params = {}) const;
   // Same, without a start: the start is found by OCCT (global search).
   Projection project(const Vec3& p) const;
 
