@@ -198,11 +198,19 @@ std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
           }
         } else {
           BRepAdaptor_Curve curve(edge);
-          GCPnts_QuasiUniformDeflection sampler(curve, deflection);
-          if (!sampler.IsDone() || sampler.NbPoints() < 2) {
-            throw GeometryFailure("cannot discretize a trim edge of the face");
+          // Sampled span by span: on a closed edge (one edge making a whole
+          // loop) the sampler sees equal end points and may return just them.
+          const int spans = 8;
+          const double t0 = curve.FirstParameter(), t1 = curve.LastParameter();
+          params.push_back(t0);
+          for (int k = 0; k < spans; ++k) {
+            const double a = t0 + (t1 - t0) * k / spans, b = t0 + (t1 - t0) * (k + 1) / spans;
+            GCPnts_QuasiUniformDeflection sampler(curve, deflection, a, b);
+            if (!sampler.IsDone() || sampler.NbPoints() < 2) {
+              throw GeometryFailure("cannot discretize a trim edge of the face");
+            }
+            for (int i = 2; i <= sampler.NbPoints(); ++i) params.push_back(sampler.Parameter(i));
           }
-          for (int i = 1; i <= sampler.NbPoints(); ++i) params.push_back(sampler.Parameter(i));
         }
         if (edge.Orientation() == TopAbs_REVERSED) std::reverse(params.begin(), params.end());
         // The first point of each edge repeats the last of the previous one.
@@ -229,6 +237,9 @@ std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
     }
   } catch (const Standard_Failure& e) {
     throw GeometryFailure(std::string("cannot discretize the trim loops: ") + e.GetMessageString());
+  }
+  if (std::none_of(loops.begin(), loops.end(), [](const TrimLoop& l) { return l.outer; })) {
+    throw GeometryFailure("the outer boundary of the face could not be discretized");
   }
   // Outer loop first, then holes in the order of the B-rep.
   std::stable_sort(loops.begin(), loops.end(),

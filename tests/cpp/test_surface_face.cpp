@@ -6,6 +6,10 @@
 #include "tessella/surface_face.h"
 #include "test_faces.h"
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <gp_Circ.hxx>
+
 using namespace tessella;
 using namespace tessella::test;
 
@@ -103,4 +107,17 @@ TEST(SurfaceFace, NormalIsDefinedAtAPole) {
   const SurfaceFace f = sphere_face(2000);
   const Vec3 n = f.normal(0.3, kPi / 2);
   EXPECT_NEAR(n.z(), 1.0, 1e-3);
+}
+
+TEST(SurfaceFace, ALoopOfOneClosedEdgeIsDiscretized) {
+  // A disc: its outer wire is a single closed circle edge.
+  BRepBuilderAPI_MakeEdge circle(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 500.0));
+  BRepBuilderAPI_MakeFace disc(gp_Pln(), BRepBuilderAPI_MakeWire(circle.Edge()).Wire());
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(disc.Face()));
+  const auto loops = f.trim_loops(0.01);
+  ASSERT_EQ(loops.size(), 1u);
+  EXPECT_TRUE(loops[0].outer);
+  EXPECT_GT(loops[0].uv.size(), 100u);
+  // Inscribed polygon: its area is under the disc's by at most the chord sagittas.
+  EXPECT_NEAR(loop_area(loops[0].uv), kPi * 500.0 * 500.0, 2 * kPi * 500.0 * 0.01);
 }
