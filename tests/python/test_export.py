@@ -140,8 +140,8 @@ def test_panel_schedule(result, tmp_path):
     rows = check_panel_schedule(result, tmp_path / "panels.csv")
     total = sum(float(row["area_mm2"]) for row in rows)
     stats = result.summary["panel_area"]
-    assert stats.count == len(rows)
-    assert total == pytest.approx(stats.mean * stats.count, rel=1e-9)
+    assert stats["count"] == len(rows)
+    assert total == pytest.approx(stats["mean"] * stats["count"], rel=1e-9)
     assert total == pytest.approx(float(np.sum(result.metrics["panel_area"])), rel=1e-12)
     assert sum(int(row["irregular"]) for row in rows) == result.summary["irregular_count"]
 
