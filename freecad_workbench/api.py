@@ -15,13 +15,36 @@ import numpy as np
 
 from . import core
 
-#: Methods and the keyword parameters each accepts (besides the common ones).
+#: Keyword parameters every grid method accepts, with their types; they fill
+#: core.GridClipParams (the first three) or the measurement step.
+CLIP_PARAMS = {"sliver_fraction": float, "trim_deflection": float, "max_panels": int}
+COMMON_PARAMS = tuple(CLIP_PARAMS) + ("min_angle", "samples")
+
+
+@dataclass(frozen=True)
+class MethodSpec:
+    """How one method plugs in: its own keyword parameters (name -> type), the
+    factory of its core params struct, and the core function (face, params) -> PanelMesh.
+    A struct with a `clip` member gets the CLIP_PARAMS."""
+
+    params: dict
+    make_params: object
+    run: object
+
+
+#: The methods, by name. A new method adds one entry here.
 METHODS = {
-    "iso_grid": ("size", "u_count", "v_count"),
-    "equal_size_grid": ("size",),
+    "iso_grid": MethodSpec(
+        {"size": float, "u_count": int, "v_count": int},
+        lambda: core.IsoGridParams(),
+        lambda surface, p: core.iso_grid(surface, p),
+    ),
+    "equal_size_grid": MethodSpec(
+        {"size": float},
+        lambda: core.EqualSizeGridParams(),
+        lambda surface, p: core.equal_size_grid(surface, p),
+    ),
 }
-#: Keyword parameters every method accepts.
-COMMON_PARAMS = ("sliver_fraction", "trim_deflection", "max_panels", "min_angle", "samples")
 
 PANEL_ID_FORMAT = "P-{:04d}"
 ROD_ID_FORMAT = "R-{:04d}"
@@ -117,7 +140,7 @@ def face_to_brep(face):
 def _check_kwargs(method, params):
     if method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
-    allowed = set(METHODS[method]) | set(COMMON_PARAMS)
+    allowed = set(METHODS[method].params) | set(COMMON_PARAMS)
     unknown = sorted(set(params) - allowed)
     if unknown:
         raise ValueError(
@@ -134,20 +157,17 @@ def _set(struct, name, value, kind):
 
 
 def _method_params(method, params):
-    clip = core.GridClipParams()
-    for name, kind in (("sliver_fraction", float), ("trim_deflection", float), ("max_panels", int)):
+    spec = METHODS[method]
+    p = spec.make_params()
+    for name, kind in spec.params.items():
         if name in params:
-            _set(clip, name, params[name], kind)
-    if method == "iso_grid":
-        p = core.IsoGridParams()
-        for name, kind in (("size", float), ("u_count", int), ("v_count", int)):
+            _set(p, name, params[name], kind)
+    if hasattr(p, "clip"):
+        clip = core.GridClipParams()
+        for name, kind in CLIP_PARAMS.items():
             if name in params:
-                _set(p, name, params[name], kind)
-    else:
-        p = core.EqualSizeGridParams()
-        if "size" in params:
-            _set(p, "size", params["size"], float)
-    p.clip = clip
+                _set(clip, name, params[name], kind)
+        p.clip = clip
     return p
 
 
@@ -160,9 +180,7 @@ def panelize(face, method="iso_grid", **params):
     _check_kwargs(method, params)
     brep = face_to_brep(face)
     surface = core.SurfaceFace.from_brep_string(brep)
-    method_params = _method_params(method, params)
-    run = core.iso_grid if method == "iso_grid" else core.equal_size_grid
-    mesh = run(surface, method_params)
+    mesh = METHODS[method].run(surface, _method_params(method, params))
 
     mp = core.MetricsParams()
     if "samples" in params:
