@@ -338,6 +338,15 @@ class PanelizationPart(_StateMixin):
         if role == "Panels":
             add_property(obj, "App::PropertyStringList", "PanelIds", "Data",
                          "Panel IDs, one per sub-shape", attr=ro)
+            # Per-panel figures (mm, mm²), for schedules and analysis colours.
+            add_property(obj, "App::PropertyFloatList", "Deviation", "Data",
+                         "Largest panel-to-surface distance per panel (mm)", attr=ro)
+            add_property(obj, "App::PropertyFloatList", "Planarity", "Data",
+                         "Diagonal distance / mean edge per panel", attr=ro)
+            add_property(obj, "App::PropertyFloatList", "Area", "Data",
+                         "Panel area per panel (mm²)", attr=ro)
+            add_property(obj, "App::PropertyIntegerList", "Irregular", "Data",
+                         "1 where a panel is irregular, else 0", attr=ro)
         elif role == "Rods":
             add_property(obj, "App::PropertyStringList", "RodIds", "Data",
                          "Rod IDs, one per edge", attr=ro)
@@ -368,6 +377,10 @@ class PanelizationPart(_StateMixin):
         obj.Shape = cache.shapes[role]
         if role == "Panels":
             obj.PanelIds = list(res.panel_ids)
+            obj.Deviation = [float(x) for x in res.metrics["panel_deviation"]]
+            obj.Planarity = [float(x) for x in res.metrics["panel_planarity"]]
+            obj.Area = [float(x) for x in res.metrics["panel_area"]]
+            obj.Irregular = [int(x) for x in res.irregular]
         elif role == "Rods":
             obj.RodIds = list(res.rod_ids)
             obj.RodLengths = [float(x) for x in res.metrics["rod_length"]]

@@ -331,8 +331,75 @@ def test_open_headless_document():
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_analysis_colors():
+    """Panels coloured by deviation / area / irregularity and rods by length; the
+    legend appears and goes; colours follow the values (independent ranking)."""
+    import numpy as np
+    import Part
+    import freecad_workbench as tessella
+
+    doc = FreeCAD.newDocument("TessellaColors")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = bspline_face_with_hole()
+        parent = tessella.make_panelization((src, "Face1"), method="iso_grid", size=1500.0)
+        doc.recompute()
+        process_events()
+        from freecad_workbench.features.panelization import children_of
+
+        kids = {c.Role: c for c in children_of(parent)}
+        panels, rods = kids["Panels"], kids["Rods"]
+        vp = panels.ViewObject
+        check("colours: Panels has a ColorBy view property",
+              "ColorBy" in vp.PropertiesList, str(vp.PropertiesList))
+        check("colours: modes offered", set(vp.getEnumerationsOfProperty("ColorBy"))
+              == {"Shape", "Deviation", "Planarity", "Area", "Irregular"},
+              str(vp.getEnumerationsOfProperty("ColorBy")))
+        vp.ColorBy = "Deviation"
+        process_events()
+        faces = len(panels.Shape.Faces)
+        colors = [tuple(c[:3]) for c in vp.DiffuseColor]
+        check("colours: one colour per face", len(colors) == faces, f"{len(colors)} vs {faces}")
+        # Face colours sorted by brightness must follow the deviation order of
+        # their panels: compare the panel with the largest and smallest value.
+        dev = np.asarray(panels.Deviation)
+        first_face = np.cumsum([0] + [max(1, len(c.Faces)) for c in panels.Shape.childShapes()])
+        hi, lo = int(dev.argmax()), int(dev.argmin())
+        c_hi, c_lo = colors[first_face[hi]], colors[first_face[lo]]
+        check("colours: largest deviation is yellow", c_hi[0] > 0.9 and c_hi[1] > 0.85, str(c_hi))
+        check("colours: smallest deviation is dark", sum(c_lo) < 0.8, str(c_lo))
+        check("colours: the legend is shown", vp.Proxy.has_legend())
+        vp.ColorBy = "Area"
+        process_events()
+        check("colours: legend follows the mode", vp.Proxy.has_legend())
+        vp.ColorBy = "Shape"
+        process_events()
+        check("colours: back to the shape colour removes the legend", not vp.Proxy.has_legend())
+        check("colours: back to one colour", len(vp.DiffuseColor) == 1, str(len(vp.DiffuseColor)))
+        rvp = rods.ViewObject
+        check("colours: Rods offer Length",
+              "Length" in rvp.getEnumerationsOfProperty("ColorBy"))
+        rvp.ColorBy = "Length"
+        process_events()
+        if "LineColorArray" in rvp.PropertiesList:
+            check("colours: one colour per rod", len(rvp.LineColorArray) == len(rods.Shape.Edges),
+                  f"{len(rvp.LineColorArray)} vs {len(rods.Shape.Edges)}")
+        check("colours: rod legend shown", rvp.Proxy.has_legend())
+        # Recompute with another size: colours follow the new panels.
+        vp.ColorBy = "Deviation"
+        parent.Size = 1000.0
+        doc.recompute()
+        process_events()
+        check("colours: recolour after recompute",
+              len(vp.DiffuseColor) == len(panels.Shape.Faces),
+              f"{len(vp.DiffuseColor)} vs {len(panels.Shape.Faces)}")
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
 def main():
-    for test in (test_workbench, test_command, test_command_failure, test_open_headless_document):
+    for test in (test_workbench, test_command, test_command_failure, test_open_headless_document,
+                 test_analysis_colors):
         try:
             test()
         except Exception:
