@@ -24,6 +24,9 @@ class TessellaWorkbench(FreeCADGui.Workbench):
             return
         self.appendToolbar("Tessella", list(commands.COMMANDS))
         self.appendMenu("Tessella", list(commands.COMMANDS))
+        from freecad_workbench.gui import selection_feedback
+
+        selection_feedback.install()
 
     def Activated(self):
         pass

@@ -393,6 +393,24 @@ def test_analysis_colors():
         check("colours: recolour after recompute",
               len(vp.DiffuseColor) == len(panels.Shape.Faces),
               f"{len(vp.DiffuseColor)} vs {len(panels.Shape.Faces)}")
+        # Selection feedback: clicking a panel / rod / node shows its figures.
+        Gui.activateWorkbench("TessellaWorkbench")
+        bar = Gui.getMainWindow().statusBar()
+        for child, sub, expect in ((panels, "Face1", panels.PanelIds[0]),
+                                   (rods, "Edge3", rods.RodIds[2]),
+                                   (kids["Nodes"], "Vertex5", kids["Nodes"].NodeIds[4])):
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(doc.Name, child.Name, sub)
+            process_events()
+            msg = bar.currentMessage()
+            check(f"selection feedback: {child.Role}.{sub} shows {expect}", expect in msg, msg)
+        Gui.Selection.clearSelection()
+        length = f"{rods.RodLengths[2]:.2f} mm"
+        Gui.Selection.addSelection(doc.Name, rods.Name, "Edge3")
+        process_events()
+        check("selection feedback: rod length shown", length in bar.currentMessage(),
+              bar.currentMessage())
+        Gui.Selection.clearSelection()
     finally:
         FreeCAD.closeDocument(doc.Name)
 
