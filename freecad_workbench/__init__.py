@@ -14,6 +14,7 @@ Document objects (need FreeCAD):
 __version__ = "0.1.0"
 
 from .api import METHODS, PanelizeResult, panelize  # noqa: F401,E402
+from .plots import histograms  # noqa: F401,E402
 
 
 def make_panelization(*args, **kwargs):

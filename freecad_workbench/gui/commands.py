@@ -117,5 +117,7 @@ class PanelizeCommand:
 
 Gui.addCommand("Tessella_Panelize", PanelizeCommand())
 
+from . import analysis_commands  # noqa: E402  (registers its commands)
+
 #: Command names, in toolbar order (used by InitGui.py).
-COMMANDS = ["Tessella_Panelize"]
+COMMANDS = ["Tessella_Panelize"] + analysis_commands.COMMANDS

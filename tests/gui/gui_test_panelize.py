@@ -411,6 +411,28 @@ def test_analysis_colors():
         check("selection feedback: rod length shown", length in bar.currentMessage(),
               bar.currentMessage())
         Gui.Selection.clearSelection()
+        # Histograms of the selected Panelization: a PNG and a dialog showing it.
+        from PySide import QtGui
+        from freecad_workbench.gui import analysis_commands
+
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Histograms")
+        check("histograms: without a selection the user is told",
+              any("Panelization" in t for t in dc.texts), str(dc.texts))
+        path = analysis_commands.histogram_path(parent)
+        if os.path.exists(path):
+            os.remove(path)
+        Gui.Selection.addSelection(doc.Name, rods.Name)
+        Gui.runCommand("Tessella_Histograms")
+        process_events()
+        check("histograms: PNG written", os.path.exists(path) and os.path.getsize(path) > 10000, path)
+        dialogs = [w for w in QtGui.QApplication.topLevelWidgets()
+                   if w.objectName() == "TessellaHistograms" and w.isVisible()]
+        check("histograms: dialog shown with the picture",
+              bool(dialogs) and not dialogs[-1].findChildren(QtGui.QLabel)[0].pixmap().isNull())
+        for d in dialogs:
+            d.close()
+        Gui.Selection.clearSelection()
     finally:
         FreeCAD.closeDocument(doc.Name)
 
