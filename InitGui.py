@@ -24,9 +24,10 @@ class TessellaWorkbench(FreeCADGui.Workbench):
             return
         self.appendToolbar("Tessella", list(commands.COMMANDS))
         self.appendMenu("Tessella", list(commands.COMMANDS))
-        from freecad_workbench.gui import selection_feedback
+        from freecad_workbench.gui import preferences, selection_feedback
 
         selection_feedback.install()
+        preferences.register()
 
     def Activated(self):
         pass

@@ -107,6 +107,11 @@ METRIC_NAMES = (
 
 def face_to_brep(face):
     """BRep string of one face from a Part.Face, a one-face shape or (obj, 'FaceN')."""
+    return face_to_shape(face).exportBrepToString()
+
+
+def face_to_shape(face):
+    """The Part.Face named by a Part.Face, a one-face shape or (obj, 'FaceN')."""
     import Part  # FreeCAD's; imported late so `import FreeCAD` comes first
 
     if isinstance(face, (tuple, list)) and len(face) == 2 and isinstance(face[1], str):
@@ -134,7 +139,7 @@ def face_to_brep(face):
                 f"the shape has {len(faces)} faces: pass exactly one face (e.g. shape.Faces[0])"
             )
         face = faces[0]
-    return face.exportBrepToString()
+    return face
 
 
 def _check_kwargs(method, params):

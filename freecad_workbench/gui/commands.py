@@ -81,8 +81,8 @@ class PanelizeCommand:
             "Pixmap": icon_path("Tessella_Panelize"),
             "MenuText": "Panelize face",
             "ToolTip": (
-                "Cut the selected face into panels, rods and nodes "
-                "(iso grid; change Method, Size and the other parameters in the property view)"
+                "Cut the selected face into panels, rods and nodes: a task panel "
+                "with a live preview sets the method and its parameters"
             ),
         }
 
@@ -100,19 +100,15 @@ class PanelizeCommand:
         except Exception:
             _warn("Tessella: Panelize", f"{obj.Label} has no {sub}. " + SELECT_ONE_FACE)
             return
-        size = default_size(face)
-        call = (
-            "tessella.make_panelization("
-            f"(FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}), {sub!r}), "
-            f"method='iso_grid', size={size!r})"
-        )
-        try:
-            Gui.doCommand("import freecad_workbench as tessella")
-            Gui.doCommand(call)
-        except Exception as exc:
-            _warn("Tessella: Panelize", f"Panelize failed: {exc}")
+        if Gui.Control.activeDialog():
+            _warn("Tessella: Panelize", "Close the open task panel first.")
             return
-        Gui.Selection.clearSelection()
+        from . import preferences, task_panel
+
+        prefs = preferences.defaults()
+        size = prefs["size"] or default_size(face, prefs["panels_across"])
+        # The task panel previews live and creates the objects on OK.
+        Gui.Control.showDialog(task_panel.PanelizationTaskPanel(source=(obj, sub), size=size))
 
 
 Gui.addCommand("Tessella_Panelize", PanelizeCommand())

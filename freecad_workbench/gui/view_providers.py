@@ -70,6 +70,33 @@ class ViewProviderPanelization(_VPState):
             obj = getattr(vobj, "Object", None)
         return obj
 
+    def doubleClicked(self, vobj):
+        """Double-click in the tree: edit in the task panel."""
+        import FreeCADGui as Gui
+
+        if Gui.Control.activeDialog():
+            return False
+        Gui.ActiveDocument.setEdit(vobj.Object.Name)
+        return True
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None  # transform etc.: FreeCAD's default behaviour
+        import FreeCADGui as Gui
+
+        from .task_panel import PanelizationTaskPanel
+
+        Gui.Control.showDialog(PanelizationTaskPanel(obj=vobj.Object))
+        return True
+
+    def unsetEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        import FreeCADGui as Gui
+
+        Gui.Control.closeDialog()
+        return True
+
     def claimChildren(self):
         from ..features.panelization import children_of
 

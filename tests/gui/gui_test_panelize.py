@@ -110,6 +110,22 @@ def panelizations(doc):
     return [o for o in doc.Objects if is_panelization(o)]
 
 
+def run_panelize(accept=True):
+    """Run Tessella_Panelize and press OK (or Cancel) on its task panel."""
+    from freecad_workbench.gui import task_panel
+
+    Gui.runCommand("Tessella_Panelize")
+    process_events()
+    panel = task_panel.active()
+    if panel is None:
+        return None
+    panel.timer.stop()
+    panel.update_preview()
+    ok = panel.accept() if accept else panel.reject()
+    process_events()
+    return panel, ok
+
+
 def run_command_expecting_nothing(doc, label):
     before = sorted(o.Name for o in doc.Objects)
     undo_before = doc.UndoCount
@@ -179,7 +195,14 @@ def test_command():
         Gui.doCommand = recording_do_command
         try:
             with DialogCatcher() as dc:
-                Gui.runCommand("Tessella_Panelize")
+                # Cancel first: the document must stay exactly as it was.
+                opened = run_panelize(accept=False)
+                check("task panel opened", opened is not None)
+                check("cancel: nothing created", sorted(o.Name for o in doc.Objects) == names_before)
+                check("cancel: no undo step", doc.UndoCount == 0, str(doc.UndoNames))
+                check("cancel: no task dialog left", not Gui.Control.activeDialog())
+                check("cancel: preview removed", opened is not None and opened[0].preview_node is None)
+                run_panelize(accept=True)
         finally:
             Gui.doCommand = original_do_command
         check("Python echoed through Gui.doCommand",
@@ -277,7 +300,14 @@ def test_command_failure():
         Gui.Selection.clearSelection()
         Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
         with DialogCatcher() as dc:
-            Gui.runCommand("Tessella_Panelize")
+            opened = run_panelize(accept=True)
+        check("failure: the task panel shows the error",
+              opened is not None and opened[0].last_error is not None
+              and "max_panels" in opened[0].summary.text(), opened and opened[0].summary.text())
+        check("failure: OK refused, the panel stays open", opened is not None and not opened[1])
+        if opened is not None:
+            opened[0].reject()
+            process_events()
         check("failure: nothing created", sorted(o.Name for o in doc.Objects) == before,
               str(sorted(o.Name for o in doc.Objects)))
         check("failure: no undo step", doc.UndoCount == 0, str(doc.UndoNames))
@@ -329,6 +359,118 @@ def test_open_headless_document():
         check("headless doc: panels = 4 x 3", p.PanelCount == 12, str(p.PanelCount))
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def wait_for_preview(panel, previous, timeout=10.0):
+    """Let the debounce timer fire and the preview draw (real event loop)."""
+    import time
+
+    end = time.time() + timeout
+    while time.time() < end and panel.preview_count == previous:
+        process_events()
+        time.sleep(0.02)
+    return panel.preview_count > previous
+
+
+def test_task_panel_edit():
+    """Double-click -> task panel with the object's values; a change previews live
+    (debounced); OK writes one undo step; Cancel changes nothing; after save and
+    reopen the object edits again."""
+    import freecad_workbench as tessella
+    from freecad_workbench.gui import task_panel
+
+    doc = FreeCAD.newDocument("TessellaEdit")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = bspline_face_with_hole()
+        parent = tessella.make_panelization((src, "Face1"), method="iso_grid", size=2000.0)
+        doc.recompute()
+        doc.clearUndos()
+        count_before = parent.PanelCount
+        check("edit: double-click opens the task panel",
+              parent.ViewObject.Proxy.doubleClicked(parent.ViewObject))
+        panel = task_panel.active()
+        if not check("edit: panel is active", panel is not None):
+            return
+        check("edit: panel shows the object's size", abs(task_panel._value(panel.size) - 2000.0) < 1e-9)
+        n = panel.preview_count
+        check("edit: first preview drawn", wait_for_preview(panel, n))
+        first_summary = panel.summary.text()
+        check("edit: summary names panels and deviation",
+              "panels" in first_summary and "max deviation" in first_summary, first_summary)
+        graph = Gui.ActiveDocument.ActiveView.getSceneGraph()
+        check("edit: preview in the 3D view",
+              panel.preview_node is not None and graph.findChild(panel.preview_node) >= 0)
+        # A change re-runs the preview after the debounce; the document is untouched.
+        n = panel.preview_count
+        panel.size.setProperty("rawValue", 1000.0)
+        check("edit: preview updated after a change", wait_for_preview(panel, n))
+        check("edit: summary changed", panel.summary.text() != first_summary, panel.summary.text())
+        check("edit: preview count matches the finer grid",
+              panel.last_result is not None and len(panel.last_result.panels) > count_before)
+        check("edit: document untouched while previewing",
+              parent.PanelCount == count_before and doc.UndoCount == 0)
+        node = panel.preview_node
+        check("edit: OK accepted", panel.accept())
+        process_events()
+        check("edit: preview removed after OK", graph.findChild(node) < 0 if node else True)
+        check("edit: Size written", abs(parent.Size.Value - 1000.0) < 1e-9, str(parent.Size))
+        check("edit: recomputed", parent.PanelCount > count_before, str(parent.PanelCount))
+        check("edit: one undo step", doc.UndoCount == 1 and doc.UndoNames[0] == "Edit panelization",
+              str(doc.UndoNames))
+        doc.undo()
+        doc.recompute()
+        check("edit: undo restores the size", abs(parent.Size.Value - 2000.0) < 1e-9)
+        doc.redo()
+        doc.recompute()
+        # Cancel leaves everything as it is.
+        parent.ViewObject.Proxy.doubleClicked(parent.ViewObject)
+        panel = task_panel.active()
+        panel.size.setProperty("rawValue", 3000.0)
+        panel.method.setCurrentIndex(1)
+        panel.reject()
+        process_events()
+        check("edit: cancel keeps the values", abs(parent.Size.Value - 1000.0) < 1e-9
+              and parent.Method == "iso_grid" and doc.UndoCount == 1, f"{parent.Size} {doc.UndoNames}")
+        # Save, reopen, edit again.
+        path = os.path.join(tempfile.mkdtemp(prefix="tessella_edit_"), "edit.FCStd")
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+        process_events()
+        parent = panelizations(doc)[0]
+        check("reopened: double-click edits", parent.ViewObject.Proxy.doubleClicked(parent.ViewObject))
+        panel = task_panel.active()
+        if check("reopened: panel active", panel is not None):
+            panel.method.setCurrentIndex(list(tessella.METHODS).index("equal_size_grid"))
+            panel.timer.stop()
+            panel.update_preview()
+            check("reopened: OK", panel.accept())
+            check("reopened: method changed", parent.Method == "equal_size_grid" and parent.isValid())
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        for name in list(FreeCAD.listDocuments()):
+            FreeCAD.closeDocument(name)
+
+
+def test_preferences_page():
+    from freecad_workbench.gui import preferences
+
+    check("preferences: page file exists", os.path.isfile(preferences.UI_FILE))
+    p = FreeCAD.ParamGet(preferences.PARAM_PATH)
+    p.SetInt("DefaultMethod", 1)
+    p.SetFloat("SliverFraction", 0.1)
+    d = preferences.defaults()
+    check("preferences: values read back", d["method"] == "equal_size_grid"
+          and abs(d["sliver_fraction"] - 0.1) < 1e-12, str(d))
+    p.RemInt("DefaultMethod")
+    p.RemFloat("SliverFraction")
+    check("preferences: built-in defaults", preferences.defaults()["method"] == "iso_grid")
+    # The page loads as FreeCAD's dialog would load it (custom Pref* widgets).
+    widget = Gui.PySideUic.loadUi(preferences.UI_FILE)
+    check("preferences: page loads", widget is not None and widget.findChild(
+        __import__("PySide").QtGui.QComboBox, "defaultMethod") is not None)
 
 
 def test_analysis_colors():
@@ -439,7 +581,7 @@ def test_analysis_colors():
 
 def main():
     for test in (test_workbench, test_command, test_command_failure, test_open_headless_document,
-                 test_analysis_colors):
+                 test_analysis_colors, test_task_panel_edit, test_preferences_page):
         try:
             test()
         except Exception:

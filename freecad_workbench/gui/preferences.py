@@ -1,0 +1,38 @@
+"""Tessella preferences (Edit > Preferences > Tessella) and their defaults.
+
+Stored under User parameter:BaseApp/Preferences/Mod/Tessella; the page is
+resources/ui/preferences.ui (FreeCAD's Pref* widgets write the values).
+"""
+
+import os
+
+import FreeCAD
+
+PARAM_PATH = "User parameter:BaseApp/Preferences/Mod/Tessella"
+UI_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                       "resources", "ui", "preferences.ui")
+
+#: Order of the method combo box on the page (stored as its index).
+METHOD_ORDER = ("iso_grid", "equal_size_grid")
+
+
+def defaults():
+    """The user's defaults for new panelizations (built-in values when unset)."""
+    p = FreeCAD.ParamGet(PARAM_PATH)
+    index = p.GetInt("DefaultMethod", 0)
+    return {
+        "method": METHOD_ORDER[index] if 0 <= index < len(METHOD_ORDER) else METHOD_ORDER[0],
+        "panels_across": max(1, p.GetInt("PanelsAcross", 8)),
+        "size": p.GetFloat("DefaultSize", 0.0),  # 0: from the face (PanelsAcross)
+        "sliver_fraction": p.GetFloat("SliverFraction", 0.25),
+        "min_angle": p.GetFloat("MinAngle", 30.0),
+        "max_panels": p.GetInt("MaxPanels", 200000),
+    }
+
+
+def register():
+    """Add the page to Edit > Preferences (once per session)."""
+    import FreeCADGui as Gui
+
+    if os.path.isfile(UI_FILE):
+        Gui.addPreferencePage(UI_FILE, "Tessella")

@@ -1,0 +1,316 @@
+"""Task panel of Tessella_Panelize and of editing a Panelization (double-click).
+
+Values are shown with units; every change re-runs the panelization after a
+short pause (debounced) and draws its rods as a preview in the 3D view, with a
+summary line. Nothing touches the document before OK: OK creates the objects
+(one undo step, echoed as Python) or, when editing, writes the changed
+properties in one transaction; Cancel leaves the document exactly as it was.
+"""
+
+import time
+
+import FreeCAD
+import FreeCADGui as Gui
+
+from .. import api
+
+#: Debounce between the last change and the preview.
+PREVIEW_DELAY_MS = 250
+#: Above this many estimated panels a coarse preview (about COARSE_PANELS) comes first.
+COARSE_ABOVE = 3000
+COARSE_PANELS = 800
+#: Samples per panel edge for the preview's deviation figure (the object uses 8).
+PREVIEW_SAMPLES = 3
+
+_active = None
+
+
+def active():
+    """The open Tessella task panel, if any (tests press its buttons)."""
+    return _active
+
+
+def _quantity_box(unit, value, minimum=0.0, maximum=1e9):
+    """A FreeCAD quantity spin box (parses '1.5 m'); a plain spin box as fallback."""
+    from PySide import QtGui
+
+    try:
+        box = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
+        box.setProperty("unit", unit)
+        box.setProperty("minimum", minimum)
+        box.setProperty("maximum", maximum)
+        box.setProperty("rawValue", float(value))
+        return box
+    except Exception:
+        box = QtGui.QDoubleSpinBox()
+        box.setRange(minimum, maximum)
+        box.setDecimals(3)
+        box.setSuffix(" " + unit)
+        box.setValue(float(value))
+        return box
+
+
+def _value(box):
+    raw = box.property("rawValue")
+    return float(raw) if raw is not None else float(box.value())
+
+
+class PanelizationTaskPanel:
+    """source=(object, 'FaceN') to create; obj=<Panelization> to edit."""
+
+    def __init__(self, source=None, obj=None, size=None):
+        from PySide import QtCore, QtGui
+
+        global _active
+        self.source, self.obj = source, obj
+        self.preview_node = None
+        self.last_result = None
+        self.last_error = None
+        self.preview_count = 0  # previews drawn (tests and the benchmark read it)
+        self.preview_seconds = 0.0
+        p = self._initial(size)
+
+        self.form = QtGui.QWidget()
+        self.form.setWindowTitle("Tessella: edit panelization" if obj else "Tessella: panelize")
+        form = QtGui.QFormLayout(self.form)
+        self.source_label = QtGui.QLabel(self._source_text())
+        form.addRow("Face", self.source_label)
+        self.method = QtGui.QComboBox()
+        self.method.addItems(list(api.METHODS))
+        self.method.setCurrentIndex(list(api.METHODS).index(p["method"]))
+        form.addRow("Method", self.method)
+        self.size = _quantity_box("mm", p["size"])
+        form.addRow("Size", self.size)
+        self.u_count = QtGui.QSpinBox()
+        self.u_count.setRange(0, 100000)
+        self.u_count.setValue(p["u_count"])
+        self.v_count = QtGui.QSpinBox()
+        self.v_count.setRange(0, 100000)
+        self.v_count.setValue(p["v_count"])
+        form.addRow("U count (0: use size)", self.u_count)
+        form.addRow("V count (0: use size)", self.v_count)
+        self.sliver = QtGui.QDoubleSpinBox()
+        self.sliver.setRange(0.0, 1.0)
+        self.sliver.setSingleStep(0.05)
+        self.sliver.setValue(p["sliver_fraction"])
+        form.addRow("Sliver fraction", self.sliver)
+        self.min_angle = _quantity_box("deg", p["min_angle"], 0.0, 180.0)
+        form.addRow("Min angle", self.min_angle)
+        self.max_panels = QtGui.QSpinBox()
+        self.max_panels.setRange(1, 100000000)
+        self.max_panels.setValue(p["max_panels"])
+        form.addRow("Max panels", self.max_panels)
+        self.live = QtGui.QCheckBox("Live preview")
+        self.live.setChecked(True)
+        form.addRow(self.live)
+        self.summary = QtGui.QLabel("")
+        self.summary.setWordWrap(True)
+        form.addRow(self.summary)
+
+        self.timer = QtCore.QTimer()
+        self.timer.setSingleShot(True)
+        self.timer.setInterval(PREVIEW_DELAY_MS)
+        self.timer.timeout.connect(self.update_preview)
+        for signal in (self.method.currentIndexChanged, self.u_count.valueChanged,
+                       self.v_count.valueChanged, self.sliver.valueChanged,
+                       self.max_panels.valueChanged, self.live.toggled):
+            signal.connect(self.schedule_preview)
+        for box in (self.size, self.min_angle):
+            sig = getattr(box, "valueChanged", None)
+            if sig is not None:
+                sig.connect(self.schedule_preview)
+        self._update_enabled()
+        _active = self
+        self.schedule_preview()
+
+    # ----------------------------------------------------------------- values
+    def _initial(self, size):
+        if self.obj is not None:
+            o = self.obj
+            return {"method": o.Method, "size": float(o.Size.Value), "u_count": int(o.UCount),
+                    "v_count": int(o.VCount), "sliver_fraction": float(o.SliverFraction),
+                    "min_angle": float(o.MinAngle.Value), "max_panels": int(o.MaxPanels)}
+        from . import preferences
+
+        prefs = preferences.defaults()
+        return {"method": prefs["method"], "size": size or 1000.0, "u_count": 0, "v_count": 0,
+                "sliver_fraction": prefs["sliver_fraction"], "min_angle": prefs["min_angle"],
+                "max_panels": prefs["max_panels"]}
+
+    def _source_text(self):
+        if self.obj is not None:
+            src = self.obj.Source
+            subs = [s for s in (src[1] or []) if s] if src else []
+            return f"{src[0].Label}.{subs[0]}" if src and src[0] and subs else "(none)"
+        return f"{self.source[0].Label}.{self.source[1]}"
+
+    def face_arg(self):
+        if self.obj is not None:
+            return self.obj.Proxy.source_face(self.obj)[0]
+        return self.source
+
+    def parameters(self):
+        """(method, keyword parameters) as the panel shows them."""
+        method = self.method.currentText()
+        params = {}
+        if method == "iso_grid" and (self.u_count.value() or self.v_count.value()):
+            params.update(u_count=self.u_count.value(), v_count=self.v_count.value())
+        else:
+            params["size"] = _value(self.size)
+        params.update(sliver_fraction=float(self.sliver.value()),
+                      min_angle=_value(self.min_angle), max_panels=int(self.max_panels.value()))
+        return method, params
+
+    def _update_enabled(self):
+        iso = self.method.currentText() == "iso_grid"
+        self.u_count.setEnabled(iso)
+        self.v_count.setEnabled(iso)
+
+    # ---------------------------------------------------------------- preview
+    def schedule_preview(self, *args):
+        self._update_enabled()
+        if self.live.isChecked():
+            self.timer.start()
+        else:
+            self.remove_preview()
+
+    def update_preview(self):
+        """Panelize with the shown values and draw the rods; coarse first if large."""
+        method, params = self.parameters()
+        started = time.perf_counter()
+        try:
+            face = self.face_arg()
+            size = params.get("size")
+            if size and "u_count" not in params:
+                import math
+
+                area = api.face_to_shape(face).Area
+                estimate = area / (size * size)
+                if estimate > COARSE_ABOVE:
+                    coarse = dict(params, size=math.sqrt(area / COARSE_PANELS), samples=2)
+                    self._draw(api.panelize(face, method=method, **coarse), coarse=True)
+            result = api.panelize(face, method=method, samples=PREVIEW_SAMPLES, **params)
+        except Exception as exc:  # shown in the panel, never raised into the GUI
+            self.last_result, self.last_error = None, str(exc)
+            self.remove_preview()
+            self.summary.setText(f"<span style='color:#b00020'>{exc}</span>")
+            return
+        self.last_result, self.last_error = result, None
+        self._draw(result)
+        self.preview_seconds = time.perf_counter() - started
+
+    def _draw(self, result, coarse=False):
+        self.remove_preview()
+        try:
+            from pivy import coin
+        except ImportError:
+            coin = None
+        view = getattr(Gui.ActiveDocument, "ActiveView", None) if Gui.ActiveDocument else None
+        if coin is not None and view is not None and hasattr(view, "getSceneGraph"):
+            node = coin.SoSeparator()
+            node.setName("TessellaPreview")
+            color = coin.SoBaseColor()
+            color.rgb = (0.95, 0.45, 0.05) if not coarse else (0.6, 0.6, 0.6)
+            style = coin.SoDrawStyle()
+            style.lineWidth = 2
+            coords = coin.SoCoordinate3()
+            pts = [tuple(map(float, p)) for p in result.vertices]
+            coords.point.setValues(0, len(pts), pts)
+            lines = coin.SoIndexedLineSet()
+            index = []
+            for a, b in result.rods:
+                index += [int(a), int(b), -1]
+            lines.coordIndex.setValues(0, len(index), index)
+            for child in (color, style, coords, lines):
+                node.addChild(child)
+            view.getSceneGraph().addChild(node)
+            self.preview_node = node
+        s = result.summary
+        dev = s["panel_deviation"]["max"] if s["panel_deviation"]["count"] else 0.0
+        prefix = "Coarse preview: " if coarse else ""
+        self.summary.setText(
+            f"{prefix}{s['panel_count']} panels, {s['rod_count']} rods, {s['node_count']} nodes, "
+            f"max deviation {dev:.2f} mm, {s['irregular_count']} irregular")
+        self.preview_count += 1
+        from PySide import QtGui
+
+        QtGui.QApplication.processEvents()
+
+    def remove_preview(self):
+        node = self.preview_node
+        self.preview_node = None
+        if node is None or Gui.ActiveDocument is None:
+            return
+        view = getattr(Gui.ActiveDocument, "ActiveView", None)
+        if view is not None and hasattr(view, "getSceneGraph"):
+            graph = view.getSceneGraph()
+            if graph.findChild(node) >= 0:
+                graph.removeChild(node)
+
+    # ---------------------------------------------------------------- buttons
+    def getStandardButtons(self):
+        from PySide import QtGui
+
+        return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
+
+    def accept(self):
+        """OK: create (new) or write the changed properties (edit); one undo step."""
+        from .commands import _warn
+
+        self.timer.stop()
+        method, params = self.parameters()
+        try:
+            if self.obj is None:
+                self._create(method, params)
+            else:
+                self._apply(method, params)
+        except Exception as exc:
+            _warn("Tessella: Panelize", f"Panelize failed: {exc}")
+            return False  # keep the panel open to fix the values
+        self._close()
+        return True
+
+    def reject(self):
+        self.timer.stop()
+        self._close()
+        return True
+
+    def _close(self):
+        global _active
+        self.remove_preview()
+        if _active is self:
+            _active = None
+        Gui.Control.closeDialog()
+        if self.obj is not None and Gui.ActiveDocument is not None:
+            Gui.ActiveDocument.resetEdit()
+
+    def _create(self, method, params):
+        obj, sub = self.source
+        args = ", ".join(f"{k}={v!r}" for k, v in params.items())
+        call = ("tessella.make_panelization("
+                f"(FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}), {sub!r}), "
+                f"method={method!r}, {args})")
+        api.panelize(self.source, method=method, samples=2, **params)  # clear error first
+        Gui.doCommand("import freecad_workbench as tessella")
+        Gui.doCommand(call)
+        Gui.Selection.clearSelection()
+
+    def _apply(self, method, params):
+        obj = self.obj
+        api.panelize(self.face_arg(), method=method, samples=2, **params)  # clear error first
+        doc = obj.Document
+        doc.openTransaction("Edit panelization")
+        try:
+            obj.Method = method
+            obj.UCount = int(params.get("u_count", 0))
+            obj.VCount = int(params.get("v_count", 0))
+            if "size" in params:
+                obj.Size = params["size"]
+            obj.SliverFraction = params["sliver_fraction"]
+            obj.MinAngle = params["min_angle"]
+            obj.MaxPanels = params["max_panels"]
+            doc.recompute()
+        except Exception:
+            doc.abortTransaction()
+            raise
+        doc.commitTransaction()
