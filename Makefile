@@ -12,7 +12,7 @@ DEB_PACKAGES := g++ make cmake freecad freecad-python3 \
   libgtest-dev libbenchmark-dev \
   python3-numpy python3-matplotlib python3-ezdxf python3-pytest xvfb xauth
 
-.PHONY: all deps build test test-cpp test-python test-gui demo bench install uninstall format clean
+.PHONY: all deps build test test-cpp test-python test-gui demo bench screenshots install uninstall format clean
 
 all: build
 
@@ -51,6 +51,11 @@ demo: build
 
 bench: build
 	$(BUILD)/tessella_bench
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/preview_latency.py
+
+# README pictures of the workbench (toolbar, task panel, preview, colours).
+screenshots: build
+	QTWEBENGINE_DISABLE_SANDBOX=1 TESSELLA_ROOT=$(CURDIR) xvfb-run -a -s "-screen 0 1600x1000x24" freecad tests/gui/make_screenshots.py
 
 # Link the repository into FreeCAD's user Mod folder (FreeCAD 0.20 path).
 MOD_DIR := $(HOME)/.local/share/FreeCAD/Mod
