@@ -10,6 +10,7 @@
 #include "tessella/grid_methods.h"
 #include "tessella/panel_mesh.h"
 #include "tessella/panel_metrics.h"
+#include "tessella/progress.h"
 #include "tessella/shape_export.h"
 #include "tessella/surface_face.h"
 
@@ -38,11 +39,32 @@ auto nogil(F f) {
   return f();
 }
 
+// Runs a long core call without the GIL, reporting to `progress` (a Python
+// callable (fraction, stage) -> bool, False cancels; None: no reporting).
+template <class F>
+auto with_progress(const py::object& progress, F f) {
+  if (progress.is_none()) return nogil(f);
+  ProgressScope scope([progress](double fraction, const char* stage) {
+    py::gil_scoped_acquire gil;
+    try {
+      return py::bool_(progress(fraction, stage)).cast<bool>();
+    } catch (py::error_already_set&) {
+      return false;  // an error in the callback stops the work
+    }
+  });
+  return nogil(f);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
 
+  // tessella's Cancelled (a RuntimeError, so FreeCAD's recompute reports it
+  // like any failed feature).
+  static PyObject* cancelled_type =
+      PyErr_NewException("freecad_workbench._core.Cancelled", PyExc_RuntimeError, nullptr);
+  m.attr("Cancelled") = py::handle(cancelled_type);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -52,6 +74,8 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const LimitExceeded& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const Cancelled& e) {
+      PyErr_SetString(cancelled_type, e.what());
     } catch (const GeometryFailure& e) {
       PyErr_SetString(PyExc_RuntimeError, e.what());
     } catch (const Standard_Failure& e) {
@@ -148,15 +172,25 @@ PYBIND11_MODULE(_core, m) {
                              })
       .def_property_readonly("normal", [](const NodeData& n) { return rows<3>(n.normal); });
 
-  m.def("iso_grid", [](const SurfaceFace& f, const IsoGridParams& p) {
-    return nogil([&] { return iso_grid(f, p); });
-  });
-  m.def("equal_size_grid", [](const SurfaceFace& f, const EqualSizeGridParams& p) {
-    return nogil([&] { return equal_size_grid(f, p); });
-  });
-  m.def("measure_panels", [](const SurfaceFace& f, const PanelMesh& mesh, const MetricsParams& p) {
-    return nogil([&] { return measure_panels(f, mesh, p); });
-  });
+  m.def(
+      "iso_grid",
+      [](const SurfaceFace& f, const IsoGridParams& p, py::object progress) {
+        return with_progress(progress, [&] { return iso_grid(f, p); });
+      },
+      py::arg("face"), py::arg("params"), py::arg("progress") = py::none());
+  m.def(
+      "equal_size_grid",
+      [](const SurfaceFace& f, const EqualSizeGridParams& p, py::object progress) {
+        return with_progress(progress, [&] { return equal_size_grid(f, p); });
+      },
+      py::arg("face"), py::arg("params"), py::arg("progress") = py::none());
+  m.def(
+      "measure_panels",
+      [](const SurfaceFace& f, const PanelMesh& mesh, const MetricsParams& p,
+         py::object progress) {
+        return with_progress(progress, [&] { return measure_panels(f, mesh, p); });
+      },
+      py::arg("face"), py::arg("mesh"), py::arg("params"), py::arg("progress") = py::none());
   m.def("node_data", &node_data);
   m.def("irregular_panels",
         [](const PanelMesh& mesh, const PanelMetrics& metrics, const IrregularParams& p) {
@@ -176,9 +210,12 @@ PYBIND11_MODULE(_core, m) {
     d["max"] = s.max;
     return d;
   });
-  m.def("panels_to_brep", [](const PanelMesh& mesh, double tol) {
-    return nogil([&] { return panels_to_brep(mesh, tol); });
-  });
+  m.def(
+      "panels_to_brep",
+      [](const PanelMesh& mesh, double tol, py::object progress) {
+        return with_progress(progress, [&] { return panels_to_brep(mesh, tol); });
+      },
+      py::arg("mesh"), py::arg("planar_tolerance"), py::arg("progress") = py::none());
   m.def("rods_to_brep",
         [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
   m.def("nodes_to_brep",

@@ -13,8 +13,16 @@ Document objects (need FreeCAD):
 
 __version__ = "0.1.0"
 
-from .api import METHODS, PanelizeResult, panelize  # noqa: F401,E402
+from .api import METHODS, Cancelled, PanelizeResult, panelize  # noqa: F401,E402
 from .plots import histograms  # noqa: F401,E402
+
+
+def gui_progress(title="Tessella"):
+    """A progress callback showing FreeCAD's progress dialog with a Cancel button
+    (None without the GUI, so recorded macros replay headless)."""
+    from .progress import gui_progress as _gp
+
+    return _gp(title)
 
 
 def make_panelization(*args, **kwargs):

@@ -30,6 +30,8 @@ class MethodSpec:
     params: dict
     make_params: object
     run: object
+    #: run accepts progress=callable(fraction, stage) -> bool (False cancels)
+    reports_progress: bool = False
 
 
 #: The methods, by name. A new method adds one entry here.
@@ -37,12 +39,14 @@ METHODS = {
     "iso_grid": MethodSpec(
         {"size": float, "u_count": int, "v_count": int},
         lambda: core.IsoGridParams(),
-        lambda surface, p: core.iso_grid(surface, p),
+        lambda surface, p, progress=None: core.iso_grid(surface, p, progress),
+        reports_progress=True,
     ),
     "equal_size_grid": MethodSpec(
         {"size": float},
         lambda: core.EqualSizeGridParams(),
-        lambda surface, p: core.equal_size_grid(surface, p),
+        lambda surface, p, progress=None: core.equal_size_grid(surface, p, progress),
+        reports_progress=True,
     ),
 }
 
@@ -176,8 +180,15 @@ def _method_params(method, params):
     return p
 
 
-def panelize(face, method="iso_grid", **params):
+#: Raised when a progress callback asked to stop (a RuntimeError).
+Cancelled = core.Cancelled
+
+
+def panelize(face, method="iso_grid", progress=None, **params):
     """Panelize one face. See the module docstring and README for parameters.
+
+    progress: optional callable (fraction, stage) -> bool, called about every
+    50 ms during long steps; returning False cancels (raises Cancelled).
 
     Raises ValueError for a bad parameter or an unusable face (the message names
     the parameter and its accepted range), RuntimeError if the geometry kernel fails.
@@ -185,12 +196,16 @@ def panelize(face, method="iso_grid", **params):
     _check_kwargs(method, params)
     brep = face_to_brep(face)
     surface = core.SurfaceFace.from_brep_string(brep)
-    mesh = METHODS[method].run(surface, _method_params(method, params))
+    spec = METHODS[method]
+    if spec.reports_progress:
+        mesh = spec.run(surface, _method_params(method, params), progress=progress)
+    else:
+        mesh = spec.run(surface, _method_params(method, params))
 
     mp = core.MetricsParams()
     if "samples" in params:
         _set(mp, "samples", params["samples"], int)
-    m = core.measure_panels(surface, mesh, mp)
+    m = core.measure_panels(surface, mesh, mp, progress)
     ip = core.IrregularParams()
     if "min_angle" in params:
         _set(ip, "min_angle_deg", params["min_angle"], float)

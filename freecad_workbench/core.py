@@ -10,6 +10,7 @@ except ImportError as exc:  # pragma: no cover - message for a user without a bu
     ) from exc
 
 from ._core import (  # noqa: E402,F401
+    Cancelled,
     EqualSizeGridParams,
     GridClipParams,
     IrregularParams,

@@ -60,7 +60,7 @@ def _split_source(source):
     return obj, sub
 
 
-def make_panelization(source, method="iso_grid", doc=None, **params):
+def make_panelization(source, method="iso_grid", doc=None, progress=None, **params):
     """Create a Panelization (parent) and its Panels, Rods and Nodes children.
 
     source: (document object, "FaceN") or a document object with one face.
@@ -84,8 +84,14 @@ def make_panelization(source, method="iso_grid", doc=None, **params):
             f"the source {obj.Label!r} is in document {obj.Document.Name!r}, "
             f"not in {doc.Name!r}"
         )
-    # Validate everything (method, parameter names and ranges, the face) first.
-    api.panelize((obj, sub), method=method, **params)
+    # Validate everything (method, parameter names and ranges, the face) by
+    # computing the result once; the new object starts from it (no second run).
+    try:
+        result = api.panelize((obj, sub), method=method, progress=progress, **params)
+    finally:
+        close = getattr(progress, "close", None)
+        if close is not None:
+            close()
     unmapped = sorted(set(params) - set(_PARAM_TO_PROPERTY))
     if unmapped:  # the api accepts a parameter the feature has no property for
         raise ValueError(f"parameter(s) {unmapped} cannot be stored on a Panelization yet")
@@ -100,6 +106,7 @@ def make_panelization(source, method="iso_grid", doc=None, **params):
         parent.Method = method
         for key, value in params.items():
             setattr(parent, _PARAM_TO_PROPERTY[key], value)
+        parent.Proxy.seed(parent, result)
         children = []
         for role in feat.ROLES:
             child = doc.addObject("Part::FeaturePython", role)

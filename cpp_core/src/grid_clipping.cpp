@@ -22,6 +22,7 @@
 
 #include "tessella/errors.h"
 #include "tessella/panel_model.h"
+#include "tessella/progress.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -240,6 +241,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   // Boundary cells: clip the domain once per column strip, then per cell.
   const cInt y_lo = Y.front() - 1, y_hi = Y.back() + 1;
   for (std::size_t i = 0; i < nu; ++i) {
+    report_progress(double(i) / double(nu), "cutting the grid by the trim");
     bool any = false;
     for (std::size_t j = 0; j < nv && !any; ++j) any = near[j * nu + i];
     if (!any) continue;

@@ -7,6 +7,7 @@
 
 #include "tessella/errors.h"
 #include "tessella/panel_model.h"
+#include "tessella/progress.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -94,6 +95,7 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
   m.min_angle.resize(np);
   m.max_angle.resize(np);
   for (std::size_t k = 0; k < np; ++k) {
+    report_progress(double(k) / double(np), "measuring panels");
     const auto& panel = mesh.panels[k];
     std::vector<Vec3> p;
     for (int v : panel) p.push_back(mesh.xyz[v]);

@@ -20,6 +20,7 @@
 
 #include "tessella/errors.h"
 #include "tessella/panel_model.h"
+#include "tessella/progress.h"
 
 namespace tessella {
 
@@ -105,6 +106,7 @@ std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance) {
     TopoDS_Compound all;
     builder.MakeCompound(all);
     for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+      report_progress(double(k) / double(mesh.panels.size()), "building panel faces");
       std::vector<Vec3> p;
       for (int v : mesh.panels[k]) p.push_back(mesh.xyz[v]);
       builder.Add(all, panel_shape(p, panel_corner_uv(mesh, k), planar_tolerance));

@@ -16,3 +16,14 @@ from .schedule_csv import (  # noqa: F401
     write_rod_schedule,
     write_schedules,
 )
+
+__all__ = [
+    "NODE_COLUMNS",
+    "PANEL_COLUMNS",
+    "ROD_COLUMNS",
+    "panel_perimeters",
+    "write_node_schedule",
+    "write_panel_schedule",
+    "write_rod_schedule",
+    "write_schedules",
+]

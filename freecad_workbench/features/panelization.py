@@ -262,8 +262,6 @@ class Panelization(_StateMixin):
         Raises ValueError / RuntimeError with a readable message when the
         panelization cannot be built.
         """
-        import Part
-
         api = _api()
         signature, face_arg, method, params = self._signature(obj)
         cache = getattr(self, "_cache", None)
@@ -274,21 +272,7 @@ class Panelization(_StateMixin):
             raise failed[1](failed[2])
         try:
             res = api.panelize(face_arg, method=method, **params)
-            expected = {
-                "Panels": len(res.panels),
-                "Rods": len(res.rods),
-                "Nodes": len(res.vertices),
-            }
-            shapes = {}
-            for role, make in (("Panels", res.panels_brep), ("Rods", res.rods_brep),
-                               ("Nodes", res.nodes_brep)):
-                shape = Part.Shape()
-                shape.importBrepFromString(make(), False)
-                n = len(shape.childShapes()) if not shape.isNull() else 0
-                if n != expected[role]:
-                    raise RuntimeError(
-                        f"{role}: the core built {n} shapes for {expected[role]} items")
-                shapes[role] = shape
+            shapes = self._shapes(res)
         except (ValueError, TypeError, RuntimeError) as exc:
             self._cache = None
             self._failed = (signature, type(exc), str(exc))
@@ -296,6 +280,30 @@ class Panelization(_StateMixin):
         self._failed = None
         self._cache = _Cache(signature, res, shapes)
         return self._cache
+
+    @staticmethod
+    def _shapes(res):
+        """Panels, Rods and Nodes compounds of a result, checked against its counts."""
+        import Part
+
+        expected = {"Panels": len(res.panels), "Rods": len(res.rods), "Nodes": len(res.vertices)}
+        shapes = {}
+        for role, make in (("Panels", res.panels_brep), ("Rods", res.rods_brep),
+                           ("Nodes", res.nodes_brep)):
+            shape = Part.Shape()
+            shape.importBrepFromString(make(), False)
+            n = len(shape.childShapes()) if not shape.isNull() else 0
+            if n != expected[role]:
+                raise RuntimeError(f"{role}: the core built {n} shapes for {expected[role]} items")
+            shapes[role] = shape
+        return shapes
+
+    def seed(self, obj, res):
+        """Start from a result computed for exactly these properties (make_panelization
+        and the task panel compute once, with progress; the recompute reuses it)."""
+        signature = self._signature(obj)[0]
+        self._failed = None
+        self._cache = _Cache(signature, res, self._shapes(res))
 
     def execute(self, obj):
         try:

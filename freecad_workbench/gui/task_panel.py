@@ -287,17 +287,25 @@ class PanelizationTaskPanel:
     def _create(self, method, params):
         obj, sub = self.source
         args = ", ".join(f"{k}={v!r}" for k, v in params.items())
+        # gui_progress() is None in a headless replay of the recorded macro.
         call = ("tessella.make_panelization("
                 f"(FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}), {sub!r}), "
-                f"method={method!r}, {args})")
-        api.panelize(self.source, method=method, samples=2, **params)  # clear error first
+                f"method={method!r}, {args}, progress=tessella.gui_progress())")
         Gui.doCommand("import freecad_workbench as tessella")
         Gui.doCommand(call)
         Gui.Selection.clearSelection()
 
     def _apply(self, method, params):
+        from ..progress import gui_progress
+
         obj = self.obj
-        api.panelize(self.face_arg(), method=method, samples=2, **params)  # clear error first
+        # Computed once with a cancellable progress dialog; the recompute reuses it.
+        progress = gui_progress("Tessella: panelize")
+        try:
+            result = api.panelize(self.face_arg(), method=method, progress=progress, **params)
+        finally:
+            if progress is not None:
+                progress.close()
         doc = obj.Document
         doc.openTransaction("Edit panelization")
         try:
@@ -309,6 +317,7 @@ class PanelizationTaskPanel:
             obj.SliverFraction = params["sliver_fraction"]
             obj.MinAngle = params["min_angle"]
             obj.MaxPanels = params["max_panels"]
+            obj.Proxy.seed(obj, result)
             doc.recompute()
         except Exception:
             doc.abortTransaction()

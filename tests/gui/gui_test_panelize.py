@@ -454,6 +454,38 @@ def test_task_panel_edit():
             FreeCAD.closeDocument(name)
 
 
+def test_progress_cancel():
+    """A long panelization shows the progress dialog; Cancel leaves nothing behind."""
+    import Part
+    import freecad_workbench as tessella
+
+    doc = FreeCAD.newDocument("TessellaProgress")
+    try:
+        src = doc.addObject("Part::Feature", "Sphere")
+        src.Shape = Part.makeSphere(20000)
+        doc.recompute()
+        doc.clearUndos()
+        before = sorted(o.Name for o in doc.Objects)
+        progress = tessella.gui_progress("Tessella test")
+        check("progress: a dialog-backed callback in the GUI", progress is not None)
+        progress.cancel()  # the user presses Cancel
+        try:
+            tessella.make_panelization((src, "Face1"), size=400.0, progress=progress)
+            check("progress: cancel raises Cancelled", False, "no exception")
+        except tessella.Cancelled:
+            check("progress: cancel raises Cancelled", True)
+        process_events()
+        check("progress: the callback was asked", progress.calls > 0, str(progress.calls))
+        check("progress: nothing created", sorted(o.Name for o in doc.Objects) == before)
+        check("progress: no undo step", doc.UndoCount == 0, str(doc.UndoNames))
+        check("progress: dialog closed", not progress.dialog.isVisible())
+        progress = tessella.gui_progress("Tessella test")
+        obj = tessella.make_panelization((src, "Face1"), size=1500.0, progress=progress)
+        check("progress: without cancel the object is built", obj.isValid() and obj.PanelCount > 0)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
 def test_preferences_page():
     from freecad_workbench.gui import preferences
 
@@ -581,7 +613,8 @@ def test_analysis_colors():
 
 def main():
     for test in (test_workbench, test_command, test_command_failure, test_open_headless_document,
-                 test_analysis_colors, test_task_panel_edit, test_preferences_page):
+                 test_analysis_colors, test_task_panel_edit, test_progress_cancel,
+                 test_preferences_page):
         try:
             test()
         except Exception:

@@ -93,7 +93,7 @@ def test_example_panelizes(name, method):
     assert total == pytest.approx(face.Area, rel=0.03)
 
 
-def _inner_loops_uv(face):
+def _inner_loops_uv(face, samples=200):
     """For each hole: its trim loop sampled in uv, and a uv point well inside it."""
     outer = face.OuterWire
     loops = []
@@ -102,23 +102,23 @@ def _inner_loops_uv(face):
             continue
         uv = []
         for edge in wire.Edges:
-            for p in edge.discretize(48):
+            for p in edge.discretize(samples):
                 uv.append(face.Surface.parameter(p))
         uv = np.array(uv)
         loops.append((uv, uv.mean(axis=0)))  # holes here are convex: the mean is inside
     return loops
 
 
-def _inside_polygon(point, polygon):
-    """Even-odd rule, polygon (n,2)."""
-    x, y = point
-    inside = False
-    n = len(polygon)
-    for k in range(n):
-        (x0, y0), (x1, y1) = polygon[k], polygon[(k + 1) % n]
-        if (y0 > y) != (y1 > y) and x < x0 + (y - y0) * (x1 - x0) / (y1 - y0):
-            inside = not inside
-    return inside
+def _inside_polygon(points, polygon):
+    """Even-odd rule for many points at once: points (m,2), polygon (n,2) -> (m,) bool."""
+    points = np.atleast_2d(np.asarray(points, dtype=float))
+    x, y = points[:, 0:1], points[:, 1:2]
+    x0, y0 = polygon[:, 0], polygon[:, 1]
+    x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
+    crosses = (y0 > y) != (y1 > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xs = x0 + (y - y0) * (x1 - x0) / (y1 - y0)
+    return np.count_nonzero(crosses & (x < xs), axis=1) % 2 == 1
 
 
 @pytest.mark.parametrize("method", METHODS)
@@ -127,24 +127,26 @@ def test_trimmed_face_panels_keep_out_of_the_holes(method):
     r = panelized("trimmed_bspline_holes", method)
     loops = _inner_loops_uv(face)
     assert len(loops) == 2
-    tol = 1e-3 * max(face.BoundBox.DiagonalLength, 1.0)  # 1e-3 of the model: ~25 mm
+    tol = 1.0  # mm; the trims are followed within their deflection (~0.2 mm here)
 
-    # 1. Every node is on the face (inside or on a trim), none in a hole.
-    for k, p in enumerate(r.vertices):
-        assert face.isInside(FreeCAD.Vector(*p), tol, True), f"node {k} at {p} is off the face"
+    # 1. No node in a hole: nodes inside a (densely sampled) hole loop in uv may only
+    #    be nodes on the trim itself. FreeCAD calls cost ~2 ms: check only those,
+    #    plus every 25th node for "on the face at all".
     for uv_loop, _ in loops:
-        for k, (u, v) in enumerate(r.uv):
-            if _inside_polygon((u, v), uv_loop):
-                # Only a node on the trim itself may be "inside" the sampled loop.
-                p = face.Surface.value(u, v)
-                assert face.isInside(p, tol, True), f"node {k} lies in a hole"
+        for k in np.flatnonzero(_inside_polygon(r.uv, uv_loop)):
+            assert face.isInside(FreeCAD.Vector(*r.vertices[k]), tol, True), f"node {k} lies in a hole"
+    for k in range(0, len(r.vertices), 25):
+        assert face.isInside(FreeCAD.Vector(*r.vertices[k]), tol, True), f"node {k} is off the face"
+    # xyz and uv agree (the check above used xyz, the one below uses uv).
+    for k in range(0, len(r.vertices), 97):
+        assert face.Surface.value(*r.uv[k]).distanceToPoint(FreeCAD.Vector(*r.vertices[k])) < 1e-6
 
     # 2. The holes stay open: no panel covers a hole's middle.
     for _, middle in loops:
         p = face.Surface.value(*middle)
         assert not face.isInside(p, 1e-6, True)  # the test point is really in the hole
         for k, panel in enumerate(r.panels):
-            assert not _inside_polygon(middle, r.uv[list(panel)]), f"panel {k} covers a hole"
+            assert not _inside_polygon(middle, r.uv[list(panel)])[0], f"panel {k} covers a hole"
 
     # 3. The panel area has the holes taken out.
     assert float(np.sum(r.metrics["panel_area"])) == pytest.approx(face.Area, rel=0.03)

@@ -153,10 +153,11 @@ def test_rod_schedule(result, tmp_path):
     assert tuple(header) == ROD_COLUMNS
     assert len(rows) == len(result.rods) == result.summary["rod_count"]
     check_ids([row["id"] for row in rows], "R")
-    node_ids = set(result.node_ids)
+    node_ids = result.node_ids  # a property that builds the list: call it once
+    known = set(node_ids)
     for row, (a, b) in zip(rows, result.rods):
-        assert row["node_a"] in node_ids and row["node_b"] in node_ids
-        assert (row["node_a"], row["node_b"]) == (result.node_ids[a], result.node_ids[b])
+        assert row["node_a"] in known and row["node_b"] in known
+        assert (row["node_a"], row["node_b"]) == (node_ids[a], node_ids[b])
         length = math.dist(result.vertices[a], result.vertices[b])
         assert float(row["length_mm"]) == pytest.approx(length, rel=1e-9, abs=1e-6)
 
