@@ -79,7 +79,18 @@ def build_document(runs, path, folder=HERE):
                 feature.Shape = load_face(name, folder)
                 sources[name] = feature
             if make is not None:
-                tessella.make_panelization((sources[name], "Face1"), method=method, **params)
+                parent = tessella.make_panelization(
+                    (sources[name], "Face1"), method=method, doc=doc, **params
+                )
+                parent.Label = f"Panelization_{name}_{method}"
+                # The document's objects and the console run must agree.
+                got = (parent.PanelCount, parent.RodCount, parent.NodeCount)
+                want = (len(result.panels), len(result.rods), len(result.vertices))
+                if got != want:
+                    raise RuntimeError(
+                        f"{parent.Label}: document has panels/rods/nodes {got}, "
+                        f"console API gave {want}"
+                    )
             else:
                 panels = Part.Shape()
                 panels.importBrepFromString(result.panels_brep())
@@ -117,7 +128,7 @@ def plot(runs, path):
         vmax = max(float(dev.max()) if len(dev) else 0.0, 1e-3)
         norm = matplotlib.colors.Normalize(vmin=0.0, vmax=vmax)
         polys = [xyz[list(p)] for p in r.panels]
-        coll = Poly3DCollection(polys, facecolors=cmap(norm(dev)), edgecolors="k", linewidths=0.2)
+        coll = Poly3DCollection(polys, facecolors=cmap(norm(dev)), edgecolors="k", linewidths=0.3)
         ax.add_collection3d(coll)
         lo, hi = xyz.min(axis=0), xyz.max(axis=0)
         pad = np.maximum(0.02 * (hi - lo).max() - (hi - lo), 0.0) / 2.0  # flat axes get a little depth
@@ -130,6 +141,11 @@ def plot(runs, path):
         ax.set_ylabel("y (m)")
         ax.set_zlabel("z (m)")
         ax.tick_params(labelsize=7)
+        if (hi - lo)[2] <= 0.05 * (hi - lo).max():  # flat or nearly: z ticks only clutter
+            ax.set_zticks([])
+            ax.set_zlabel("")
+        else:
+            ax.locator_params(axis="z", nbins=4)
         s = r.summary
         ax.set_title(
             f"{name} / {method} (size {params.get('size', 0):g} mm)\n"
@@ -139,11 +155,16 @@ def plot(runs, path):
         )
         sm = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
         sm.set_array([])
-        fig.colorbar(sm, ax=ax, shrink=0.6, pad=0.1, label="deviation (mm)")
+        fig.colorbar(sm, ax=ax, shrink=0.6, pad=0.14, label="deviation (mm)")
     fig.suptitle("Tessella: panels coloured by deviation from the surface", fontsize=12)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def _stat(stats, key):
+    """A field of a summarize() result (a dict, or an object with attributes)."""
+    return stats[key] if isinstance(stats, dict) else getattr(stats, key)
 
 
 def summary_table(runs):
