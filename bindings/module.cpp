@@ -152,6 +152,14 @@ PYBIND11_MODULE(_core, m) {
               r(i, 0) = mesh.rods[i][0], r(i, 1) = mesh.rods[i][1];
             return a;
           })
+      .def_property_readonly("nodes",
+                             [](const PanelMesh& mesh) {
+                               std::vector<long long> idx;
+                               for (std::size_t v = 0; v < mesh.xyz.size(); ++v)
+                                 if (is_node(mesh, static_cast<int>(v))) idx.push_back(v);
+                               return py::array_t<long long>(static_cast<py::ssize_t>(idx.size()),
+                                                             idx.data());
+                             })
       .def_readonly("merged_slivers", &PanelMesh::merged_slivers)
       .def_readonly("nominal_area", &PanelMesh::nominal_area);
 
@@ -186,8 +194,7 @@ PYBIND11_MODULE(_core, m) {
       py::arg("face"), py::arg("params"), py::arg("progress") = py::none());
   m.def(
       "measure_panels",
-      [](const SurfaceFace& f, const PanelMesh& mesh, const MetricsParams& p,
-         py::object progress) {
+      [](const SurfaceFace& f, const PanelMesh& mesh, const MetricsParams& p, py::object progress) {
         return with_progress(progress, [&] { return measure_panels(f, mesh, p); });
       },
       py::arg("face"), py::arg("mesh"), py::arg("params"), py::arg("progress") = py::none());

@@ -85,7 +85,7 @@ def build_document(runs, path, folder=HERE):
                 parent.Label = f"Panelization_{name}_{method}"
                 # The document's objects and the console run must agree.
                 got = (parent.PanelCount, parent.RodCount, parent.NodeCount)
-                want = (len(result.panels), len(result.rods), len(result.vertices))
+                want = (len(result.panels), len(result.rods), len(result.nodes))
                 if got != want:
                     raise RuntimeError(
                         f"{parent.Label}: document has panels/rods/nodes {got}, "

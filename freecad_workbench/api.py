@@ -65,9 +65,12 @@ class PanelizeResult:
     uv: np.ndarray  # (N,2) float64
     normals: np.ndarray  # (N,3) unit face normals at the nodes
     panels: list  # list of tuples of vertex indices, CCW seen from the normal
-    rods: np.ndarray  # (E,2) int64, unique undirected edges, a < b
+    rods: np.ndarray  # (E,2) int64 vertex indices, a < b: straight members node to node
     metrics: dict  # name -> numpy array (see METRIC_NAMES)
     irregular: np.ndarray  # (P,) bool
+    #: (K,) int64: the vertices that are nodes (rod ends: grid nodes, grid/trim
+    #: crossings, trim corners); the others only shape boundary panels' outlines.
+    nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     summary: dict = field(default_factory=dict)
     _mesh: object = field(default=None, repr=False)
 
@@ -81,7 +84,8 @@ class PanelizeResult:
 
     @property
     def node_ids(self):
-        return [NODE_ID_FORMAT.format(i + 1) for i in range(len(self.vertices))]
+        """One ID per node (self.nodes order)."""
+        return [NODE_ID_FORMAT.format(i + 1) for i in range(len(self.nodes))]
 
     def panels_brep(self, planar_tolerance=None):
         """BRep string of a compound with one sub-shape per panel (panel order)."""
@@ -95,7 +99,7 @@ class PanelizeResult:
 
     def nodes_brep(self):
         """BRep string of a compound with one vertex per node (vertex order)."""
-        return core.nodes_to_brep(self._mesh)
+        return core.nodes_to_brep(self._mesh)  # one vertex per node, self.nodes order
 
 
 METRIC_NAMES = (
@@ -213,6 +217,7 @@ def panelize(face, method="iso_grid", progress=None, **params):
         ip.min_area_fraction = float(params["sliver_fraction"])
     irregular = np.asarray(core.irregular_panels(mesh, m, ip), dtype=bool)
     nodes = core.node_data(surface, mesh)
+    node_index = np.asarray(mesh.nodes, dtype=np.int64)
 
     metrics = {
         "panel_deviation": np.asarray(m.deviation),
@@ -221,12 +226,12 @@ def panelize(face, method="iso_grid", progress=None, **params):
         "panel_min_angle": np.asarray(m.min_angle),
         "panel_max_angle": np.asarray(m.max_angle),
         "rod_length": np.asarray(m.rod_length),
-        "node_valence": np.asarray(nodes.valence),
+        "node_valence": np.asarray(nodes.valence)[node_index],
     }
     summary = {
         "panel_count": len(mesh.panels),
         "rod_count": int(mesh.rods.shape[0]),
-        "node_count": int(mesh.xyz.shape[0]),
+        "node_count": int(len(node_index)),
         "merged_slivers": int(mesh.merged_slivers),
         "irregular_count": int(irregular.sum()),
         "quad_share": float(np.mean([len(p) == 4 for p in mesh.panels])) if mesh.panels else 0.0,
@@ -246,6 +251,7 @@ def panelize(face, method="iso_grid", progress=None, **params):
         rods=np.asarray(mesh.rods, dtype=np.int64),
         metrics=metrics,
         irregular=irregular,
+        nodes=node_index,
         summary=summary,
         _mesh=mesh,
     )

@@ -212,13 +212,15 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   // Trim loops in integers; remember the exact (u,v) of every loop vertex.
   Paths domain;
   std::unordered_map<IntPoint, Vec2, PointHash, PointEq> exact_uv;
+  std::unordered_map<IntPoint, char, PointHash, PointEq> trim_corner;
   for (const TrimLoop& loop : loops) {
     Path path;
-    for (const Vec2& q : loop.uv) {
-      const IntPoint p = frame.to_int(q);
+    for (std::size_t k = 0; k < loop.uv.size(); ++k) {
+      const IntPoint p = frame.to_int(loop.uv[k]);
+      if (loop.corner[k]) trim_corner[p] = 1;
       if (!path.empty() && p.X == path.back().X && p.Y == path.back().Y) continue;
       path.push_back(p);
-      exact_uv.emplace(p, q);
+      exact_uv.emplace(p, loop.uv[k]);
     }
     if (path.size() >= 3) domain.push_back(std::move(path));
   }
@@ -339,6 +341,21 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
         insert_between(on_y[pa.Y], pa.X, pb.X, fixed);
     }
     panel = std::move(fixed);
+  }
+
+  // Nodes (rod ends): grid nodes and grid/trim crossings (on a grid line),
+  // trim corners, and any point two panels share (e.g. where a hole split a
+  // cell). The other trim points only shape the boundary panels' outlines.
+  {
+    std::vector<int> uses(mesh.uv.size(), 0);
+    for (const auto& panel : mesh.panels)
+      for (int v : panel) ++uses[v];
+    mesh.is_node.assign(mesh.uv.size(), 0);
+    for (std::size_t v = 0; v < int_points.size(); ++v) {
+      const IntPoint& p = int_points[v];
+      mesh.is_node[v] =
+          x_line.count(p.X) || y_line.count(p.Y) || trim_corner.count(p) || uses[v] >= 2;
+    }
   }
 
   // Nominal panel area: the mean full cell (all cells if none is full).

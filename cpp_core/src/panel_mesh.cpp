@@ -11,10 +11,15 @@ namespace tessella {
 
 void build_rods(PanelMesh& mesh) {
   std::vector<std::array<int, 2>> rods;
+  std::vector<int> nodes;
   for (const auto& panel : mesh.panels) {
-    for (std::size_t k = 0; k < panel.size(); ++k) {
-      const int a = panel[k], b = panel[(k + 1) % panel.size()];
-      rods.push_back({std::min(a, b), std::max(a, b)});
+    nodes.clear();
+    for (int v : panel)
+      if (is_node(mesh, v)) nodes.push_back(v);
+    if (nodes.size() < 2) continue;
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      const int a = nodes[k], b = nodes[(k + 1) % nodes.size()];
+      if (a != b) rods.push_back({std::min(a, b), std::max(a, b)});
     }
   }
   std::sort(rods.begin(), rods.end());
@@ -44,10 +49,12 @@ void remove_unused_vertices(PanelMesh& mesh) {
     new_index[v] = next;
     mesh.uv[next] = mesh.uv[v];
     mesh.xyz[next] = mesh.xyz[v];
+    if (!mesh.is_node.empty()) mesh.is_node[next] = mesh.is_node[v];
     ++next;
   }
   mesh.uv.resize(next);
   mesh.xyz.resize(next);
+  if (!mesh.is_node.empty()) mesh.is_node.resize(next);
   for (auto& panel : mesh.panels)
     for (int& v : panel) v = new_index[v];
   for (auto& rod : mesh.rods) rod = {new_index[rod[0]], new_index[rod[1]]};
@@ -82,6 +89,10 @@ void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {
           }
         }
     if (!found) buckets[k].push_back(int(v));
+  }
+  if (!mesh.is_node.empty()) {
+    for (std::size_t v = 0; v < target.size(); ++v)
+      if (mesh.is_node[v]) mesh.is_node[target[v]] = 1;
   }
   std::vector<std::vector<int>> kept;
   std::vector<std::vector<Vec2>> kept_uv;

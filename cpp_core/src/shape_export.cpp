@@ -136,7 +136,11 @@ std::string nodes_to_brep(const PanelMesh& mesh) {
   BRep_Builder builder;
   TopoDS_Compound all;
   builder.MakeCompound(all);
-  for (const Vec3& q : mesh.xyz) builder.Add(all, BRepBuilderAPI_MakeVertex(pnt(q)).Vertex());
+  for (std::size_t v = 0; v < mesh.xyz.size(); ++v) {
+    if (is_node(mesh, static_cast<int>(v))) {
+      builder.Add(all, BRepBuilderAPI_MakeVertex(pnt(mesh.xyz[v])).Vertex());
+    }
+  }
   return to_brep(all);
 }
 

@@ -213,24 +213,42 @@ std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
           }
         }
         if (edge.Orientation() == TopAbs_REVERSED) std::reverse(params.begin(), params.end());
-        // The first point of each edge repeats the last of the previous one.
+        // The first point of each edge repeats the last of the previous one,
+        // which is a wire vertex (a corner of the trim).
+        if (!loop.corner.empty()) loop.corner.back() = 1;
         for (std::size_t i = loop.uv.empty() ? 0 : 1; i < params.size(); ++i) {
           const gp_Pnt2d q = pcurve.Value(params[i]);
           loop.uv.emplace_back(q.X(), q.Y());
+          loop.corner.push_back(i == 0 ? 1 : 0);
         }
       }
-      // Drop the closing duplicate and repeated points.
+      // Drop the closing duplicate and repeated points (a dropped point passes
+      // its corner flag on to the point it repeats).
       std::vector<Vec2> clean;
+      std::vector<char> corner;
       const double eps = 1e-12 * std::max(impl_->bounds.u_max - impl_->bounds.u_min,
                                           impl_->bounds.v_max - impl_->bounds.v_min);
-      for (const Vec2& q : loop.uv) {
-        if (clean.empty() || (q - clean.back()).norm() > eps) clean.push_back(q);
+      for (std::size_t i = 0; i < loop.uv.size(); ++i) {
+        if (!clean.empty() && (loop.uv[i] - clean.back()).norm() <= eps) {
+          corner.back() |= loop.corner[i];
+          continue;
+        }
+        clean.push_back(loop.uv[i]);
+        corner.push_back(loop.corner[i]);
       }
-      while (clean.size() > 1 && (clean.front() - clean.back()).norm() <= eps) clean.pop_back();
+      while (clean.size() > 1 && (clean.front() - clean.back()).norm() <= eps) {
+        corner.front() |= corner.back();
+        clean.pop_back();
+        corner.pop_back();
+      }
       if (clean.size() < 3) continue;
       const double a = signed_area(clean);
-      if ((loop.outer && a < 0) || (!loop.outer && a > 0)) std::reverse(clean.begin(), clean.end());
+      if ((loop.outer && a < 0) || (!loop.outer && a > 0)) {
+        std::reverse(clean.begin(), clean.end());
+        std::reverse(corner.begin(), corner.end());
+      }
       loop.uv = std::move(clean);
+      loop.corner = std::move(corner);
       loop.xyz.reserve(loop.uv.size());
       for (const Vec2& q : loop.uv) loop.xyz.push_back(point(q.x(), q.y()));
       loops.push_back(std::move(loop));

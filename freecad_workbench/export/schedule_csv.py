@@ -101,23 +101,26 @@ def write_rod_schedule(result, path):
     """Writes one row per rod (columns ROD_COLUMNS); node_a/node_b are node IDs."""
     rods = np.asarray(result.rods, dtype=np.int64).reshape(-1, 2)
     length = _metric(result, "rod_length", len(rods))
-    node_ids = result.node_ids
     ids = result.rod_ids
+    node_ids = result.node_ids
+    node_of_vertex = {int(v): k for k, v in enumerate(result.nodes)}  # rods end at nodes
     with _open(path) as f:
         w = csv.writer(f)
         w.writerow(ROD_COLUMNS)
         for k, (a, b) in enumerate(rods):
-            w.writerow((ids[k], node_ids[a], node_ids[b], _num(length[k])))
+            w.writerow((ids[k], node_ids[node_of_vertex[int(a)]], node_ids[node_of_vertex[int(b)]],
+                        _num(length[k])))
     return len(rods)
 
 
 def write_node_schedule(result, path):
     """Writes one row per node (columns NODE_COLUMNS): position, face normal, valence."""
-    xyz = np.asarray(result.vertices, dtype=float).reshape(-1, 3)
-    normals = np.asarray(result.normals, dtype=float).reshape(-1, 3)
+    nodes = np.asarray(result.nodes, dtype=np.int64).reshape(-1)
+    xyz = np.asarray(result.vertices, dtype=float).reshape(-1, 3)[nodes]
+    normals = np.asarray(result.normals, dtype=float).reshape(-1, 3)[nodes]
     valence = np.asarray(result.metrics["node_valence"]).reshape(-1)
-    if normals.shape[0] != len(xyz) or valence.shape[0] != len(xyz):
-        raise ValueError("normals / node_valence do not match the vertex count")
+    if valence.shape[0] != len(xyz):
+        raise ValueError("node_valence does not match the node count")
     ids = result.node_ids
     with _open(path) as f:
         w = csv.writer(f)

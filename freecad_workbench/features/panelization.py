@@ -286,7 +286,7 @@ class Panelization(_StateMixin):
         """Panels, Rods and Nodes compounds of a result, checked against its counts."""
         import Part
 
-        expected = {"Panels": len(res.panels), "Rods": len(res.rods), "Nodes": len(res.vertices)}
+        expected = {"Panels": len(res.panels), "Rods": len(res.rods), "Nodes": len(res.nodes)}
         shapes = {}
         for role, make in (("Panels", res.panels_brep), ("Rods", res.rods_brep),
                            ("Nodes", res.nodes_brep)):
@@ -316,7 +316,7 @@ class Panelization(_StateMixin):
         dev = res.metrics.get("panel_deviation")
         obj.PanelCount = int(s.get("panel_count", len(res.panels)))
         obj.RodCount = int(s.get("rod_count", len(res.rods)))
-        obj.NodeCount = int(s.get("node_count", len(res.vertices)))
+        obj.NodeCount = int(s.get("node_count", len(res.nodes)))
         obj.MergedSlivers = int(s.get("merged_slivers", 0))
         obj.IrregularPanels = int(s.get("irregular_count", int(res.irregular.sum())))
         obj.MaxDeviation = float(dev.max()) if dev is not None and len(dev) else 0.0

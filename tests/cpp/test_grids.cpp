@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <cmath>
+#include <gp_Circ.hxx>
 #include <set>
 
 #include "tessella/errors.h"
@@ -195,4 +198,33 @@ TEST(EqualSizeGrid, EvensOutAnUnevenParameterization) {
   for (double w : eq_x) EXPECT_NEAR(w, 100.0, 0.5);
   EqualSizeGridParams missing;
   EXPECT_THROW(equal_size_grid(f, missing), InvalidParameter);
+}
+
+TEST(IsoGrid, OnlyCrossingsAndCornersOfACurvedTrimAreNodes) {
+  // Disc of radius 500 (one closed circle edge, its B-rep vertex at (500,0))
+  // with a 4 x 4 grid over [-500,500]^2: nodes are the 9 inner grid nodes and
+  // the 12 points where grid lines meet the circle; the circle's many outline
+  // points only shape the boundary panels. Rods: 4 segments on each of the 6
+  // inner lines, and 12 chords between neighbouring boundary nodes.
+  BRepBuilderAPI_MakeEdge circle(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 500.0));
+  BRepBuilderAPI_MakeFace disc(gp_Pln(), BRepBuilderAPI_MakeWire(circle.Edge()).Wire());
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(disc.Face()));
+  IsoGridParams p = counts(4, 4);
+  p.clip.sliver_fraction = 0.0;
+  const PanelMesh m = iso_grid(f, p);
+  int nodes = 0;
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) nodes += is_node(m, int(v));
+  EXPECT_EQ(nodes, 21);
+  EXPECT_GT(m.vertex_count(), 100u);  // the outline follows the circle
+  EXPECT_EQ(m.rods.size(), 36u);
+  for (const auto& rod : m.rods) {
+    EXPECT_TRUE(is_node(m, rod[0]) && is_node(m, rod[1]));
+    // A rod ends on the circle, on a grid line, or both.
+    for (int v : rod) {
+      const Vec3& x = m.xyz[v];
+      const bool on_line = std::abs(std::fmod(x.x() + 1000.0, 250.0)) < 1e-9 ||
+                           std::abs(std::fmod(x.y() + 1000.0, 250.0)) < 1e-9;
+      EXPECT_TRUE(on_line || std::abs(x.norm() - 500.0) < 1e-6);
+    }
+  }
 }

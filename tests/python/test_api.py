@@ -41,9 +41,27 @@ def test_result_has_the_contract_shapes(result):
         assert result.metrics[name].shape == (p,)
     assert result.metrics["rod_length"].shape == (len(result.rods),)
     assert result.panel_ids[0] == "P-0001" and len(set(result.panel_ids)) == p
-    # Rods are exactly the panel edges.
-    edges = {tuple(sorted((q[k], q[(k + 1) % len(q)]))) for q in result.panels for k in range(len(q))}
+    # Rods join consecutive nodes along each panel's outline (outline points
+    # between them only shape the boundary panels).
+    node_set = set(int(v) for v in result.nodes)
+    edges = set()
+    for q in result.panels:
+        ring = [v for v in q if v in node_set]
+        for k in range(len(ring)):
+            a, b = ring[k], ring[(k + 1) % len(ring)]
+            if a != b:
+                edges.add((min(a, b), max(a, b)))
     assert edges == {tuple(r) for r in result.rods}
+    assert set(result.rods.ravel()) <= node_set
+    assert len(result.node_ids) == len(result.nodes) == result.summary["node_count"]
+    assert result.metrics["node_valence"].shape == (len(result.nodes),)
+    assert result.metrics["node_valence"].min() >= 2
+    # Every other vertex is an outline point of exactly one (boundary) panel.
+    uses = np.zeros(n, dtype=int)
+    for q in result.panels:
+        uses[list(q)] += 1
+    outline = np.setdiff1d(np.arange(n), result.nodes)
+    assert np.all(uses[outline] == 1)
     assert result.summary["panel_count"] == p
     assert result.summary["irregular_count"] == int(result.irregular.sum())
 
@@ -222,4 +240,5 @@ def test_shapes_round_trip_through_brep(result):
     np.testing.assert_allclose(lengths, result.metrics["rod_length"], rtol=1e-12)
     nodes = Part.Shape()
     nodes.importBrepFromString(result.nodes_brep())
-    assert len(nodes.Vertexes) == len(result.vertices)
+    pts = np.array([v.Point for v in nodes.Vertexes])
+    np.testing.assert_allclose(pts, result.vertices[result.nodes], atol=1e-9)

@@ -96,7 +96,7 @@ def _check_consistent(parent):
     for o in (panels, rods, nodes):
         assert o.isValid(), (o.Label, o.State)
         assert not o.Shape.isNull()
-    n_p, n_r, n_n = len(r.panels), len(r.rods), len(r.vertices)
+    n_p, n_r, n_n = len(r.panels), len(r.rods), len(r.nodes)
     assert n_p > 0 and n_r > 0 and n_n > 0
     assert (parent.PanelCount, parent.RodCount, parent.NodeCount) == (n_p, n_r, n_n)
     assert parent.PanelCount == r.summary["panel_count"]
@@ -122,7 +122,7 @@ def _check_consistent(parent):
     edge_lengths = [e.Length for e in rods.Shape.childShapes()]
     np.testing.assert_allclose(edge_lengths, rods.RodLengths, rtol=1e-6)
     pts = np.array([[v.X, v.Y, v.Z] for v in nodes.Shape.childShapes()])
-    np.testing.assert_allclose(pts, r.vertices, atol=1e-6)
+    np.testing.assert_allclose(pts, r.vertices[r.nodes], atol=1e-6)
     return r
 
 

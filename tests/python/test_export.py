@@ -76,6 +76,7 @@ def fake_result():
             "node_valence": np.array([2, 3, 2, 2, 3, 2]),
         },
         irregular=np.array([False, True]),
+        nodes=np.arange(len(vertices)),
         panel_ids=[f"P-{i + 1:04d}" for i in range(n)],
         rod_ids=[f"R-{i + 1:04d}" for i in range(e)],
         node_ids=[f"N-{i + 1:04d}" for i in range(len(vertices))],
@@ -155,27 +156,29 @@ def test_rod_schedule(result, tmp_path):
     check_ids([row["id"] for row in rows], "R")
     node_ids = result.node_ids  # a property that builds the list: call it once
     known = set(node_ids)
+    position = {int(v): k for k, v in enumerate(result.nodes)}
     for row, (a, b) in zip(rows, result.rods):
         assert row["node_a"] in known and row["node_b"] in known
-        assert (row["node_a"], row["node_b"]) == (node_ids[a], node_ids[b])
+        assert (row["node_a"], row["node_b"]) == (node_ids[position[a]], node_ids[position[b]])
         length = math.dist(result.vertices[a], result.vertices[b])
         assert float(row["length_mm"]) == pytest.approx(length, rel=1e-9, abs=1e-6)
 
 
 def test_node_schedule(result, tmp_path):
     path = tmp_path / "nodes.csv"
-    assert write_node_schedule(result, path) == len(result.vertices)
+    assert write_node_schedule(result, path) == len(result.nodes)
     header, rows = read_csv(path)
     assert tuple(header) == NODE_COLUMNS
-    assert len(rows) == len(result.vertices) == result.summary["node_count"]
+    assert len(rows) == len(result.nodes) == result.summary["node_count"]
     check_ids([row["id"] for row in rows], "N")
     # Valence recomputed from the rods.
     valence = np.bincount(np.asarray(result.rods).ravel(), minlength=len(result.vertices))
     for k, row in enumerate(rows):
-        assert [float(row[a]) for a in "xyz"] == result.vertices[k].tolist()
+        v = result.nodes[k]
+        assert [float(row[a]) for a in "xyz"] == result.vertices[v].tolist()
         n = [float(row[a]) for a in ("nx", "ny", "nz")]
         assert math.hypot(*n) == pytest.approx(1.0, abs=1e-9)
-        assert int(row["valence"]) == valence[k]
+        assert int(row["valence"]) == valence[v]
 
 
 def test_write_schedules_names(result, tmp_path):

@@ -17,7 +17,13 @@ struct PanelMesh {
   std::vector<Vec3> xyz;
   // Vertex indices, counter-clockwise seen from the face normal.
   std::vector<std::vector<int>> panels;
-  // Unique undirected panel edges (a < b), sorted; filled by build_rods().
+  // Which vertices are nodes (rod ends): grid nodes, grid/trim crossings and
+  // trim corners. Other vertices are outline points where a boundary panel
+  // follows a curved trim; a rod runs straight from node to node past them.
+  // Empty: every vertex is a node.
+  std::vector<char> is_node;
+  // Unique undirected rods (a < b, vertex indices), sorted; filled by
+  // build_rods(): consecutive nodes along each panel's outline.
   std::vector<std::array<int, 2>> rods;
   // (u,v) of each panel corner as seen from that panel, parallel to `panels`.
   // Differs from uv[vertex] only where welding merged vertices (a periodic
@@ -31,8 +37,13 @@ struct PanelMesh {
   std::size_t vertex_count() const { return xyz.size(); }
 };
 
-// Recomputes mesh.rods from mesh.panels.
+// Recomputes mesh.rods from mesh.panels and mesh.is_node.
 void build_rods(PanelMesh& mesh);
+
+// Whether vertex v is a node (see PanelMesh::is_node).
+inline bool is_node(const PanelMesh& mesh, int v) {
+  return mesh.is_node.empty() || mesh.is_node[static_cast<std::size_t>(v)];
+}
 
 // Per-node data: how many rods meet there, and the face normal.
 struct NodeData {

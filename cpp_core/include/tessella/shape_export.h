@@ -14,7 +14,7 @@ namespace tessella {
 std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance);
 // One edge per rod, in rod order.
 std::string rods_to_brep(const PanelMesh& mesh);
-// One vertex per mesh vertex, in vertex order.
+// One vertex per node (see PanelMesh::is_node), in vertex order.
 std::string nodes_to_brep(const PanelMesh& mesh);
 
 }  // namespace tessella

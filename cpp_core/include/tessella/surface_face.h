@@ -27,6 +27,8 @@ struct SurfacePoint {
 struct TrimLoop {
   std::vector<Vec2> uv;
   std::vector<Vec3> xyz;
+  // 1 where the point is a vertex of the B-rep wire (where trim edges meet).
+  std::vector<char> corner;
   bool outer = false;
 };
 
