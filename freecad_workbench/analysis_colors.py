@@ -24,6 +24,7 @@ PANEL_MODES = {
     "Planarity": ("Planarity", ""),
     "Area": ("Area", "m²"),
     "Irregular": ("Irregular", ""),
+    "Type": ("PanelType", "type"),
 }
 ROD_MODES = {"Length": ("RodLengths", "mm")}
 

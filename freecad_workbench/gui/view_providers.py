@@ -164,7 +164,8 @@ class ViewProviderPanelizationPart(_VPState):
         return icon_path("Tessella_" + role)
 
     def updateData(self, obj, prop):
-        if prop in ("Shape", "Deviation", "Planarity", "Area", "Irregular", "RodLengths"):
+        if prop in ("Shape", "Deviation", "Planarity", "Area", "Irregular", "PanelType",
+                    "RodLengths"):
             vobj = getattr(self, "ViewObject", None)
             if vobj is not None and getattr(vobj, "ColorBy", "Shape") != "Shape":
                 self.apply_colors(vobj)

@@ -527,7 +527,7 @@ def test_analysis_colors():
         check("colours: Panels has a ColorBy view property",
               "ColorBy" in vp.PropertiesList, str(vp.PropertiesList))
         check("colours: modes offered", set(vp.getEnumerationsOfProperty("ColorBy"))
-              == {"Shape", "Deviation", "Planarity", "Area", "Irregular"},
+              == {"Shape", "Deviation", "Planarity", "Area", "Irregular", "Type"},
               str(vp.getEnumerationsOfProperty("ColorBy")))
         vp.ColorBy = "Deviation"
         process_events()
@@ -546,6 +546,15 @@ def test_analysis_colors():
         vp.ColorBy = "Area"
         process_events()
         check("colours: legend follows the mode", vp.Proxy.has_legend())
+        vp.ColorBy = "Type"
+        process_events()
+        kinds = list(panels.PanelType)
+        firsts = np.cumsum([0] + [max(1, len(c.Faces)) for c in panels.Shape.childShapes()])
+        face_colors = [tuple(vp.DiffuseColor[firsts[k]][:3]) for k in range(len(kinds))]
+        same = all((face_colors[a] == face_colors[b]) == (kinds[a] == kinds[b])
+                   for a in range(0, len(kinds), 7) for b in range(0, len(kinds), 5))
+        check("colours: same type, same colour (and only then)",
+              same and panels.TypeCount == len(set(kinds)), str(panels.TypeCount))
         vp.ColorBy = "Shape"
         process_events()
         check("colours: back to the shape colour removes the legend", not vp.Proxy.has_legend())
