@@ -74,7 +74,16 @@ class PanelizationTaskPanel:
         self.form.setWindowTitle("Tessella: edit panelization" if obj else "Tessella: panelize")
         form = QtGui.QFormLayout(self.form)
         self.source_label = QtGui.QLabel(self._source_text())
-        form.addRow("Face", self.source_label)
+        self.pick = QtGui.QPushButton("Pick face...")
+        self.pick.setCheckable(True)
+        self.pick.setToolTip("Then click a face in the 3D view (only faces can be selected)")
+        self.pick.toggled.connect(self.set_picking)
+        row = QtGui.QHBoxLayout()
+        row.addWidget(self.source_label, 1)
+        row.addWidget(self.pick)
+        form.addRow("Face", row)
+        self.picked = None  # a new source face chosen in the panel (edit mode)
+        self._gate = self._observer = None
         self.method = QtGui.QComboBox()
         self.method.addItems(list(api.METHODS))
         self.method.setCurrentIndex(list(api.METHODS).index(p["method"]))
@@ -145,9 +154,58 @@ class PanelizationTaskPanel:
         return f"{self.source[0].Label}.{self.source[1]}"
 
     def face_arg(self):
+        if self.picked is not None:
+            return self.picked
         if self.obj is not None:
             return self.obj.Proxy.source_face(self.obj)[0]
         return self.source
+
+    # --------------------------------------------------------- face picking
+    def set_picking(self, on):
+        """Pick a face in the 3D view: a selection gate lets only faces through."""
+        panel = self
+
+        class FaceGate:
+            def allow(self, doc, obj, sub):
+                return bool(sub) and sub.startswith("Face") and hasattr(obj, "Shape") \
+                    and not panel._is_own(obj)
+
+        class Picker:
+            def addSelection(self, doc, obj_name, sub, pnt):
+                obj = FreeCAD.getDocument(doc).getObject(obj_name)
+                if obj is not None and sub and sub.startswith("Face"):
+                    panel.use_face(obj, sub)
+
+        self._stop_picking()
+        if on:
+            Gui.Selection.clearSelection()
+            self._gate, self._observer = FaceGate(), Picker()
+            Gui.Selection.addSelectionGate(self._gate)
+            Gui.Selection.addObserver(self._observer)
+
+    def _is_own(self, obj):
+        """The panelization's own objects cannot be its source."""
+        if self.obj is None:
+            return False
+        return obj == self.obj or getattr(obj, "Base", None) == self.obj
+
+    def _stop_picking(self):
+        if self._gate is not None:
+            Gui.Selection.removeSelectionGate()
+            self._gate = None
+        if self._observer is not None:
+            Gui.Selection.removeObserver(self._observer)
+            self._observer = None
+
+    def use_face(self, obj, sub):
+        """Take (obj, 'FaceN') as the face to panelize and preview it."""
+        if self.obj is None:
+            self.source = (obj, sub)
+        else:
+            self.picked = (obj, sub)
+        self.source_label.setText(f"{obj.Label}.{sub}")
+        self.pick.setChecked(False)  # ends picking
+        self.schedule_preview()
 
     def parameters(self):
         """(method, keyword parameters) as the panel shows them."""
@@ -277,6 +335,7 @@ class PanelizationTaskPanel:
 
     def _close(self):
         global _active
+        self._stop_picking()
         self.remove_preview()
         if _active is self:
             _active = None
@@ -309,6 +368,8 @@ class PanelizationTaskPanel:
         doc = obj.Document
         doc.openTransaction("Edit panelization")
         try:
+            if self.picked is not None:
+                obj.Source = (self.picked[0], [self.picked[1]])
             obj.Method = method
             obj.UCount = int(params.get("u_count", 0))
             obj.VCount = int(params.get("v_count", 0))

@@ -376,6 +376,7 @@ def test_task_panel_edit():
     """Double-click -> task panel with the object's values; a change previews live
     (debounced); OK writes one undo step; Cancel changes nothing; after save and
     reopen the object edits again."""
+    import Part
     import freecad_workbench as tessella
     from freecad_workbench.gui import task_panel
 
@@ -423,6 +424,34 @@ def test_task_panel_edit():
         check("edit: undo restores the size", abs(parent.Size.Value - 2000.0) < 1e-9)
         doc.redo()
         doc.recompute()
+        # Pick another face in the panel: the gate admits faces only.
+        other = doc.addObject("Part::Feature", "Other")
+        other.Shape = Part.makePlane(6000, 4000)
+        doc.recompute()
+        doc.clearUndos()
+        parent.ViewObject.Proxy.doubleClicked(parent.ViewObject)
+        panel = task_panel.active()
+        panel.pick.setChecked(True)
+        Gui.Selection.addSelection(doc.Name, other.Name, "Edge1")
+        process_events()
+        check("pick: the gate refuses an edge", not Gui.Selection.getSelectionEx(),
+              str([s.SubElementNames for s in Gui.Selection.getSelectionEx()]))
+        n = panel.preview_count
+        Gui.Selection.addSelection(doc.Name, other.Name, "Face1")
+        process_events()
+        check("pick: the face is taken", panel.source_label.text() == "Other.Face1",
+              panel.source_label.text())
+        check("pick: picking ends", not panel.pick.isChecked())
+        check("pick: preview of the new face", wait_for_preview(panel, n)
+              and panel.last_result is not None
+              and abs(panel.last_result.metrics["panel_area"].sum() - 24e6) < 1.0)
+        check("pick: OK", panel.accept())
+        check("pick: Source changed in one step", parent.Source[0] == other
+              and doc.UndoCount == 1, f"{parent.Source} {doc.UndoNames}")
+        doc.undo()
+        doc.recompute()
+        check("pick: undo restores the source", parent.Source[0] == src)
+        Gui.Selection.clearSelection()
         # Cancel leaves everything as it is.
         parent.ViewObject.Proxy.doubleClicked(parent.ViewObject)
         panel = task_panel.active()
@@ -431,7 +460,7 @@ def test_task_panel_edit():
         panel.reject()
         process_events()
         check("edit: cancel keeps the values", abs(parent.Size.Value - 1000.0) < 1e-9
-              and parent.Method == "iso_grid" and doc.UndoCount == 1, f"{parent.Size} {doc.UndoNames}")
+              and parent.Method == "iso_grid" and doc.UndoCount == 0, f"{parent.Size} {doc.UndoNames}")
         # Save, reopen, edit again.
         path = os.path.join(tempfile.mkdtemp(prefix="tessella_edit_"), "edit.FCStd")
         doc.saveAs(path)
