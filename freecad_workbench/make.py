@@ -106,6 +106,10 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         parent.Method = method
         for key, value in params.items():
             setattr(parent, _PARAM_TO_PROPERTY[key], value)
+        if FreeCAD.GuiUp:
+            from .gui import preferences
+
+            parent.PanelIdFormat = preferences.defaults()["panel_id_format"]
         parent.Proxy.seed(parent, result)
         children = []
         for role in feat.ROLES:

@@ -176,6 +176,9 @@ class Panelization(_StateMixin):
                      default=d["min_angle"])
         add_property(obj, "App::PropertyInteger", "MaxPanels", "Panelization",
                      "Refuse to build more panels than this", default=d["max_panels"])
+        add_property(obj, "App::PropertyString", "PanelIdFormat", "Output",
+                     "Python format of the panel IDs from the panel number, e.g. P-{:04d}",
+                     default="P-{:04d}")
         add_property(obj, "App::PropertyLength", "TrimDeflection", "Advanced",
                      "Chord deflection of the trim polylines (0 = automatic)", default=0.0)
         add_property(obj, "App::PropertyInteger", "Samples", "Advanced",
@@ -391,7 +394,11 @@ class PanelizationPart(_StateMixin):
         role = obj.Role
         obj.Shape = cache.shapes[role]
         if role == "Panels":
-            obj.PanelIds = list(res.panel_ids)
+            fmt = getattr(parent, "PanelIdFormat", "") or "P-{:04d}"
+            try:
+                obj.PanelIds = [fmt.format(i + 1) for i in range(len(res.panels))]
+            except (IndexError, KeyError, ValueError):
+                raise ValueError(f"PanelIdFormat {fmt!r} is not a format like P-{{:04d}}")
             obj.Deviation = [float(x) for x in res.metrics["panel_deviation"]]
             obj.Planarity = [float(x) for x in res.metrics["panel_planarity"]]
             obj.Area = [float(x) for x in res.metrics["panel_area"]]

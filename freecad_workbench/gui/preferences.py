@@ -27,7 +27,23 @@ def defaults():
         "sliver_fraction": p.GetFloat("SliverFraction", 0.25),
         "min_angle": p.GetFloat("MinAngle", 30.0),
         "max_panels": p.GetInt("MaxPanels", 200000),
+        "panel_id_format": valid_id_format(p.GetString("PanelIdFormat", "P-{:04d}")),
+        # FreeCAD stores colours as 0xRRGGBBAA.
+        "preview_color": _rgb(p.GetUnsigned("PreviewColor", 0xF2730DFF)),
     }
+
+
+def _rgb(packed):
+    return tuple(((packed >> shift) & 0xFF) / 255.0 for shift in (24, 16, 8))
+
+
+def valid_id_format(fmt, fallback="P-{:04d}"):
+    """The format if it turns a panel number into text, else the fallback."""
+    try:
+        text = fmt.format(1)
+    except (IndexError, KeyError, ValueError):
+        return fallback
+    return fmt if text and text != fmt.format(2) else fallback
 
 
 def register():

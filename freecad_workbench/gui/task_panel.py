@@ -268,7 +268,9 @@ class PanelizationTaskPanel:
             node = coin.SoSeparator()
             node.setName("TessellaPreview")
             color = coin.SoBaseColor()
-            color.rgb = (0.95, 0.45, 0.05) if not coarse else (0.6, 0.6, 0.6)
+            from . import preferences
+
+            color.rgb = preferences.defaults()["preview_color"] if not coarse else (0.6, 0.6, 0.6)
             style = coin.SoDrawStyle()
             style.lineWidth = 2
             coords = coin.SoCoordinate3()

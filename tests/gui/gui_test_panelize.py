@@ -525,6 +525,16 @@ def test_preferences_page():
     d = preferences.defaults()
     check("preferences: values read back", d["method"] == "equal_size_grid"
           and abs(d["sliver_fraction"] - 0.1) < 1e-12, str(d))
+    p.SetString("PanelIdFormat", "NOPE")  # no number in it: the default is used
+    check("preferences: a bad ID format falls back", preferences.defaults()["panel_id_format"]
+          == "P-{:04d}", preferences.defaults()["panel_id_format"])
+    p.SetString("PanelIdFormat", "F-{:05d}")
+    p.SetUnsigned("PreviewColor", 0x00FF00FF)
+    check("preferences: ID format and preview colour read back",
+          preferences.defaults()["panel_id_format"] == "F-{:05d}"
+          and preferences.defaults()["preview_color"] == (0.0, 1.0, 0.0))
+    p.RemString("PanelIdFormat")
+    p.RemUnsigned("PreviewColor")
     p.RemInt("DefaultMethod")
     p.RemFloat("SliverFraction")
     check("preferences: built-in defaults", preferences.defaults()["method"] == "iso_grid")

@@ -405,3 +405,23 @@ def test_failed_creation_leaves_no_undo_step(doc, source):
         tessella.make_panelization((source[0], "Face1"), size=SIZE, max_panels=2)
     assert _names(doc) == before
     assert doc.UndoCount == 0
+
+
+def test_panel_id_format_is_a_property(tmp_path):
+    doc = FreeCAD.newDocument("IdFormat")
+    try:
+        src = doc.addObject("Part::Feature", "Plate")
+        src.Shape = Part.makePlane(3000, 2000)
+        doc.recompute()
+        p = tessella.make_panelization((src, "Face1"), size=1000.0)
+        panels = _children(p)[0]
+        assert list(panels.PanelIds) == [f"P-{i:04d}" for i in range(1, 7)]
+        p.PanelIdFormat = "ROOF-A-{:03d}"
+        doc.recompute()
+        assert list(panels.PanelIds) == [f"ROOF-A-{i:03d}" for i in range(1, 7)]
+        p.PanelIdFormat = "{:d"  # not a format
+        doc.recompute()
+        assert not panels.isValid(), panels.State
+        assert list(panels.PanelIds)[0] == "ROOF-A-001"  # the last good IDs stay
+    finally:
+        FreeCAD.closeDocument(doc.Name)
