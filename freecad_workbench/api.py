@@ -34,6 +34,17 @@ class MethodSpec:
     reports_progress: bool = False
 
 
+#: How a parameter is shown (task panel): label and unit ("mm", "deg", "" for a
+#: plain number; None for a count). A new method adds its parameters here.
+PARAM_INFO = {
+    "size": ("Size", "mm"),
+    "u_count": ("U count (0: use size)", None),
+    "v_count": ("V count (0: use size)", None),
+    "sliver_fraction": ("Sliver fraction", ""),
+    "min_angle": ("Min angle", "deg"),
+    "max_panels": ("Max panels", None),
+}
+
 #: The methods, by name. A new method adds one entry here.
 METHODS = {
     "iso_grid": MethodSpec(

@@ -88,26 +88,20 @@ class PanelizationTaskPanel:
         self.method.addItems(list(api.METHODS))
         self.method.setCurrentIndex(list(api.METHODS).index(p["method"]))
         form.addRow("Method", self.method)
-        self.size = _quantity_box("mm", p["size"])
-        form.addRow("Size", self.size)
-        self.u_count = QtGui.QSpinBox()
-        self.u_count.setRange(0, 100000)
-        self.u_count.setValue(p["u_count"])
-        self.v_count = QtGui.QSpinBox()
-        self.v_count.setRange(0, 100000)
-        self.v_count.setValue(p["v_count"])
-        form.addRow("U count (0: use size)", self.u_count)
-        form.addRow("V count (0: use size)", self.v_count)
-        self.sliver = QtGui.QDoubleSpinBox()
-        self.sliver.setRange(0.0, 1.0)
-        self.sliver.setSingleStep(0.05)
-        self.sliver.setValue(p["sliver_fraction"])
+        # The chosen method's own parameters, rebuilt when the method changes.
+        self.method_box = QtGui.QWidget()
+        self.method_form = QtGui.QFormLayout(self.method_box)
+        self.method_form.setContentsMargins(0, 0, 0, 0)
+        form.addRow(self.method_box)
+        self.widgets = {}
+        self.values = dict(p["values"])  # last value of every parameter seen
+        self._build_method_rows()
+        self.method.currentIndexChanged.connect(self._method_changed)
+        self.sliver = self._make_widget("sliver_fraction", p["sliver_fraction"])
         form.addRow("Sliver fraction", self.sliver)
-        self.min_angle = _quantity_box("deg", p["min_angle"], 0.0, 180.0)
+        self.min_angle = self._make_widget("min_angle", p["min_angle"])
         form.addRow("Min angle", self.min_angle)
-        self.max_panels = QtGui.QSpinBox()
-        self.max_panels.setRange(1, 100000000)
-        self.max_panels.setValue(p["max_panels"])
+        self.max_panels = self._make_widget("max_panels", p["max_panels"])
         form.addRow("Max panels", self.max_panels)
         self.live = QtGui.QCheckBox("Live preview")
         self.live.setChecked(True)
@@ -120,31 +114,89 @@ class PanelizationTaskPanel:
         self.timer.setSingleShot(True)
         self.timer.setInterval(PREVIEW_DELAY_MS)
         self.timer.timeout.connect(self.update_preview)
-        for signal in (self.method.currentIndexChanged, self.u_count.valueChanged,
-                       self.v_count.valueChanged, self.sliver.valueChanged,
-                       self.max_panels.valueChanged, self.live.toggled):
+        for signal in (self.method.currentIndexChanged, self.live.toggled):
             signal.connect(self.schedule_preview)
-        for box in (self.size, self.min_angle):
-            sig = getattr(box, "valueChanged", None)
-            if sig is not None:
-                sig.connect(self.schedule_preview)
-        self._update_enabled()
+        for box in (self.sliver, self.min_angle, self.max_panels):
+            self._connect(box)
         _active = self
         self.schedule_preview()
 
     # ----------------------------------------------------------------- values
     def _initial(self, size):
+        """Values to show: the object's properties (edit) or the defaults (new)."""
+        from ..make import _PARAM_TO_PROPERTY
+
+        values = {}
         if self.obj is not None:
             o = self.obj
-            return {"method": o.Method, "size": float(o.Size.Value), "u_count": int(o.UCount),
-                    "v_count": int(o.VCount), "sliver_fraction": float(o.SliverFraction),
+            for name, prop in _PARAM_TO_PROPERTY.items():
+                if hasattr(o, prop):
+                    v = getattr(o, prop)
+                    values[name] = float(v.Value) if hasattr(v, "Value") else v
+            return {"method": o.Method, "values": values,
+                    "sliver_fraction": float(o.SliverFraction),
                     "min_angle": float(o.MinAngle.Value), "max_panels": int(o.MaxPanels)}
         from . import preferences
 
         prefs = preferences.defaults()
-        return {"method": prefs["method"], "size": size or 1000.0, "u_count": 0, "v_count": 0,
+        values["size"] = size or 1000.0
+        return {"method": prefs["method"], "values": values,
                 "sliver_fraction": prefs["sliver_fraction"], "min_angle": prefs["min_angle"],
                 "max_panels": prefs["max_panels"]}
+
+    # ------------------------------------------------------ parameter widgets
+    def _make_widget(self, name, value):
+        from PySide import QtGui
+
+        label, unit = api.PARAM_INFO.get(name, (name, ""))
+        if unit is None:  # a count
+            box = QtGui.QSpinBox()
+            box.setRange(0 if name.endswith("_count") else 1, 100000000)
+            box.setValue(int(value))
+            return box
+        if unit == "":
+            box = QtGui.QDoubleSpinBox()
+            box.setRange(0.0, 1e9)
+            box.setDecimals(4)
+            box.setSingleStep(0.05)
+            box.setValue(float(value))
+            return box
+        return _quantity_box(unit, value, 0.0, 180.0 if unit == "deg" else 1e9)
+
+    def _connect(self, box):
+        sig = getattr(box, "valueChanged", None)
+        if sig is not None:
+            sig.connect(self.schedule_preview)
+
+    def _default_of(self, method, name):
+        """The core's default for a parameter (from the method's params struct)."""
+        struct = api.METHODS[method].make_params()
+        return getattr(struct, name, 0)
+
+    def _build_method_rows(self):
+        """One row per numeric parameter of the chosen method."""
+        while self.method_form.rowCount():
+            self.method_form.removeRow(0)
+        self.widgets = {}
+        method = self.method.currentText()
+        for name, kind in api.METHODS[method].params.items():
+            if kind not in (int, float):
+                continue  # e.g. guide curves: picked, not typed
+            value = self.values.get(name, self._default_of(method, name))
+            box = self._make_widget(name, value)
+            self._connect(box)
+            self.widgets[name] = box
+            self.method_form.addRow(api.PARAM_INFO.get(name, (name, ""))[0], box)
+
+    def _method_changed(self, *args):
+        for name, box in self.widgets.items():
+            self.values[name] = self._read(box)
+        self._build_method_rows()
+
+    @staticmethod
+    def _read(box):
+        return _value(box) if box.property("rawValue") is not None or \
+            hasattr(box, "decimals") else int(box.value())
 
     def _source_text(self):
         if self.obj is not None:
@@ -210,23 +262,24 @@ class PanelizationTaskPanel:
     def parameters(self):
         """(method, keyword parameters) as the panel shows them."""
         method = self.method.currentText()
-        params = {}
-        if method == "iso_grid" and (self.u_count.value() or self.v_count.value()):
-            params.update(u_count=self.u_count.value(), v_count=self.v_count.value())
-        else:
-            params["size"] = _value(self.size)
+        params = {name: self._read(box) for name, box in self.widgets.items()}
+        if method == "iso_grid":
+            # Counts replace the size (the core takes one or the other).
+            if params.get("u_count") or params.get("v_count"):
+                params.pop("size", None)
+            else:
+                params.pop("u_count", None)
+                params.pop("v_count", None)
         params.update(sliver_fraction=float(self.sliver.value()),
                       min_angle=_value(self.min_angle), max_panels=int(self.max_panels.value()))
         return method, params
 
-    def _update_enabled(self):
-        iso = self.method.currentText() == "iso_grid"
-        self.u_count.setEnabled(iso)
-        self.v_count.setEnabled(iso)
+    def widget(self, name):
+        """The input of a method parameter (tests set values through it)."""
+        return self.widgets[name]
 
     # ---------------------------------------------------------------- preview
     def schedule_preview(self, *args):
-        self._update_enabled()
         if self.live.isChecked():
             self.timer.start()
         else:
@@ -370,16 +423,16 @@ class PanelizationTaskPanel:
         doc = obj.Document
         doc.openTransaction("Edit panelization")
         try:
+            from ..make import _PARAM_TO_PROPERTY
+
             if self.picked is not None:
                 obj.Source = (self.picked[0], [self.picked[1]])
             obj.Method = method
-            obj.UCount = int(params.get("u_count", 0))
-            obj.VCount = int(params.get("v_count", 0))
-            if "size" in params:
-                obj.Size = params["size"]
-            obj.SliverFraction = params["sliver_fraction"]
-            obj.MinAngle = params["min_angle"]
-            obj.MaxPanels = params["max_panels"]
+            if method == "iso_grid":  # counts of 0 mean: use the size
+                params.setdefault("u_count", 0)
+                params.setdefault("v_count", 0)
+            for name, value in params.items():
+                setattr(obj, _PARAM_TO_PROPERTY[name], value)
             obj.Proxy.seed(obj, result)
             doc.recompute()
         except Exception:

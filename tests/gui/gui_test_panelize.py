@@ -393,7 +393,7 @@ def test_task_panel_edit():
         panel = task_panel.active()
         if not check("edit: panel is active", panel is not None):
             return
-        check("edit: panel shows the object's size", abs(task_panel._value(panel.size) - 2000.0) < 1e-9)
+        check("edit: panel shows the object's size", abs(task_panel._value(panel.widget("size")) - 2000.0) < 1e-9)
         n = panel.preview_count
         check("edit: first preview drawn", wait_for_preview(panel, n))
         first_summary = panel.summary.text()
@@ -404,7 +404,7 @@ def test_task_panel_edit():
               panel.preview_node is not None and graph.findChild(panel.preview_node) >= 0)
         # A change re-runs the preview after the debounce; the document is untouched.
         n = panel.preview_count
-        panel.size.setProperty("rawValue", 1000.0)
+        panel.widget("size").setProperty("rawValue", 1000.0)
         check("edit: preview updated after a change", wait_for_preview(panel, n))
         check("edit: summary changed", panel.summary.text() != first_summary, panel.summary.text())
         check("edit: preview count matches the finer grid",
@@ -455,7 +455,7 @@ def test_task_panel_edit():
         # Cancel leaves everything as it is.
         parent.ViewObject.Proxy.doubleClicked(parent.ViewObject)
         panel = task_panel.active()
-        panel.size.setProperty("rawValue", 3000.0)
+        panel.widget("size").setProperty("rawValue", 3000.0)
         panel.method.setCurrentIndex(1)
         panel.reject()
         process_events()
@@ -476,6 +476,29 @@ def test_task_panel_edit():
             panel.update_preview()
             check("reopened: OK", panel.accept())
             check("reopened: method changed", parent.Method == "equal_size_grid" and parent.isValid())
+        # The parameter rows follow the method.
+        parent.ViewObject.Proxy.doubleClicked(parent.ViewObject)
+        panel = task_panel.active()
+        if check("rows: panel active", panel is not None):
+            check("rows: equal_size_grid shows size only", sorted(panel.widgets) == ["size"],
+                  str(sorted(panel.widgets)))
+            panel.method.setCurrentIndex(list(tessella.METHODS).index("iso_grid"))
+            check("rows: iso_grid shows size and counts",
+                  sorted(panel.widgets) == ["size", "u_count", "v_count"], str(sorted(panel.widgets)))
+            check("rows: the size carried over",
+                  abs(task_panel._value(panel.widget("size")) - parent.Size.Value) < 1e-9)
+            panel.widget("u_count").setValue(5)
+            panel.widget("v_count").setValue(3)
+            method, params = panel.parameters()
+            check("rows: counts replace the size", method == "iso_grid" and "size" not in params
+                  and params["u_count"] == 5, str(params))
+            panel.timer.stop()
+            panel.update_preview()
+            check("rows: preview of the counts", panel.last_result is not None and
+                  len(panel.last_result.panels) <= 15, panel.summary.text())
+            check("rows: OK", panel.accept())
+            check("rows: counts written", parent.UCount == 5 and parent.VCount == 3
+                  and parent.Method == "iso_grid", f"{parent.UCount} {parent.VCount}")
     finally:
         if Gui.Control.activeDialog():
             Gui.Control.closeDialog()

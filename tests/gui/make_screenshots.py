@@ -46,7 +46,7 @@ def main():
     Gui.Selection.addSelection(doc.Name, src.Name, "Face1")
     Gui.runCommand("Tessella_Panelize")
     panel = task_panel.active()
-    panel.size.setProperty("rawValue", 800.0)
+    panel.widget("size").setProperty("rawValue", 800.0)
     panel.timer.stop()
     panel.update_preview()
     QtGui.QApplication.processEvents()
