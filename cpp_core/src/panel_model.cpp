@@ -1,11 +1,14 @@
 #include "tessella/panel_model.h"
 
 #include <cmath>
+#include <map>
 #include <numeric>
 
 namespace tessella {
 
 namespace {
+
+constexpr double kPiDelaunay = 3.14159265358979323846;
 
 double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
@@ -33,9 +36,66 @@ double bilinear_area(const std::vector<Vec3>& p) {
   return area;
 }
 
+// Angle at b in triangle (a, b, c).
+double angle_at(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 u = a - b, v = c - b;
+  return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v));
+}
+
+// Lawson flips: an inner edge whose two opposite angles sum to more than pi is
+// replaced by the other diagonal of its (convex) quad, until none is left.
+// Ear clipping alone leaves long slivers between two runs of close outline
+// points; mapped onto a curved surface such a sliver can even turn over.
+// The outline edges never flip, so the result is the constrained Delaunay
+// triangulation of the outline.
+void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>& tris) {
+  for (int pass = 0; pass < 64; ++pass) {
+    std::map<std::pair<int, int>, std::pair<int, int>> edge;  // directed edge -> (tri, k)
+    for (int t = 0; t < int(tris.size()); ++t)
+      for (int k = 0; k < 3; ++k) edge[{tris[t][k], tris[t][(k + 1) % 3]}] = {t, k};
+    bool flipped = false;
+    std::vector<char> touched(tris.size(), 0);
+    for (const auto& [e, tk] : edge) {
+      auto other = edge.find({e.second, e.first});
+      if (other == edge.end()) continue;  // an outline edge
+      const int t1 = tk.first, t2 = other->second.first;
+      if (touched[t1] || touched[t2]) continue;
+      const int a = e.first, b = e.second;
+      const int c = tris[t1][(tk.second + 2) % 3];             // opposite in t1
+      const int d = tris[t2][(other->second.second + 2) % 3];  // opposite in t2
+      if (angle_at(uv[a], uv[c], uv[b]) + angle_at(uv[b], uv[d], uv[a]) <= kPiDelaunay + 1e-12)
+        continue;
+      // The quad a-d-b-c must be convex for the flip (c and d on both sides of a-b
+      // is given; a and b must lie on both sides of c-d).
+      const double sa = cross2(uv[c], uv[d], uv[a]), sb = cross2(uv[c], uv[d], uv[b]);
+      if (!(sa * sb < 0)) continue;
+      const bool ccw = cross2(uv[a], uv[b], uv[c]) > 0;
+      tris[t1] = ccw ? std::array<int, 3>{c, a, d} : std::array<int, 3>{c, d, a};
+      tris[t2] = ccw ? std::array<int, 3>{d, b, c} : std::array<int, 3>{d, c, b};
+      touched[t1] = touched[t2] = 1;
+      flipped = true;
+    }
+    if (!flipped) break;
+  }
+}
+
 }  // namespace
 
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv) {
+  // A clockwise outline (a panel of a reversed face) is clipped as its
+  // mirror image; the triangles then keep the outline's own turning sense.
+  double area2 = 0;
+  for (std::size_t i = 0; i < uv.size(); ++i) {
+    const Vec2& p = uv[i];
+    const Vec2& q = uv[(i + 1) % uv.size()];
+    area2 += p.x() * q.y() - q.x() * p.y();
+  }
+  if (area2 < 0) {
+    std::vector<Vec2> mirrored;
+    for (const Vec2& q : uv) mirrored.emplace_back(q.x(), -q.y());
+    std::vector<std::array<int, 3>> triangles = triangulate_polygon(mirrored);
+    return triangles;  // same indices: clockwise again in the original plane
+  }
   std::vector<std::array<int, 3>> triangles;
   std::vector<int> ring(uv.size());
   std::iota(ring.begin(), ring.end(), 0);
@@ -67,6 +127,7 @@ std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv)
     ring.erase(ring.begin() + static_cast<long>(ear));
   }
   if (ring.size() == 3) triangles.push_back({ring[0], ring[1], ring[2]});
+  make_delaunay(uv, triangles);
   return triangles;
 }
 

@@ -6,17 +6,17 @@
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
-#include <BRep_Tool.hxx>
-#include <GeomLProp_SLProps.hxx>
 #include <Geom_BezierSurface.hxx>
-#include <Geom_Surface.hxx>
 #include <ShapeFix_ShapeTolerance.hxx>
 #include <Standard_Failure.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Face.hxx>
+#include <algorithm>
+#include <gp_Pln.hxx>
 #include <sstream>
+#include <unordered_map>
 
 #include "tessella/errors.h"
 #include "tessella/panel_model.h"
@@ -41,36 +41,46 @@ Vec3 newell_normal(const std::vector<Vec3>& p) {
   return n;
 }
 
-// Makes the face's normal agree with the corner order (counter-clockwise).
-TopoDS_Face oriented(TopoDS_Face face, const Vec3& wanted) {
-  Handle(Geom_Surface) s = BRep_Tool::Surface(face);
-  double u0, u1, v0, v1;
-  s->Bounds(u0, u1, v0, v1);
-  const double u = std::isfinite(u0) && std::isfinite(u1) ? 0.5 * (u0 + u1) : 0.0;
-  const double v = std::isfinite(v0) && std::isfinite(v1) ? 0.5 * (v0 + v1) : 0.0;
-  GeomLProp_SLProps props(s, u, v, 1, 1e-9);
-  if (!props.IsNormalDefined()) return face;
-  gp_Dir n = props.Normal();
-  if (face.Orientation() == TopAbs_REVERSED) n.Reverse();
-  if (n.X() * wanted.x() + n.Y() * wanted.y() + n.Z() * wanted.z() < 0) face.Reverse();
-  return face;
+// Largest distance of the corners from the plane through their mean with
+// the given normal (unit).
+double off_plane(const std::vector<Vec3>& p, const Vec3& c, const Vec3& n) {
+  double worst = 0;
+  for (const Vec3& q : p) worst = std::max(worst, std::abs((q - c).dot(n)));
+  return worst;
 }
 
-TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
-                         double planar_tolerance) {
+// A flat face on the plane (c, n) bounded by the polygon; the polygon's corners
+// are within `tolerance` of the plane, which its edges are given so OCCT
+// accepts them. The face normal is n (the polygon runs counter-clockwise).
+TopoDS_Face flat_face(const std::vector<Vec3>& p, const Vec3& c, const Vec3& n, double tolerance) {
   BRepBuilderAPI_MakePolygon polygon;
   for (const Vec3& q : p) polygon.Add(pnt(q));
   polygon.Close();
   if (!polygon.IsDone()) throw GeometryFailure("cannot build a panel outline (repeated corners)");
   TopoDS_Wire wire = polygon.Wire();
-  // A wire whose edges carry the planar tolerance lets OCCT accept a plane
-  // that misses the corners by at most that much.
-  ShapeFix_ShapeTolerance().SetTolerance(wire, planar_tolerance);
-  const Vec3 normal = newell_normal(p);
-  BRepBuilderAPI_MakeFace planar(wire, Standard_True);
-  if (planar.IsDone()) return oriented(planar.Face(), normal);
+  if (tolerance > 1e-7) ShapeFix_ShapeTolerance().SetTolerance(wire, tolerance);
+  const gp_Pln plane(pnt(c), gp_Dir(n.x(), n.y(), n.z()));
+  BRepBuilderAPI_MakeFace face(plane, wire, Standard_True);
+  if (!face.IsDone()) throw GeometryFailure("cannot build a flat panel face");
+  return face.Face();
+}
+
+TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
+                         double planar_tolerance) {
+  // Planar within the tolerance: one flat face on the best plane through the
+  // mean corner with Newell's normal (which follows the corner order).
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& q : p) c += q;
+  c /= double(p.size());
+  const Vec3 newell = newell_normal(p);
+  if (newell.norm() > 0) {
+    const Vec3 n = newell.normalized();
+    const double off = off_plane(p, c, n);
+    if (off <= planar_tolerance) return flat_face(p, c, n, off * 1.01);
+  }
   if (p.size() == 4) {
-    // Bent quad: its bilinear patch, exact through the four corners.
+    // Bent quad: its bilinear patch, exact through the four corners; with the
+    // poles in this order du x dv points along the counter-clockwise normal.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Warray-bounds"  // GCC 12 false positive in NCollection_Array2
     TColgp_Array2OfPnt poles(1, 2, 1, 2);
@@ -81,18 +91,22 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
     Handle(Geom_BezierSurface) patch = new Geom_BezierSurface(poles);
 #pragma GCC diagnostic pop
     BRepBuilderAPI_MakeFace bilinear(patch, 0.0, 1.0, 0.0, 1.0, 1e-7);
-    if (bilinear.IsDone()) return oriented(bilinear.Face(), normal);
+    if (bilinear.IsDone()) return bilinear.Face();
   }
   // Bent n-gon: the flat triangles of its (u,v) triangulation, in a compound.
   BRep_Builder builder;
   TopoDS_Compound fan;
   builder.MakeCompound(fan);
   for (const auto& t : triangulate_polygon(uv)) {
-    const Vec3 &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
-    BRepBuilderAPI_MakePolygon tri(pnt(a), pnt(b), pnt(c), Standard_True);
-    if (!tri.IsDone()) continue;
-    BRepBuilderAPI_MakeFace f(tri.Wire(), Standard_True);
-    if (f.IsDone()) builder.Add(fan, oriented(f.Face(), (b - a).cross(c - a)));
+    const std::vector<Vec3> tri = {p[t[0]], p[t[1]], p[t[2]]};
+    const Vec3 n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+    const double longest =
+        std::max({(tri[1] - tri[0]).squaredNorm(), (tri[2] - tri[1]).squaredNorm(),
+                  (tri[0] - tri[2]).squaredNorm()});
+    // Collinear outline points give zero-area ears whose rounding-noise
+    // normal could point anywhere: they add nothing to the panel, skip them.
+    if (!(n.norm() > 1e-9 * longest)) continue;
+    builder.Add(fan, flat_face(tri, (tri[0] + tri[1] + tri[2]) / 3.0, n.normalized(), 0.0));
   }
   return fan;
 }
@@ -122,9 +136,17 @@ std::string rods_to_brep(const PanelMesh& mesh) {
     BRep_Builder builder;
     TopoDS_Compound all;
     builder.MakeCompound(all);
+    // One vertex per node, shared by the rods meeting there.
+    std::unordered_map<int, TopoDS_Vertex> vertex;
+    auto node = [&](int v) -> const TopoDS_Vertex& {
+      auto it = vertex.find(v);
+      if (it == vertex.end()) {
+        it = vertex.emplace(v, BRepBuilderAPI_MakeVertex(pnt(mesh.xyz[v])).Vertex()).first;
+      }
+      return it->second;
+    };
     for (const auto& rod : mesh.rods) {
-      builder.Add(all,
-                  BRepBuilderAPI_MakeEdge(pnt(mesh.xyz[rod[0]]), pnt(mesh.xyz[rod[1]])).Edge());
+      builder.Add(all, BRepBuilderAPI_MakeEdge(node(rod[0]), node(rod[1])).Edge());
     }
     return to_brep(all);
   } catch (const Standard_Failure& e) {

@@ -2,6 +2,7 @@
 
 #include <BRep_Builder.hxx>
 #include <TopoDS_Iterator.hxx>
+#include <algorithm>
 #include <cmath>
 
 #include "tessella/panel_metrics.h"
@@ -100,6 +101,21 @@ TEST(Model, EarClippingCoversANonConvexOutline) {
     area += 0.5 * cross;
   }
   EXPECT_NEAR(area, 3.0, 1e-12);
+}
+
+TEST(Model, EarClippingOfAClockwiseOutlineKeepsItsTurningSense) {
+  std::vector<Vec2> l = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  std::reverse(l.begin(), l.end());  // clockwise L
+  const auto tris = triangulate_polygon(l);
+  ASSERT_EQ(tris.size(), 4u);
+  double area = 0;
+  for (const auto& t : tris) {
+    const Vec2 a = l[t[1]] - l[t[0]], b = l[t[2]] - l[t[0]];
+    const double cross = a.x() * b.y() - a.y() * b.x();
+    EXPECT_LT(cross, 0.0);  // clockwise, like the outline
+    area -= 0.5 * cross;
+  }
+  EXPECT_NEAR(area, 3.0, 1e-12);  // covers the L exactly (no overlap)
 }
 
 TEST(ShapeExport, OneSubShapePerPanelRodAndNode) {

@@ -234,6 +234,20 @@ def test_shapes_round_trip_through_brep(result):
     panels = Part.Shape()
     panels.importBrepFromString(result.panels_brep())
     assert len(panels.childShapes()) == len(result.panels)
+    # Every panel is a valid shape through its corners, facing the surface normal.
+    pieces = panels.childShapes()
+    for k, (piece, q) in enumerate(zip(pieces, result.panels)):
+        assert piece.isValid(), k
+        # Its vertices are the panel's corners (same points, nothing else).
+        mine = np.array([v.Point for v in piece.Vertexes])
+        corners = result.vertices[list(q)]
+        d = np.linalg.norm(mine[:, None, :] - corners[None, :, :], axis=2)
+        assert d.min(axis=1).max() < 1e-6 and d.min(axis=0).max() < 1e-6, k
+        normal = result.normals[list(q)].mean(axis=0)
+        for f in piece.Faces:
+            u0, u1, v0, v1 = f.ParameterRange
+            n = f.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+            assert np.dot([n.x, n.y, n.z], normal) > 0, k
     rods = Part.Shape()
     rods.importBrepFromString(result.rods_brep())
     lengths = np.array([e.Length for e in rods.Edges])

@@ -13,7 +13,8 @@
 namespace tessella {
 
 // Triangles (corner indices) covering a simple polygon given by its (u,v)
-// corners in counter-clockwise order. n-2 triangles for n corners.
+// corners, n-2 for n corners, each turning the same way as the outline
+// (counter-clockwise outline: counter-clockwise triangles; clockwise: clockwise).
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv);
 
 // Area of the panel model: bilinear for quads, triangulated otherwise.
