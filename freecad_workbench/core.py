@@ -10,6 +10,7 @@ except ImportError as exc:  # pragma: no cover - message for a user without a bu
     ) from exc
 
 from ._core import (  # noqa: E402,F401
+    BoundaryDrivenParams,
     EqualSizeGridParams,
     GridClipParams,
     IrregularParams,
@@ -17,6 +18,8 @@ from ._core import (  # noqa: E402,F401
     MetricsParams,
     PanelMesh,
     SurfaceFace,
+    boundary_driven,
+    boundary_driven_stages,
     equal_size_grid,
     irregular_panels,
     iso_grid,

@@ -1,0 +1,198 @@
+#include "tessella/bd_refine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "bd_geometry.h"
+#include "tessella/errors.h"
+
+namespace tessella {
+
+namespace {
+
+double corner_angle(const Vec3& prev, const Vec3& p, const Vec3& next) {
+  const Vec3 a = prev - p, b = next - p;
+  const double na = a.norm(), nb = b.norm();
+  if (na == 0 || nb == 0) return 0;
+  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
+}
+
+int rank(const BdNode& n) { return n.corner ? 2 : (n.loop >= 0 ? 1 : 0); }
+
+// Drops repeated consecutive corners and panels left with fewer than three.
+void clean_panels(std::vector<std::vector<int>>& panels) {
+  std::vector<std::vector<int>> out;
+  for (auto& p : panels) {
+    std::vector<int> q;
+    for (int v : p)
+      if (q.empty() || q.back() != v) q.push_back(v);
+    while (q.size() > 1 && q.front() == q.back()) q.pop_back();
+    if (q.size() >= 3) out.push_back(std::move(q));
+  }
+  panels = std::move(out);
+}
+
+double uv_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) a += bd::cross2(nodes[p[i]].uv, nodes[p[(i + 1) % p.size()]].uv);
+  return 0.5 * a;
+}
+
+}  // namespace
+
+int remove_skewed_triangles(BdNetwork& net, double ratio) {
+  require_in_range("skew_ratio", ratio, 0.0, 1.0);
+  int removed = 0;
+  for (int pass = 0; pass < 20; ++pass) {
+    std::vector<int> rep(net.nodes.size());
+    std::iota(rep.begin(), rep.end(), 0);
+    std::vector<char> touched(net.nodes.size(), 0);
+    int merged = 0;
+    for (const auto& p : net.panels) {
+      if (p.size() != 3) continue;
+      if (touched[p[0]] || touched[p[1]] || touched[p[2]]) continue;  // next pass
+      double ang[3];
+      for (int i = 0; i < 3; ++i)
+        ang[i] = corner_angle(net.nodes[p[(i + 2) % 3]].xyz, net.nodes[p[i]].xyz, net.nodes[p[(i + 1) % 3]].xyz);
+      const int imax = static_cast<int>(std::max_element(ang, ang + 3) - ang);
+      const double amin = *std::min_element(ang, ang + 3);
+      if (ang[imax] <= 0 || amin / ang[imax] >= ratio) continue;
+      int v = p[imax];
+      const int a = p[(imax + 1) % 3], b = p[(imax + 2) % 3];
+      int w = (net.nodes[a].xyz - net.nodes[v].xyz).norm() <= (net.nodes[b].xyz - net.nodes[v].xyz).norm() ? a : b;
+      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);  // v is removed, w kept
+      if (rank(net.nodes[v]) == 2) continue;
+      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      rep[v] = w;
+      touched[v] = touched[w] = 1;
+      ++merged;
+    }
+    if (merged == 0) break;
+    removed += merged;
+    for (auto& p : net.panels)
+      for (int& v : p) v = rep[v];
+    clean_panels(net.panels);
+  }
+  return removed;
+}
+
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::map<std::pair<int, int>, int> mid;
+  auto add = [&](const BdNode& n) {
+    net.nodes.push_back(n);
+    return static_cast<int>(net.nodes.size()) - 1;
+  };
+  auto midpoint = [&](int a, int b) {
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    const BdNode na = net.nodes[a], nb = net.nodes[b];
+    BdNode m;
+    if (uses[key] == 1 && na.loop >= 0 && na.loop == nb.loop) {
+      // along the trim from a to b (panels run along their loop's orientation)
+      const BdPolyline& L = boundary[na.loop];
+      double ds = std::fmod(nb.s - na.s, L.length());
+      if (ds < 0) ds += L.length();
+      double s = na.s + 0.5 * ds;
+      L.segment_at(s);
+      m.loop = na.loop, m.s = s;
+      m.uv = L.uv_at(s);
+      m.xyz = face.point(m.uv.x(), m.uv.y());
+    } else {
+      const Projection pr = face.project(0.5 * (na.xyz + nb.xyz), 0.5 * (na.uv + nb.uv));
+      m.uv = pr.uv, m.xyz = pr.point;
+    }
+    return mid[key] = add(m);
+  };
+  std::vector<std::vector<int>> out;
+  for (const auto& p : net.panels) {
+    const std::size_t n = p.size();
+    Vec3 c3 = Vec3::Zero();
+    Vec2 c2 = Vec2::Zero();
+    for (int v : p) c3 += net.nodes[v].xyz, c2 += net.nodes[v].uv;
+    c3 /= double(n), c2 /= double(n);
+    BdNode c;
+    const Projection pr = face.project(c3, c2);
+    c.uv = pr.uv, c.xyz = pr.point;
+    if (!face.is_inside(c.uv.x(), c.uv.y())) c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
+    const int ci = add(c);
+    std::vector<int> m(n);
+    for (std::size_t i = 0; i < n; ++i) m[i] = midpoint(p[i], p[(i + 1) % n]);
+    for (std::size_t i = 0; i < n; ++i) out.push_back({p[i], m[i], ci, m[(i + n - 1) % n]});
+  }
+  net.panels = std::move(out);
+}
+
+void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net,
+                    int iterations, double factor) {
+  require_in_range("smoothing_iterations", iterations, 0, 1000);
+  require_in_range("smoothing factor", factor, 0.0, 1.0);
+  const std::size_t nn = net.nodes.size();
+  std::map<std::pair<int, int>, int> uses;
+  std::vector<std::vector<int>> nbr(nn), incident(nn);
+  for (std::size_t pi = 0; pi < net.panels.size(); ++pi) {
+    const auto& p = net.panels[pi];
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+      nbr[a].push_back(b), nbr[b].push_back(a);
+      incident[a].push_back(static_cast<int>(pi));
+    }
+  }
+  // trim neighbours: previous / next node along the loop through trim edges
+  std::vector<int> prev(nn, -1), next(nn, -1);
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && net.nodes[a].loop >= 0 &&
+          net.nodes[a].loop == net.nodes[b].loop)
+        next[a] = b, prev[b] = a;
+    }
+  for (auto& v : nbr) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+  auto folds = [&](int v) {
+    for (int pi : incident[v])
+      if (uv_area(net.nodes, net.panels[pi]) <= 0) return true;
+    return false;
+  };
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t v = 0; v < nn; ++v) {
+      BdNode& n = net.nodes[v];
+      if (n.corner || nbr[v].empty()) continue;
+      const BdNode old = n;
+      if (n.loop >= 0) {
+        if (prev[v] < 0 || next[v] < 0) continue;
+        const BdPolyline& L = boundary[n.loop];
+        const double len = L.length();
+        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len), dn = std::fmod(net.nodes[next[v]].s - n.s, len);
+        if (dp < 0) dp += len;
+        if (dn < 0) dn += len;
+        double s = n.s + factor * 0.5 * (dn - dp);
+        L.segment_at(s);
+        n.s = s;
+        n.uv = L.uv_at(s);
+        n.xyz = face.point(n.uv.x(), n.uv.y());
+      } else {
+        Vec3 c = Vec3::Zero();
+        for (int w : nbr[v]) c += net.nodes[w].xyz;
+        c /= double(nbr[v].size());
+        const Projection pr = face.project(n.xyz + factor * (c - n.xyz), n.uv);
+        if (!face.is_inside(pr.uv.x(), pr.uv.y())) continue;
+        n.uv = pr.uv, n.xyz = pr.point;
+      }
+      if (folds(static_cast<int>(v))) n = old;
+    }
+  }
+}
+
+}  // namespace tessella
