@@ -61,6 +61,28 @@ class Tracer {
     return hit;
   }
 
+  // The first crossing of [p,q] with the trim polylines (ignoring one at p when
+  // skip_start): appends it to pts, fills `end` and returns true.
+  bool first_crossing(const Vec2& p, const Vec2& q, bool skip_start, std::vector<Vec2>& pts,
+                      BdCurveEnd& end) const {
+    double best = 2.0, best_s = 0;
+    int best_loop = -1, best_seg = -1;
+    grid_.query(p, q, [&](int loop, int seg) {
+      double t, s;
+      const BdPolyline& line = boundary_[loop];
+      if (!bd::intersect_segments(p, q, line.uv[seg], line.seg_end_uv(seg), t, s)) return;
+      if (skip_start && t < 1e-6) return;
+      if (t < best) best = t, best_loop = loop, best_seg = seg, best_s = s;
+    });
+    if (best_loop < 0) return false;
+    const BdPolyline& line = boundary_[best_loop];
+    best_s = std::clamp(best_s, 0.0, 1.0);
+    pts.push_back(line.uv[best_seg] + best_s * (line.seg_end_uv(best_seg) - line.uv[best_seg]));
+    end.loop = best_loop;
+    end.s = line.s_at(best_seg, best_s);
+    return true;
+  }
+
   bool crosses_boundary(const Vec2& a, const Vec2& b) const {
     bool hit = false;
     grid_.query(a, b, [&](int loop, int seg) {
@@ -87,24 +109,7 @@ class Tracer {
       const Vec2 q = p + h_ * k2.uv;
       ref = k2.d3;
       // the first crossing of [p,q] with the trim polylines
-      double best = 2.0;
-      int best_loop = -1, best_seg = -1;
-      double best_s = 0;
-      grid_.query(p, q, [&](int loop, int seg) {
-        double t, s;
-        const BdPolyline& line = boundary_[loop];
-        if (!bd::intersect_segments(p, q, line.uv[seg], line.seg_end_uv(seg), t, s)) return;
-        if (step == 0 && start_on_boundary && t < 1e-6) return;  // the seed itself
-        if (t < best) best = t, best_loop = loop, best_seg = seg, best_s = s;
-      });
-      if (best_loop >= 0) {
-        const BdPolyline& line = boundary_[best_loop];
-        best_s = std::clamp(best_s, 0.0, 1.0);
-        pts.push_back(line.uv[best_seg] + best_s * (line.seg_end_uv(best_seg) - line.uv[best_seg]));
-        end.loop = best_loop;
-        end.s = line.s_at(best_seg, best_s);
-        return End::Boundary;
-      }
+      if (first_crossing(p, q, step == 0 && start_on_boundary, pts, end)) return End::Boundary;
       if (!face_.is_inside(q.x(), q.y())) return End::Outside;
       const Vec3 q3 = face_.point(q.x(), q.y());
       arc += h_ * arc_sign;
@@ -125,11 +130,8 @@ class Tracer {
         // stage finds the crossing), or onto the trim if it is the trim.
         const Vec2 target = p + 1.05 * (nearest->uv - p);
         if (nearest->line < 0) {
-          const int loop = -1 - nearest->line;
-          pts.push_back(nearest->uv);
-          end.loop = loop;
-          end.s = nearest->arc;
-          return End::Boundary;
+          if (first_crossing(p, target, false, pts, end)) return End::Boundary;
+          return End::Near;
         }
         if (face_.is_inside(target.x(), target.y()) && !crosses_boundary(p, target)) pts.push_back(target);
         return End::Near;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <cstdio>
+#include <cstdlib>
 
 #include "bd_geometry.h"
 #include "tessella/errors.h"
@@ -244,12 +246,14 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
         break;
       }
     }
+    if (std::getenv("BD_DEBUG") && exterior) fprintf(stderr, "ext cycle n=%zu\n", cycle.size());
     if (!ok || h != static_cast<int>(h0) || exterior || cycle.size() < 3) continue;
     double area = 0;
     for (std::size_t i = 0; i < cycle.size(); ++i)
       area += bd::cross2(net.nodes[cycle[i]].uv, net.nodes[cycle[(i + 1) % cycle.size()]].uv);
     std::vector<int> sorted = cycle;
     std::sort(sorted.begin(), sorted.end());
+    if (std::getenv("BD_DEBUG")) fprintf(stderr, "cycle n=%zu area=%g ext=%d rep=%d\n", cycle.size(), area, int(exterior), int(std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()));
     if (area <= 0 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
     net.panels.push_back(std::move(cycle));
   }
