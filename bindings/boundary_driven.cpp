@@ -43,6 +43,7 @@ void bind_boundary_driven(py::module_& m) {
       .def_readwrite("trim_deflection", &BoundaryDrivenParams::trim_deflection)
       .def_readwrite("step_fraction", &BoundaryDrivenParams::step_fraction)
       .def_readwrite("corner_angle", &BoundaryDrivenParams::corner_angle_deg)
+      .def_readwrite("min_edge_fraction", &BoundaryDrivenParams::min_edge_fraction)
       .def_readwrite("max_panels", &BoundaryDrivenParams::max_panels)
       .def_property(
           "source_loops", [](const BoundaryDrivenParams& p) { return p.sources.loops; },
@@ -96,6 +97,7 @@ void bind_boundary_driven(py::module_& m) {
     d["network_edges"] = r.network.edges;
     d["network_panels"] = r.network.panels;
     d["removed_triangles"] = r.removed_triangles;
+    d["collapsed_edges"] = r.collapsed_edges;
     d["mesh"] = std::move(r.mesh);
     return d;
   });

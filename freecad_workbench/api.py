@@ -55,6 +55,7 @@ METHODS = {
             "source_loops": list,
             "extra_curves": list,
             "corner_angle": float,
+            "min_edge_fraction": float,
             "trim_deflection": float,
             "max_panels": int,
         },

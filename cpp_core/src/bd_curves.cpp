@@ -27,7 +27,9 @@ class Tracer {
         p_(p),
         h_(p.spacing * p.step_fraction),
         hash_(p.spacing * 0.75),
-        grid_(make_grid(face, boundary)) {
+        grid_(make_grid(face, boundary)),
+        grid_field_(make_field(face, tensor, p.spacing)),
+        inside_(bd::make_classifier(boundary)) {
     for (std::size_t k = 0; k < boundary.size(); ++k) {
       const BdPolyline& line = boundary[k];
       for (int i = 0; i < line.segment_count(); ++i) grid_.add(line.uv[i], line.seg_end_uv(i), k, i);
@@ -46,7 +48,7 @@ class Tracer {
 
   // The field direction closest to `ref` (3D) at uv.
   FieldDir dir_at(const Vec2& uv, const Vec3& ref) const {
-    const BdDirections d = eval_bd_tensor(tensor_, face_, uv);
+    const BdDirections d = eval_bd_tensor(grid_field_, face_, uv);
     const double a = ref.dot(d.d1), b = ref.dot(d.d2);
     if (std::abs(a) >= std::abs(b)) return a >= 0 ? FieldDir{d.uv1, d.d1} : FieldDir{-d.uv1, -d.d1};
     return b >= 0 ? FieldDir{d.uv2, d.d2} : FieldDir{-d.uv2, -d.d2};
@@ -110,7 +112,7 @@ class Tracer {
       ref = k2.d3;
       // the first crossing of [p,q] with the trim polylines
       if (first_crossing(p, q, step == 0 && start_on_boundary, pts, end)) return End::Boundary;
-      if (!face_.is_inside(q.x(), q.y())) return End::Outside;
+      if (!inside_.inside(q)) return End::Outside;
       const Vec3 q3 = face_.point(q.x(), q.y());
       arc += h_ * arc_sign;
       // parallel lines nearby (other lines; this one only far back along it)
@@ -133,7 +135,7 @@ class Tracer {
           if (first_crossing(p, target, false, pts, end)) return End::Boundary;
           return End::Near;
         }
-        if (face_.is_inside(target.x(), target.y()) && !crosses_boundary(p, target)) pts.push_back(target);
+        if (inside_.inside(target) && !crosses_boundary(p, target)) pts.push_back(target);
         return End::Near;
       }
       pts.push_back(q);
@@ -254,7 +256,7 @@ class Tracer {
       const FieldDir k2 = dir_at(q + 0.5 * (sp / n) * k1.uv, k1.d3);
       q += (sp / n) * k2.uv;
       ref = k2.d3;
-      if (!face_.is_inside(q.x(), q.y())) return;
+      if (!inside_.inside(q)) return;
     }
     const FieldDir fd = dir_at(q, along);
     if (too_close(face_.point(q.x(), q.y()), fd.d3, 0.75 * sp, false)) return;
@@ -269,6 +271,27 @@ class Tracer {
   }
 
  private:
+  // Grid nodes about spacing / 3 apart in 3D (from the mean lengths of the
+  // iso-lines through the middle), between 16 and 400 per direction.
+  static BdTensorGrid make_field(const SurfaceFace& face, const BdTensor& tensor, double spacing) {
+    const UvBounds b = face.bounds();
+    auto length = [&](bool along_u) {
+      double len = 0;
+      Vec3 prev = Vec3::Zero();
+      for (int k = 0; k <= 64; ++k) {
+        const double t = k / 64.0;
+        const Vec3 p = along_u ? face.point(b.u_min + t * (b.u_max - b.u_min), 0.5 * (b.v_min + b.v_max))
+                               : face.point(0.5 * (b.u_min + b.u_max), b.v_min + t * (b.v_max - b.v_min));
+        if (k > 0) len += (p - prev).norm();
+        prev = p;
+      }
+      return len;
+    };
+    const int nu = std::clamp(static_cast<int>(3 * length(true) / spacing) + 2, 16, 400);
+    const int nv = std::clamp(static_cast<int>(3 * length(false) / spacing) + 2, 16, 400);
+    return sample_bd_tensor(tensor, face, nu, nv);
+  }
+
   static bd::SegmentGrid make_grid(const SurfaceFace& face, const std::vector<BdPolyline>& boundary) {
     const UvBounds b = face.bounds();
     std::size_t segs = 0;
@@ -284,6 +307,8 @@ class Tracer {
   double h_;
   bd::PointHash hash_;
   bd::SegmentGrid grid_;
+  BdTensorGrid grid_field_;
+  bd::UvClassifier inside_;
   int max_steps_ = 0;
   std::vector<BdCurve> curves_;
 };

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <cstdio>
-#include <cstdlib>
 
 #include "bd_geometry.h"
 #include "tessella/errors.h"
@@ -253,7 +251,6 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
       area += bd::cross2(net.nodes[cycle[i]].uv, net.nodes[cycle[(i + 1) % cycle.size()]].uv);
     std::vector<int> sorted = cycle;
     std::sort(sorted.begin(), sorted.end());
-    if (std::getenv("BD_DEBUG")) fprintf(stderr, "cycle n=%zu area=%g ext=%d rep=%d\n", cycle.size(), area, int(exterior), int(std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()));
     if (area <= 0 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
     net.panels.push_back(std::move(cycle));
   }

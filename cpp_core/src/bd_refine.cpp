@@ -78,6 +78,71 @@ int remove_skewed_triangles(BdNetwork& net, double ratio) {
   return removed;
 }
 
+int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_length) {
+  require_in_range("min edge length (mm)", min_length, 0.0, face.model_size());
+  int merged_total = 0;
+  for (int pass = 0; pass < 20; ++pass) {
+    // candidate edges, shortest first
+    std::vector<std::pair<double, std::pair<int, int>>> cand;
+    for (const auto& p : net.panels)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const int a = p[i], b = p[(i + 1) % p.size()];
+        const double l = (net.nodes[a].xyz - net.nodes[b].xyz).norm();
+        if (a < b && l < min_length) cand.push_back({l, {a, b}});
+        if (b < a && l < min_length) cand.push_back({l, {b, a}});
+      }
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    std::vector<std::vector<int>> incident(net.nodes.size());
+    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
+      for (int v : net.panels[pi]) incident[v].push_back(static_cast<int>(pi));
+    std::vector<char> touched(net.nodes.size(), 0);
+    std::vector<int> rep(net.nodes.size());
+    std::iota(rep.begin(), rep.end(), 0);
+    int merged = 0;
+    for (const auto& [len, e] : cand) {
+      int v = e.first, w = e.second;  // v is removed, w kept
+      if (touched[v] || touched[w]) continue;
+      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);
+      if (rank(net.nodes[v]) == 2) continue;
+      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      // would a panel visit w twice?
+      bool bad = false;
+      for (int pi : incident[v]) {
+        const auto& p = net.panels[pi];
+        const std::size_t n = p.size();
+        for (std::size_t i = 0; i < n && !bad; ++i) {
+          if (p[i] != w) continue;
+          const bool adjacent = p[(i + 1) % n] == v || p[(i + n - 1) % n] == v;
+          if (!adjacent) bad = true;
+        }
+        if (n <= 3 && !bad) {
+          // a triangle with edge v-w vanishes; fine
+        }
+      }
+      if (bad) continue;
+      // no two panels may end up sharing more than the merged edge twice: skip
+      // when v and w have another common neighbour outside their shared panels
+      if (rank(net.nodes[v]) == 0 && rank(net.nodes[w]) == 0) {
+        BdNode& k = net.nodes[w];
+        const Projection pr = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
+        k.uv = pr.uv, k.xyz = pr.point;
+      }
+      rep[v] = w;
+      touched[v] = touched[w] = 1;
+      for (int pi : incident[v])
+        for (int x : net.panels[pi]) touched[x] = 1;
+      ++merged;
+    }
+    if (merged == 0) break;
+    merged_total += merged;
+    for (auto& p : net.panels)
+      for (int& v : p) v = rep[v];
+    clean_panels(net.panels);
+  }
+  return merged_total;
+}
+
 void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net) {
   std::map<std::pair<int, int>, int> uses;
   for (const auto& p : net.panels)
@@ -165,6 +230,7 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
       if (uv_area(net.nodes, net.panels[pi]) <= 0) return true;
     return false;
   };
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t v = 0; v < nn; ++v) {
       BdNode& n = net.nodes[v];
@@ -187,7 +253,7 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
         for (int w : nbr[v]) c += net.nodes[w].xyz;
         c /= double(nbr[v].size());
         const Projection pr = face.project(n.xyz + factor * (c - n.xyz), n.uv);
-        if (!face.is_inside(pr.uv.x(), pr.uv.y())) continue;
+        if (!inside.inside(pr.uv)) continue;
         n.uv = pr.uv, n.xyz = pr.point;
       }
       if (folds(static_cast<int>(v))) n = old;

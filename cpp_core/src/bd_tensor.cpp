@@ -45,36 +45,87 @@ BdTensor build_bd_tensor(const SurfaceFace& face, const std::vector<BdPolyline>&
   return t;
 }
 
-BdDirections eval_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, const Vec2& uv) {
-  const SurfacePoint sp = face.derivatives(uv.x(), uv.y());
-  BdDirections out;
-  out.normal = face.normal(uv.x(), uv.y());
-  Vec3 e1 = sp.du - sp.du.dot(out.normal) * out.normal;
-  if (e1.norm() < 1e-12 * (sp.dv.norm() + 1e-300)) e1 = sp.dv - sp.dv.dot(out.normal) * out.normal;
-  e1.normalize();
-  const Vec3 e2 = out.normal.cross(e1);
+namespace {
+
+struct Frame {
+  SurfacePoint sp;
+  Vec3 normal, e1, e2;
+};
+
+Frame frame_at(const SurfaceFace& face, const Vec2& uv) {
+  Frame f;
+  f.sp = face.derivatives(uv.x(), uv.y());
+  f.normal = face.normal(uv.x(), uv.y());
+  f.e1 = f.sp.du - f.sp.du.dot(f.normal) * f.normal;
+  if (f.e1.norm() < 1e-12 * (f.sp.dv.norm() + 1e-300)) f.e1 = f.sp.dv - f.sp.dv.dot(f.normal) * f.normal;
+  f.e1.normalize();
+  f.e2 = f.normal.cross(f.e1);
+  return f;
+}
+
+// Eq. 1-2 on (cos 4 theta_i, sin 4 theta_i): the weighted mean (not normalized).
+Vec2 idw_c4s4(const BdTensor& tensor, const Frame& f) {
   double sc = 0, ss = 0, wsum = 0;
   for (const BdTensorSample& s : tensor.samples) {
-    const double a = s.tangent.dot(e1), b = s.tangent.dot(e2);
+    const double a = s.tangent.dot(f.e1), b = s.tangent.dot(f.e2);
     const double r2 = a * a + b * b;
     if (r2 < 1e-24) continue;
     // cos/sin of 4 theta without trigonometry.
     const double c2 = (a * a - b * b) / r2, s2 = 2 * a * b / r2;
     const double c4 = c2 * c2 - s2 * s2, s4 = 2 * c2 * s2;
-    const double d = (s.point - sp.point).norm();
-    if (d == 0.0) {  // eq. 1, second case: T(x) = T_i
-      sc = c4, ss = s4, wsum = 1;
-      break;
-    }
-    const double w = std::pow(d, -tensor.rho);
+    const double d2 = (s.point - f.sp.point).squaredNorm();
+    if (d2 == 0.0) return Vec2(c4, s4);  // eq. 1, second case: T(x) = T_i
+    const double w = tensor.rho == 2.0 ? 1.0 / d2 : std::pow(d2, -0.5 * tensor.rho);
     sc += w * c4, ss += w * s4, wsum += w;
   }
-  const double theta = (sc * sc + ss * ss) > 1e-30 * wsum * wsum ? std::atan2(ss, sc) / 4.0 : 0.0;
-  out.d1 = std::cos(theta) * e1 + std::sin(theta) * e2;
+  return wsum > 0 ? Vec2(sc / wsum, ss / wsum) : Vec2(1, 0);
+}
+
+BdDirections directions(const SurfaceFace& face, const Frame& f, const Vec2& c4s4) {
+  BdDirections out;
+  out.normal = f.normal;
+  const double theta = c4s4.squaredNorm() > 1e-30 ? std::atan2(c4s4.y(), c4s4.x()) / 4.0 : 0.0;
+  out.d1 = std::cos(theta) * f.e1 + std::sin(theta) * f.e2;
   out.d2 = out.normal.cross(out.d1);
-  out.uv1 = tangent_to_uv(sp.du, sp.dv, out.d1);
-  out.uv2 = tangent_to_uv(sp.du, sp.dv, out.d2);
+  out.uv1 = tangent_to_uv(f.sp.du, f.sp.dv, out.d1);
+  out.uv2 = tangent_to_uv(f.sp.du, f.sp.dv, out.d2);
+  (void)face;
   return out;
+}
+
+}  // namespace
+
+BdDirections eval_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, const Vec2& uv) {
+  const Frame f = frame_at(face, uv);
+  return directions(face, f, idw_c4s4(tensor, f));
+}
+
+BdTensorGrid sample_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, int nu, int nv) {
+  require_in_range("tensor grid size u", nu, 2, 4096);
+  require_in_range("tensor grid size v", nv, 2, 4096);
+  const UvBounds b = face.bounds();
+  BdTensorGrid g;
+  g.nu = nu, g.nv = nv;
+  g.lo = Vec2(b.u_min, b.v_min);
+  g.step = Vec2((b.u_max - b.u_min) / (nu - 1), (b.v_max - b.v_min) / (nv - 1));
+  g.c4s4.resize(static_cast<std::size_t>(nu) * nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const Vec2 uv = g.lo + Vec2(i * g.step.x(), j * g.step.y());
+      g.c4s4[static_cast<std::size_t>(i) * nv + j] = idw_c4s4(tensor, frame_at(face, uv));
+    }
+  return g;
+}
+
+BdDirections eval_bd_tensor(const BdTensorGrid& g, const SurfaceFace& face, const Vec2& uv) {
+  const double x = std::clamp((uv.x() - g.lo.x()) / g.step.x(), 0.0, g.nu - 1.0);
+  const double y = std::clamp((uv.y() - g.lo.y()) / g.step.y(), 0.0, g.nv - 1.0);
+  const int i = std::min(static_cast<int>(x), g.nu - 2), j = std::min(static_cast<int>(y), g.nv - 2);
+  const double fx = x - i, fy = y - j;
+  auto at = [&](int a, int b) { return g.c4s4[static_cast<std::size_t>(a) * g.nv + b]; };
+  const Vec2 c = (1 - fx) * ((1 - fy) * at(i, j) + fy * at(i, j + 1)) +
+                 fx * ((1 - fy) * at(i + 1, j) + fy * at(i + 1, j + 1));
+  return directions(face, frame_at(face, uv), c);
 }
 
 }  // namespace tessella

@@ -14,6 +14,7 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face, const Bound
   require_in_range("skew_ratio", params.skew_ratio, 0.0, 1.0);
   require_in_range("smoothing_iterations", params.smoothing_iterations, 0, 1000);
   require_in_range("trim_deflection (mm)", params.trim_deflection, 0.0, 0.01 * ms);
+  require_in_range("min_edge_fraction", params.min_edge_fraction, 0.0, 0.9);
   require_in_range("max_panels", params.max_panels, 1, 1e8);
   const double estimate = face.area() / (params.size * params.size);
   if (estimate > params.max_panels)
@@ -44,6 +45,7 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face, const Bound
   if (r.network.panels.empty()) throw GeometryFailure("the boundary-driven curve network has no faces");
 
   BdNetwork net = r.network;
+  r.collapsed_edges = collapse_short_edges(face, net, params.min_edge_fraction * cp.spacing);
   r.removed_triangles = remove_skewed_triangles(net, params.skew_ratio);
   if (params.quadrangulate) quadrangulate(face, r.boundary, net);
   smooth_bd_mesh(face, r.boundary, net, params.smoothing_iterations);

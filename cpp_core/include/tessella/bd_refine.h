@@ -16,6 +16,16 @@ namespace tessella {
 // merging with a trim node keeps the trim node). Returns the number removed.
 int remove_skewed_triangles(BdNetwork& net, double ratio);
 
+// The same vertex replacement for the network's short edges (a generalization
+// of section 3.1 we add: curves that cross or meet the trim close to another
+// node leave tiny faces and sharp corners). Every panel edge shorter than
+// `min_length` (mm, 3D) merges its two ends, under the same rules (trim corners
+// stay, trim nodes merge only along their loop, an interior node merging with a
+// trim node keeps the trim node; two interior nodes meet half-way, projected
+// onto the surface). A merge that would make a panel visit a node twice is
+// skipped. Returns the number of merges.
+int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_length);
+
 // Section 3.2: every panel with n corners becomes n quads by its centre and its
 // edge midpoints (applied to all panels so neighbours stay conforming: a
 // midpoint shared by two panels splits both). Midpoints of edges along the trim

@@ -44,6 +44,19 @@ struct BdDirections {
 
 BdDirections eval_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, const Vec2& uv);
 
+// The field sampled on a regular (u,v) grid over the face's bounds: eq. 1-2 are
+// evaluated once per grid node (the doubled-angle vector (cos 4 theta,
+// sin 4 theta) relative to the unit-du frame), then interpolated bilinearly.
+// Tracing calls the field thousands of times; this makes a call O(1) instead
+// of O(samples).
+struct BdTensorGrid {
+  Vec2 lo, step;
+  int nu = 0, nv = 0;
+  std::vector<Vec2> c4s4;  // nu * nv, row-major in u
+};
+BdTensorGrid sample_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, int nu, int nv);
+BdDirections eval_bd_tensor(const BdTensorGrid& grid, const SurfaceFace& face, const Vec2& uv);
+
 // (u,v) change per mm of 3D motion along the tangent direction d at a point with
 // derivatives du, dv (least squares of [du dv] x = d).
 Vec2 tangent_to_uv(const Vec3& du, const Vec3& dv, const Vec3& d);

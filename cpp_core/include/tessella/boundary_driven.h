@@ -23,6 +23,8 @@ struct BoundaryDrivenParams {
   double trim_deflection = 0.0;  // mm; 0 = 2.5e-7 * model size
   double step_fraction = 0.1;    // tracing step / curve spacing
   double corner_angle_deg = 30.0;
+  // Network edges shorter than this fraction of the curve spacing are collapsed.
+  double min_edge_fraction = 0.35;
   int max_panels = 200000;
 };
 
@@ -32,6 +34,7 @@ struct BoundaryDrivenResult {
   std::vector<BdCurve> curves;
   BdNetwork network;  // the preliminary mesh (before refinement)
   int removed_triangles = 0;
+  int collapsed_edges = 0;
   PanelMesh mesh;
 };
 
