@@ -244,7 +244,6 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
         break;
       }
     }
-    if (std::getenv("BD_DEBUG") && exterior) fprintf(stderr, "ext cycle n=%zu\n", cycle.size());
     if (!ok || h != static_cast<int>(h0) || exterior || cycle.size() < 3) continue;
     double area = 0;
     for (std::size_t i = 0; i < cycle.size(); ++i)
