@@ -40,6 +40,44 @@ double uv_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
   return 0.5 * a;
 }
 
+// Splits p (counter-clockwise in (u,v)) along a diagonal from its first reflex
+// corner into two polygons (a, b) when one exists that stays inside p; the
+// diagonal chosen makes the two parts' corner counts closest to quads.
+bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<int>& p,
+                            std::vector<int>& a, std::vector<int>& b) {
+  const int n = static_cast<int>(p.size());
+  auto uv = [&](int i) { return nodes[p[((i % n) + n) % n]].uv; };
+  for (int r = 0; r < n; ++r) {
+    if (bd::cross2(uv(r) - uv(r - 1), uv(r + 1) - uv(r)) >= 0) continue;  // convex corner
+    int best = -1;
+    double best_score = 1e300;
+    for (int k = r + 2; k <= r + n - 2; ++k) {
+      // the diagonal r-k must not cross an edge of p and must leave both parts positive
+      bool crosses = false;
+      for (int e = 0; e < n && !crosses; ++e) {
+        const int e0 = e, e1 = (e + 1) % n;
+        if (e0 == r || e1 == r || e0 == k % n || e1 == k % n) continue;
+        double t, s;
+        if (bd::intersect_segments(uv(r), uv(k), uv(e0), uv(e1), t, s)) crosses = true;
+      }
+      if (crosses) continue;
+      std::vector<int> pa, pb;
+      for (int i = r; i <= k; ++i) pa.push_back(p[i % n]);
+      for (int i = k; i <= r + n; ++i) pb.push_back(p[i % n]);
+      auto area = [&](const std::vector<int>& q) {
+        double s2 = 0;
+        for (std::size_t i = 0; i < q.size(); ++i) s2 += bd::cross2(nodes[q[i]].uv, nodes[q[(i + 1) % q.size()]].uv);
+        return s2;
+      };
+      if (area(pa) <= 0 || area(pb) <= 0) continue;
+      const double score = std::abs(double(pa.size()) - 4) + std::abs(double(pb.size()) - 4);
+      if (score < best_score) best_score = score, best = k, a = pa, b = pb;
+    }
+    if (best >= 0) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int remove_skewed_triangles(BdNetwork& net, double ratio) {
@@ -145,11 +183,6 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
 
 void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net) {
   std::map<std::pair<int, int>, int> uses;
-  for (const auto& p : net.panels)
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const int a = p[i], b = p[(i + 1) % p.size()];
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
   std::map<std::pair<int, int>, int> mid;
   auto add = [&](const BdNode& n) {
     net.nodes.push_back(n);
@@ -177,6 +210,28 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     }
     return mid[key] = add(m);
   };
+  // A panel with a reflex corner (in (u,v)) has no centre that sees all its
+  // corners: cut it first along a diagonal from that corner.
+  std::vector<std::vector<int>> convex;
+  std::vector<std::vector<int>> todo = net.panels;
+  while (!todo.empty()) {
+    std::vector<int> p = std::move(todo.back());
+    todo.pop_back();
+    std::vector<int> a, b;
+    if (p.size() >= 4 && split_at_reflex_corner(net.nodes, p, a, b)) {
+      todo.push_back(std::move(a));
+      todo.push_back(std::move(b));
+    } else {
+      convex.push_back(std::move(p));
+    }
+  }
+  std::reverse(convex.begin(), convex.end());
+  net.panels = std::move(convex);
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
   std::vector<std::vector<int>> out;
   for (const auto& p : net.panels) {
     const std::size_t n = p.size();
