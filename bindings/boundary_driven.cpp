@@ -1,10 +1,11 @@
 // Bindings of the boundary-driven method (conversions only).
+#include "tessella/boundary_driven.h"
+
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "tessella/boundary_driven.h"
 #include "tessella/errors.h"
 
 namespace py = pybind11;
@@ -58,8 +59,8 @@ void bind_boundary_driven(py::module_& m) {
           [](BoundaryDrivenParams& p, const py::list& curves) {
             p.sources.extra_curves.clear();
             for (const auto& c : curves)
-              p.sources.extra_curves.push_back(
-                  uv_rows(py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(c)));
+              p.sources.extra_curves.push_back(uv_rows(
+                  py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(c)));
           });
 
   m.def("boundary_driven", [](const SurfaceFace& f, const BoundaryDrivenParams& p) {
@@ -89,7 +90,8 @@ void bind_boundary_driven(py::module_& m) {
     std::vector<int> nloop;
     std::vector<bool> ncorner;
     for (const BdNode& n : r.network.nodes)
-      nuv.push_back(n.uv), nxyz.push_back(n.xyz), nloop.push_back(n.loop), ncorner.push_back(n.corner);
+      nuv.push_back(n.uv), nxyz.push_back(n.xyz), nloop.push_back(n.loop),
+          ncorner.push_back(n.corner);
     d["network_uv"] = rows_of<2>(nuv);
     d["network_xyz"] = rows_of<3>(nxyz);
     d["network_loop"] = nloop;

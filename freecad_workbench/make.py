@@ -21,6 +21,11 @@ _PARAM_TO_PROPERTY = {
     "max_panels": "MaxPanels",
     "trim_deflection": "TrimDeflection",
     "samples": "Samples",
+    "rho": "Rho",
+    "skew_ratio": "SkewRatio",
+    "smoothing_iterations": "SmoothingIterations",
+    "quadrangulate": "Quadrangulate",
+    "source_loops": "SourceLoops",
 }
 
 _VIEW_STYLE = {

@@ -32,7 +32,8 @@ class Tracer {
         inside_(bd::make_classifier(boundary)) {
     for (std::size_t k = 0; k < boundary.size(); ++k) {
       const BdPolyline& line = boundary[k];
-      for (int i = 0; i < line.segment_count(); ++i) grid_.add(line.uv[i], line.seg_end_uv(i), k, i);
+      for (int i = 0; i < line.segment_count(); ++i)
+        grid_.add(line.uv[i], line.seg_end_uv(i), k, i);
       const int n = std::max(3, static_cast<int>(std::ceil(line.length() / h_)));
       for (int j = 0; j < n; ++j) {
         const double s = line.length() * j / n;
@@ -90,7 +91,8 @@ class Tracer {
     grid_.query(a, b, [&](int loop, int seg) {
       double t, s;
       const BdPolyline& line = boundary_[loop];
-      if (!hit && bd::intersect_segments(a, b, line.uv[seg], line.seg_end_uv(seg), t, s)) hit = true;
+      if (!hit && bd::intersect_segments(a, b, line.uv[seg], line.seg_end_uv(seg), t, s))
+        hit = true;
     });
     return hit;
   }
@@ -146,7 +148,8 @@ class Tracer {
   }
 
   // Traces a curve through seed (both ways unless from_boundary) and stores it.
-  void add_curve(const Vec2& seed, const Vec3& dir, const BdCurveEnd& seed_end, bool from_boundary) {
+  void add_curve(const Vec2& seed, const Vec3& dir, const BdCurveEnd& seed_end,
+                 bool from_boundary) {
     if (static_cast<int>(curves_.size()) >= p_.max_curves)
       throw LimitExceeded("more than max_curves = " + std::to_string(p_.max_curves) +
                           " BDCurves: raise size or max_curves");
@@ -177,40 +180,54 @@ class Tracer {
 
   void run() {
     const double sp = p_.spacing;
-    // 1. seeds on the boundary spans, traced inward
-    for (std::size_t k = 0; k < boundary_.size(); ++k) {
-      const BdPolyline& line = boundary_[k];
-      std::vector<double> corners = bd_corners(line, p_.corner_angle_deg);
-      std::vector<double> seeds;
-      const double len = line.length();
-      if (corners.empty()) {
-        const int m = std::max(4, static_cast<int>(std::lround(len / sp)));
-        for (int j = 0; j < m; ++j) seeds.push_back(len * j / m);
-      } else {
-        for (std::size_t c = 0; c < corners.size(); ++c) {
-          const double a = corners[c];
-          const double b = c + 1 < corners.size() ? corners[c + 1] : corners[0] + len;
-          const int m = static_cast<int>(std::lround((b - a) / sp));
-          for (int j = 1; j < m; ++j) seeds.push_back(a + (b - a) * j / m);
+    // 1. seeds on the boundary spans, traced inward; then every loop that fewer
+    //    than two curves reach gets two seeds regardless of spacing (a loop
+    //    with no curve would leave an opening inside a panel, a loop with one
+    //    would hang on a bridge)
+    for (int round = 0; round < 2; ++round) {
+      const bool forced = round == 1;
+      for (std::size_t k = 0; k < boundary_.size(); ++k) {
+        if (forced) {
+          int ends = 0;
+          for (const BdCurve& c : curves_)
+            ends += (c.start.loop == int(k)) + (c.end.loop == int(k));
+          if (ends >= 2) continue;
         }
-      }
-      for (double s : seeds) {
-        Vec3 t3;
-        Vec2 tuv;
-        bd_tangent_at(line, s, t3, tuv);
-        const Vec2 uv = line.uv_at(s);
-        const SurfacePoint dp = face_.derivatives(uv.x(), uv.y());
-        const Vec3 inward = dp.du * -tuv.y() + dp.dv * tuv.x();  // left of the loop in (u,v)
-        const FieldDir fd = dir_at(uv, inward);
-        if (fd.d3.dot(inward.normalized()) < 0.3) continue;  // field nearly along the trim here
-        if (too_close(face_.point(uv.x(), uv.y()), fd.d3, 0.4 * sp, true)) continue;
-        BdCurveEnd se{static_cast<int>(k), s};
-        line.segment_at(se.s);  // wraps s into [0, length)
-        add_curve(uv, fd.d3, se, true);
+        const BdPolyline& line = boundary_[k];
+        std::vector<double> corners = bd_corners(line, p_.corner_angle_deg);
+        std::vector<double> seeds;
+        const double len = line.length();
+        if (corners.empty()) {
+          const int m = std::max(4, static_cast<int>(std::lround(len / sp)));
+          for (int j = 0; j < m; ++j) seeds.push_back(len * j / m);
+        } else {
+          for (std::size_t c = 0; c < corners.size(); ++c) {
+            const double a = corners[c];
+            const double b = c + 1 < corners.size() ? corners[c + 1] : corners[0] + len;
+            const int m = static_cast<int>(std::lround((b - a) / sp));
+            for (int j = 1; j < m; ++j) seeds.push_back(a + (b - a) * j / m);
+          }
+        }
+        if (forced && seeds.size() > 2) seeds = {seeds[0], seeds[seeds.size() / 2]};
+        for (double s : seeds) {
+          Vec3 t3;
+          Vec2 tuv;
+          bd_tangent_at(line, s, t3, tuv);
+          const Vec2 uv = line.uv_at(s);
+          const SurfacePoint dp = face_.derivatives(uv.x(), uv.y());
+          const Vec3 inward = dp.du * -tuv.y() + dp.dv * tuv.x();  // left of the loop in (u,v)
+          const FieldDir fd = dir_at(uv, inward);
+          if (fd.d3.dot(inward.normalized()) < 0.3) continue;  // field nearly along the trim here
+          if (!forced && too_close(face_.point(uv.x(), uv.y()), fd.d3, 0.4 * sp, true)) continue;
+          BdCurveEnd se{static_cast<int>(k), s};
+          line.segment_at(se.s);  // wraps s into [0, length)
+          add_curve(uv, fd.d3, se, true);
+        }
       }
     }
     // 2. offset seeds, line by line (boundary loops first, then curves as made)
-    for (std::size_t k = 0; k < boundary_.size(); ++k) offset_seeds_along(boundary_[k].uv, true, &boundary_[k]);
+    for (std::size_t k = 0; k < boundary_.size(); ++k)
+      offset_seeds_along(boundary_[k].uv, true, &boundary_[k]);
     for (std::size_t c = 0; c < curves_.size(); ++c) {
       if (curves_[c].uv.size() < 2) continue;
       const std::vector<Vec2> uv = curves_[c].uv;  // copy: curves_ grows
@@ -280,8 +297,9 @@ class Tracer {
       Vec3 prev = Vec3::Zero();
       for (int k = 0; k <= 64; ++k) {
         const double t = k / 64.0;
-        const Vec3 p = along_u ? face.point(b.u_min + t * (b.u_max - b.u_min), 0.5 * (b.v_min + b.v_max))
-                               : face.point(0.5 * (b.u_min + b.u_max), b.v_min + t * (b.v_max - b.v_min));
+        const Vec3 p =
+            along_u ? face.point(b.u_min + t * (b.u_max - b.u_min), 0.5 * (b.v_min + b.v_max))
+                    : face.point(0.5 * (b.u_min + b.u_max), b.v_min + t * (b.v_max - b.v_min));
         if (k > 0) len += (p - prev).norm();
         prev = p;
       }
@@ -292,11 +310,13 @@ class Tracer {
     return sample_bd_tensor(tensor, face, nu, nv);
   }
 
-  static bd::SegmentGrid make_grid(const SurfaceFace& face, const std::vector<BdPolyline>& boundary) {
+  static bd::SegmentGrid make_grid(const SurfaceFace& face,
+                                   const std::vector<BdPolyline>& boundary) {
     const UvBounds b = face.bounds();
     std::size_t segs = 0;
     for (const auto& l : boundary) segs += l.uv.size();
-    const int cells = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segs)) / 2), 8, 512);
+    const int cells =
+        std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segs)) / 2), 8, 512);
     return bd::SegmentGrid(Vec2(b.u_min, b.v_min), Vec2(b.u_max, b.v_max), cells);
   }
 

@@ -18,8 +18,8 @@ struct Entry {
 
 struct HalfEdge {
   int from, to;
-  double angle;     // of the outgoing direction at `from`, in (u,v)
-  bool exterior;    // runs against a trim loop's orientation
+  double angle;   // of the outgoing direction at `from`, in (u,v)
+  bool exterior;  // runs against a trim loop's orientation
 };
 
 // uv of a curve at parameter p (segment index + t), wrapping closed curves.
@@ -59,10 +59,13 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
     };
     std::vector<std::vector<Cand>> cands(boundary.size());
     for (std::size_t k = 0; k < boundary.size(); ++k)
-      for (double s : bd_corners(boundary[k], params.corner_angle_deg)) cands[k].push_back({s, true, -1});
+      for (double s : bd_corners(boundary[k], params.corner_angle_deg))
+        cands[k].push_back({s, true, -1});
     for (std::size_t c = 0; c < curves.size(); ++c) {
-      if (curves[c].start.loop >= 0) cands[curves[c].start.loop].push_back({curves[c].start.s, false, int(2 * c)});
-      if (curves[c].end.loop >= 0) cands[curves[c].end.loop].push_back({curves[c].end.s, false, int(2 * c + 1)});
+      if (curves[c].start.loop >= 0)
+        cands[curves[c].start.loop].push_back({curves[c].start.s, false, int(2 * c)});
+      if (curves[c].end.loop >= 0)
+        cands[curves[c].end.loop].push_back({curves[c].end.s, false, int(2 * c + 1)});
     }
     for (std::size_t k = 0; k < boundary.size(); ++k) {
       const BdPolyline& line = boundary[k];
@@ -70,9 +73,11 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
       const double tol = 1e-9 * ms;
       auto& cs = cands[k];
       std::sort(cs.begin(), cs.end(), [](const Cand& a, const Cand& b) { return a.s < b.s; });
-      if (cs.size() < 3) {  // a loop nobody reached: give it three nodes anyway
+      if (cs.size() < 4) {  // a loop few curves reached: at least four nodes
         const double s0 = cs.empty() ? 0.0 : cs[0].s;
-        for (int j = static_cast<int>(cs.size()); j < 3; ++j) cs.push_back({std::fmod(s0 + len * j / 3.0, len), false, -1});
+        const int have = static_cast<int>(cs.size());
+        for (int j = 1; j <= 4 - have; ++j)
+          cs.push_back({std::fmod(s0 + len * j / (5.0 - have), len), false, -1});
         std::sort(cs.begin(), cs.end(), [](const Cand& a, const Cand& b) { return a.s < b.s; });
       }
       std::vector<Entry>& es = loop_entries[k];
@@ -157,7 +162,8 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
     auto& es = curve_entries[c];
     if (start_node[c] >= 0) es.push_back({0.0, start_node[c]});
     if (end_node[c] >= 0) es.push_back({double(segs), end_node[c]});
-    std::sort(es.begin(), es.end(), [](const Entry& x, const Entry& y) { return x.param < y.param; });
+    std::sort(es.begin(), es.end(),
+              [](const Entry& x, const Entry& y) { return x.param < y.param; });
     const std::size_t m = es.size();
     const std::size_t pairs = C.closed ? (m >= 2 ? m : 0) : (m >= 1 ? m - 1 : 0);
     for (std::size_t k = 0; k < pairs; ++k) {
@@ -188,7 +194,10 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
       const Vec2 qa = va < sb ? L.uv_at(va) : pb;
       double y = sb;
       const int ib = L.segment_at(y);
-      const double vb = (y > L.arc[ib] ? L.arc[ib] : (ib > 0 ? L.arc[ib - 1] : L.arc[L.segment_count() - 1] - len)) + (sb - y);
+      const double vb =
+          (y > L.arc[ib] ? L.arc[ib]
+                         : (ib > 0 ? L.arc[ib - 1] : L.arc[L.segment_count() - 1] - len)) +
+          (sb - y);
       const Vec2 qb = vb > sa ? L.uv_at(vb) : pa;
       add_edge(es[i].node, i + 1 < m ? es[i + 1].node : es[0].node, qa - pa, qb - pb, true);
     }
@@ -198,7 +207,8 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
   const int nn = static_cast<int>(net.nodes.size());
   std::vector<int> degree(nn, 0);
   std::vector<char> alive(half.size() / 2, 1);
-  for (std::size_t e = 0; e < alive.size(); ++e) ++degree[half[2 * e].from], ++degree[half[2 * e].to];
+  for (std::size_t e = 0; e < alive.size(); ++e)
+    ++degree[half[2 * e].from], ++degree[half[2 * e].to];
   for (bool changed = true; changed;) {
     changed = false;
     for (std::size_t e = 0; e < alive.size(); ++e) {
@@ -245,13 +255,34 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
       }
     }
     if (!ok || h != static_cast<int>(h0) || exterior || cycle.size() < 3) continue;
-    double area = 0;
-    for (std::size_t i = 0; i < cycle.size(); ++i)
-      area += bd::cross2(net.nodes[cycle[i]].uv, net.nodes[cycle[(i + 1) % cycle.size()]].uv);
-    std::vector<int> sorted = cycle;
-    std::sort(sorted.begin(), sorted.end());
-    if (area <= 0 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
-    net.panels.push_back(std::move(cycle));
+    // A face that visits a node twice (a spike left by a dangling tree, or a
+    // bridge) is split there; the simple, positive parts are kept.
+    std::vector<std::vector<int>> parts{cycle};
+    while (!parts.empty()) {
+      std::vector<int> c = std::move(parts.back());
+      parts.pop_back();
+      std::size_t i = 0, j = 0;
+      bool repeated = false;
+      for (i = 0; i < c.size() && !repeated; ++i)
+        for (j = i + 1; j < c.size(); ++j)
+          if (c[i] == c[j]) {
+            repeated = true;
+            break;
+          }
+      if (repeated) {
+        --i;  // the for loop advanced it once more
+        std::vector<int> inner(c.begin() + i, c.begin() + j);
+        std::vector<int> outer(c.begin(), c.begin() + i);
+        outer.insert(outer.end(), c.begin() + j, c.end());
+        if (inner.size() >= 3) parts.push_back(std::move(inner));
+        if (outer.size() >= 3) parts.push_back(std::move(outer));
+        continue;
+      }
+      double area = 0;
+      for (std::size_t k = 0; k < c.size(); ++k)
+        area += bd::cross2(net.nodes[c[k]].uv, net.nodes[c[(k + 1) % c.size()]].uv);
+      if (area > 0) net.panels.push_back(std::move(c));
+    }
   }
   return net;
 }

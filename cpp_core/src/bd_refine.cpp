@@ -21,6 +21,41 @@ double corner_angle(const Vec3& prev, const Vec3& p, const Vec3& next) {
 
 int rank(const BdNode& n) { return n.corner ? 2 : (n.loop >= 0 ? 1 : 0); }
 
+// Nodes per trim loop used by the panels (a loop keeps at least four).
+std::map<int, int> loop_node_counts(const BdNetwork& net) {
+  std::vector<char> used(net.nodes.size(), 0);
+  for (const auto& p : net.panels)
+    for (int v : p) used[v] = 1;
+  std::map<int, int> count;
+  for (std::size_t v = 0; v < net.nodes.size(); ++v)
+    if (used[v] && net.nodes[v].loop >= 0) ++count[net.nodes[v].loop];
+  return count;
+}
+constexpr int kMinLoopNodes = 4;
+
+// Whether replacing node v by w (w moved to w_uv) keeps every panel around v
+// and w unfolded in (u,v) (panels that vanish do not count).
+bool merge_keeps_panels(const BdNetwork& net, const std::vector<int>& panels, int v, int w,
+                        const Vec2& w_uv) {
+  for (int pi : panels) {
+    std::vector<int> q;
+    for (int x : net.panels[pi]) {
+      const int y = x == v ? w : x;
+      if (q.empty() || q.back() != y) q.push_back(y);
+    }
+    while (q.size() > 1 && q.front() == q.back()) q.pop_back();
+    if (q.size() < 3) continue;
+    double a = 0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      const Vec2 p0 = q[i] == w ? w_uv : net.nodes[q[i]].uv;
+      const Vec2 p1 = q[(i + 1) % q.size()] == w ? w_uv : net.nodes[q[(i + 1) % q.size()]].uv;
+      a += bd::cross2(p0, p1);
+    }
+    if (!(a > 0)) return false;
+  }
+  return true;
+}
+
 // Drops repeated consecutive corners and panels left with fewer than three.
 void clean_panels(std::vector<std::vector<int>>& panels) {
   std::vector<std::vector<int>> out;
@@ -36,7 +71,8 @@ void clean_panels(std::vector<std::vector<int>>& panels) {
 
 double uv_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
   double a = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) a += bd::cross2(nodes[p[i]].uv, nodes[p[(i + 1) % p.size()]].uv);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    a += bd::cross2(nodes[p[i]].uv, nodes[p[(i + 1) % p.size()]].uv);
   return 0.5 * a;
 }
 
@@ -66,7 +102,8 @@ bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<
       for (int i = k; i <= r + n; ++i) pb.push_back(p[i % n]);
       auto area = [&](const std::vector<int>& q) {
         double s2 = 0;
-        for (std::size_t i = 0; i < q.size(); ++i) s2 += bd::cross2(nodes[q[i]].uv, nodes[q[(i + 1) % q.size()]].uv);
+        for (std::size_t i = 0; i < q.size(); ++i)
+          s2 += bd::cross2(nodes[q[i]].uv, nodes[q[(i + 1) % q.size()]].uv);
         return s2;
       };
       if (area(pa) <= 0 || area(pb) <= 0) continue;
@@ -87,24 +124,37 @@ int remove_skewed_triangles(BdNetwork& net, double ratio) {
     std::vector<int> rep(net.nodes.size());
     std::iota(rep.begin(), rep.end(), 0);
     std::vector<char> touched(net.nodes.size(), 0);
+    std::map<int, int> on_loop = loop_node_counts(net);
+    std::vector<std::vector<int>> incident(net.nodes.size());
+    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
+      for (int x : net.panels[pi]) incident[x].push_back(static_cast<int>(pi));
     int merged = 0;
     for (const auto& p : net.panels) {
       if (p.size() != 3) continue;
       if (touched[p[0]] || touched[p[1]] || touched[p[2]]) continue;  // next pass
       double ang[3];
       for (int i = 0; i < 3; ++i)
-        ang[i] = corner_angle(net.nodes[p[(i + 2) % 3]].xyz, net.nodes[p[i]].xyz, net.nodes[p[(i + 1) % 3]].xyz);
+        ang[i] = corner_angle(net.nodes[p[(i + 2) % 3]].xyz, net.nodes[p[i]].xyz,
+                              net.nodes[p[(i + 1) % 3]].xyz);
       const int imax = static_cast<int>(std::max_element(ang, ang + 3) - ang);
       const double amin = *std::min_element(ang, ang + 3);
       if (ang[imax] <= 0 || amin / ang[imax] >= ratio) continue;
       int v = p[imax];
       const int a = p[(imax + 1) % 3], b = p[(imax + 2) % 3];
-      int w = (net.nodes[a].xyz - net.nodes[v].xyz).norm() <= (net.nodes[b].xyz - net.nodes[v].xyz).norm() ? a : b;
+      int w = (net.nodes[a].xyz - net.nodes[v].xyz).norm() <=
+                      (net.nodes[b].xyz - net.nodes[v].xyz).norm()
+                  ? a
+                  : b;
       if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);  // v is removed, w kept
       if (rank(net.nodes[v]) == 2) continue;
       if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
+      if (!merge_keeps_panels(net, incident[v], v, w, net.nodes[w].uv)) continue;
+      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
       rep[v] = w;
       touched[v] = touched[w] = 1;
+      for (int pi : incident[v])
+        for (int x : net.panels[pi]) touched[x] = 1;
       ++merged;
     }
     if (merged == 0) break;
@@ -137,6 +187,7 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
     std::vector<char> touched(net.nodes.size(), 0);
     std::vector<int> rep(net.nodes.size());
     std::iota(rep.begin(), rep.end(), 0);
+    std::map<int, int> on_loop = loop_node_counts(net);
     int merged = 0;
     for (const auto& [len, e] : cand) {
       int v = e.first, w = e.second;  // v is removed, w kept
@@ -144,6 +195,7 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
       if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);
       if (rank(net.nodes[v]) == 2) continue;
       if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
       // would a panel visit w twice?
       bool bad = false;
       for (int pi : incident[v]) {
@@ -154,18 +206,20 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
           const bool adjacent = p[(i + 1) % n] == v || p[(i + n - 1) % n] == v;
           if (!adjacent) bad = true;
         }
-        if (n <= 3 && !bad) {
-          // a triangle with edge v-w vanishes; fine
-        }
       }
       if (bad) continue;
-      // no two panels may end up sharing more than the merged edge twice: skip
-      // when v and w have another common neighbour outside their shared panels
-      if (rank(net.nodes[v]) == 0 && rank(net.nodes[w]) == 0) {
-        BdNode& k = net.nodes[w];
-        const Projection pr = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
-        k.uv = pr.uv, k.xyz = pr.point;
+      Projection moved;
+      const bool both_inside = rank(net.nodes[v]) == 0 && rank(net.nodes[w]) == 0;
+      if (both_inside) {
+        const BdNode& k = net.nodes[w];
+        moved = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
       }
+      const Vec2 w_uv = both_inside ? moved.uv : net.nodes[w].uv;
+      std::vector<int> around = incident[v];
+      around.insert(around.end(), incident[w].begin(), incident[w].end());
+      if (!merge_keeps_panels(net, around, v, w, w_uv)) continue;
+      if (both_inside) net.nodes[w].uv = moved.uv, net.nodes[w].xyz = moved.point;
+      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
       rep[v] = w;
       touched[v] = touched[w] = 1;
       for (int pi : incident[v])
@@ -181,14 +235,17 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
   return merged_total;
 }
 
-void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net) {
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                   BdNetwork& net) {
   std::map<std::pair<int, int>, int> uses;
   std::map<std::pair<int, int>, int> mid;
   auto add = [&](const BdNode& n) {
     net.nodes.push_back(n);
     return static_cast<int>(net.nodes.size()) - 1;
   };
-  auto midpoint = [&](int a, int b) {
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  auto is_in = [&](const Vec2& uv) { return boundary.empty() || inside.inside(uv); };
+  auto midpoint = [&](int a, int b, const Vec2& centre_uv) {
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
     auto it = mid.find(key);
     if (it != mid.end()) return it->second;
@@ -207,6 +264,12 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     } else {
       const Projection pr = face.project(0.5 * (na.xyz + nb.xyz), 0.5 * (na.uv + nb.uv));
       m.uv = pr.uv, m.xyz = pr.point;
+      // an edge between two trim nodes may chord across an opening: move its
+      // midpoint toward the panel's centre until it is on the face
+      for (int k = 1; k <= 4 && !is_in(m.uv); ++k) {
+        m.uv = 0.5 * (na.uv + nb.uv) + 0.25 * k * (centre_uv - 0.5 * (na.uv + nb.uv));
+        m.xyz = face.point(m.uv.x(), m.uv.y());
+      }
     }
     return mid[key] = add(m);
   };
@@ -242,17 +305,29 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     BdNode c;
     const Projection pr = face.project(c3, c2);
     c.uv = pr.uv, c.xyz = pr.point;
-    if (!face.is_inside(c.uv.x(), c.uv.y())) c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
+    if (!is_in(c.uv)) c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
     const int ci = add(c);
     std::vector<int> m(n);
-    for (std::size_t i = 0; i < n; ++i) m[i] = midpoint(p[i], p[(i + 1) % n]);
-    for (std::size_t i = 0; i < n; ++i) out.push_back({p[i], m[i], ci, m[(i + n - 1) % n]});
+    for (std::size_t i = 0; i < n; ++i) m[i] = midpoint(p[i], p[(i + 1) % n], c.uv);
+    std::vector<std::vector<int>> quads;
+    bool folded = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      quads.push_back({p[i], m[i], ci, m[(i + n - 1) % n]});
+      folded = folded || !(uv_area(net.nodes, quads.back()) > 0);
+    }
+    if (!folded) {
+      out.insert(out.end(), quads.begin(), quads.end());
+    } else {  // no centre sees every corner: keep the panel, with its midpoints
+      std::vector<int> poly;
+      for (std::size_t i = 0; i < n; ++i) poly.push_back(p[i]), poly.push_back(m[i]);
+      out.push_back(std::move(poly));
+    }
   }
   net.panels = std::move(out);
 }
 
-void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net,
-                    int iterations, double factor) {
+void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                    BdNetwork& net, int iterations, double factor) {
   require_in_range("smoothing_iterations", iterations, 0, 1000);
   require_in_range("smoothing factor", factor, 0.0, 1.0);
   const std::size_t nn = net.nodes.size();
@@ -295,7 +370,8 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
         if (prev[v] < 0 || next[v] < 0) continue;
         const BdPolyline& L = boundary[n.loop];
         const double len = L.length();
-        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len), dn = std::fmod(net.nodes[next[v]].s - n.s, len);
+        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len),
+               dn = std::fmod(net.nodes[next[v]].s - n.s, len);
         if (dp < 0) dp += len;
         if (dn < 0) dn += len;
         double s = n.s + factor * 0.5 * (dn - dp);

@@ -46,7 +46,8 @@ BdSources select_bd_sources(const SurfaceFace& face, const std::vector<TrimLoop>
     line.closed = true;
     line.loop = static_cast<int>(k);
     line.outer = loops[k].outer;
-    if (line.uv.size() < 3) throw InvalidGeometry("trim loop " + std::to_string(k) + " has fewer than 3 points");
+    if (line.uv.size() < 3)
+      throw InvalidGeometry("trim loop " + std::to_string(k) + " has fewer than 3 points");
     finish_polyline(line);
     if (line.length() <= tiny)
       throw InvalidGeometry("trim loop " + std::to_string(k) + " is degenerate (no length in 3D)");
@@ -102,7 +103,8 @@ std::vector<double> bd_corners(const BdPolyline& line, double angle_deg) {
     if (!line.closed && (i == 0 || i == n - 1)) continue;
     // previous and next non-degenerate chords
     Vec3 a = Vec3::Zero(), b = Vec3::Zero();
-    for (int k = 1; k < n && a.norm() <= tiny; ++k) a = line.xyz[i] - line.xyz[((i - k) % n + n) % n];
+    for (int k = 1; k < n && a.norm() <= tiny; ++k)
+      a = line.xyz[i] - line.xyz[((i - k) % n + n) % n];
     for (int k = 1; k < n && b.norm() <= tiny; ++k) b = line.xyz[(i + k) % n] - line.xyz[i];
     if (a.norm() <= tiny || b.norm() <= tiny) continue;
     if (a.normalized().dot(b.normalized()) < cos_limit) out.push_back(line.arc[i]);

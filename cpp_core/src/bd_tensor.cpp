@@ -23,8 +23,9 @@ BdTensor build_bd_tensor(const SurfaceFace& face, const std::vector<BdPolyline>&
   t.rho = params.rho;
   for (const BdPolyline& line : sources) {
     const double len = line.length();
-    const int n = std::max(line.closed ? 3 : 2,
-                           static_cast<int>(std::ceil(len / params.sample_spacing)) + (line.closed ? 0 : 1));
+    const int n =
+        std::max(line.closed ? 3 : 2,
+                 static_cast<int>(std::ceil(len / params.sample_spacing)) + (line.closed ? 0 : 1));
     for (int k = 0; k < n; ++k) {
       double s = line.closed ? len * k / n : len * k / (n - 1);
       const int i = line.segment_at(s);
@@ -57,7 +58,8 @@ Frame frame_at(const SurfaceFace& face, const Vec2& uv) {
   f.sp = face.derivatives(uv.x(), uv.y());
   f.normal = face.normal(uv.x(), uv.y());
   f.e1 = f.sp.du - f.sp.du.dot(f.normal) * f.normal;
-  if (f.e1.norm() < 1e-12 * (f.sp.dv.norm() + 1e-300)) f.e1 = f.sp.dv - f.sp.dv.dot(f.normal) * f.normal;
+  if (f.e1.norm() < 1e-12 * (f.sp.dv.norm() + 1e-300))
+    f.e1 = f.sp.dv - f.sp.dv.dot(f.normal) * f.normal;
   f.e1.normalize();
   f.e2 = f.normal.cross(f.e1);
   return f;
@@ -120,7 +122,8 @@ BdTensorGrid sample_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, i
 BdDirections eval_bd_tensor(const BdTensorGrid& g, const SurfaceFace& face, const Vec2& uv) {
   const double x = std::clamp((uv.x() - g.lo.x()) / g.step.x(), 0.0, g.nu - 1.0);
   const double y = std::clamp((uv.y() - g.lo.y()) / g.step.y(), 0.0, g.nv - 1.0);
-  const int i = std::min(static_cast<int>(x), g.nu - 2), j = std::min(static_cast<int>(y), g.nv - 2);
+  const int i = std::min(static_cast<int>(x), g.nu - 2),
+            j = std::min(static_cast<int>(y), g.nv - 2);
   const double fx = x - i, fy = y - j;
   auto at = [&](int a, int b) { return g.c4s4[static_cast<std::size_t>(a) * g.nv + b]; };
   const Vec2 c = (1 - fx) * ((1 - fy) * at(i, j) + fy * at(i, j + 1)) +

@@ -1,13 +1,53 @@
 #include "tessella/boundary_driven.h"
 
 #include <cmath>
+#include <string>
 
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
 
-BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face, const BoundaryDrivenParams& params) {
+namespace {
+
+// Refuses a mesh that does not tile the face: a trim loop no panel reaches (an
+// opening swallowed by a panel), a panel folded over in (u,v), or panel areas
+// not adding up to the face's area. These happen when `size` is too coarse for
+// the openings and notches; a clear error beats a wrong mesh.
+void check_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                const BdNetwork& net, double size) {
+  const std::string hint =
+      " (size " + std::to_string(size) +
+      " mm is too coarse for this face's openings and notches: use a smaller size)";
+  std::vector<char> reached(boundary.size(), 0);
+  double area = 0;
+  for (const auto& p : net.panels) {
+    double uv_area = 0;
+    Vec3 a = Vec3::Zero();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const BdNode& n0 = net.nodes[p[i]];
+      const BdNode& n1 = net.nodes[p[(i + 1) % p.size()]];
+      uv_area += n0.uv.x() * n1.uv.y() - n1.uv.x() * n0.uv.y();
+      a += (n0.xyz - net.nodes[p[0]].xyz).cross(n1.xyz - net.nodes[p[0]].xyz);
+      if (n0.loop >= 0) reached[n0.loop] = 1;
+    }
+    if (!(uv_area > 0)) throw GeometryFailure("boundary-driven mesh: a panel folds over" + hint);
+    area += 0.5 * a.norm();
+  }
+  for (std::size_t k = 0; k < boundary.size(); ++k)
+    if (!reached[k])
+      throw GeometryFailure("boundary-driven mesh: trim loop " + std::to_string(k) +
+                            " is reached by no panel" + hint);
+  const double face_area = face.area();
+  if (std::abs(area - face_area) > 0.04 * face_area)
+    throw GeometryFailure("boundary-driven mesh: the panels cover " +
+                          std::to_string(area / face_area) + " of the face area" + hint);
+}
+
+}  // namespace
+
+BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
+                                            const BoundaryDrivenParams& params) {
   const double ms = face.model_size();
   require_in_range("size (mm)", params.size, 1e-4 * ms, ms);
   require_in_range("rho", params.rho, 0.5, 8.0);
@@ -42,7 +82,8 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face, const Bound
   BdNetworkParams np;
   np.corner_angle_deg = params.corner_angle_deg;
   r.network = build_bd_network(face, r.boundary, r.curves, np);
-  if (r.network.panels.empty()) throw GeometryFailure("the boundary-driven curve network has no faces");
+  if (r.network.panels.empty())
+    throw GeometryFailure("the boundary-driven curve network has no faces");
 
   BdNetwork net = r.network;
   r.collapsed_edges = collapse_short_edges(face, net, params.min_edge_fraction * cp.spacing);
@@ -50,12 +91,14 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face, const Bound
   if (params.quadrangulate) quadrangulate(face, r.boundary, net);
   smooth_bd_mesh(face, r.boundary, net, params.smoothing_iterations);
 
+  check_mesh(face, r.boundary, net, params.size);
+
   PanelMesh& m = r.mesh;
   for (const BdNode& n : net.nodes) m.uv.push_back(n.uv), m.xyz.push_back(n.xyz);
   m.panels = net.panels;
   if (static_cast<long long>(m.panels.size()) > params.max_panels)
-    throw LimitExceeded(std::to_string(m.panels.size()) + " panels exceed max_panels = " +
-                        std::to_string(params.max_panels));
+    throw LimitExceeded(std::to_string(m.panels.size()) +
+                        " panels exceed max_panels = " + std::to_string(params.max_panels));
   remove_unused_vertices(m);
   if (face.reversed()) reverse_panels(m);
   build_rods(m);

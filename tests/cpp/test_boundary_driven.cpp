@@ -28,7 +28,8 @@ BdSources sources_of(const SurfaceFace& f, const BdSourceParams& p = {}) {
 
 double polygon_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
   Vec3 a = Vec3::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) a += nodes[p[i]].xyz.cross(nodes[p[(i + 1) % p.size()]].xyz);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    a += nodes[p[i]].xyz.cross(nodes[p[(i + 1) % p.size()]].xyz);
   return 0.5 * a.z();
 }
 
@@ -102,7 +103,9 @@ TEST(BdTensor, StraightSourceGivesAParallelFieldEverywhere) {
   tp.sample_spacing = 50;
   const double angle = 25 * kPi / 180;
   const BdTensor t = build_bd_tensor(
-      f, {straight(f, Vec2(300, 300), Vec2(300 + 400 * std::cos(angle), 300 + 400 * std::sin(angle)))}, tp);
+      f,
+      {straight(f, Vec2(300, 300), Vec2(300 + 400 * std::cos(angle), 300 + 400 * std::sin(angle)))},
+      tp);
   for (Vec2 uv : {Vec2(10, 10), Vec2(900, 100), Vec2(500, 950)}) {
     const BdDirections d = eval_bd_tensor(t, f, uv);
     EXPECT_NEAR(dist_mod90(mod90(d.d1), 25.0), 0.0, 1e-9);
@@ -118,7 +121,8 @@ TEST(BdTensor, InverseDistanceWeightingOfDoubledAnglesEq1And2) {
   // Two samples: tangent at 0 deg at (0,0) and at 40 deg at (300,0).
   BdTensor t;
   t.samples.push_back({Vec2(0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0)});
-  t.samples.push_back({Vec2(300, 0), Vec3(300, 0, 0), Vec3(std::cos(40 * kPi / 180), std::sin(40 * kPi / 180), 0)});
+  t.samples.push_back(
+      {Vec2(300, 0), Vec3(300, 0, 0), Vec3(std::cos(40 * kPi / 180), std::sin(40 * kPi / 180), 0)});
   for (double rho : {1.0, 2.0, 3.5}) {
     t.rho = rho;
     // at x = 100: distances 100 and 200
@@ -215,7 +219,9 @@ TEST(BdNetwork, SquarePlateIsAFourByFourGridOfQuads) {
   }
   EXPECT_NEAR(area, 1e6, 1e-6);
   EXPECT_EQ(net.nodes.size(), 25u);  // 9 crossings, 12 curve ends, 4 corners
-  EXPECT_EQ(std::count_if(net.nodes.begin(), net.nodes.end(), [](const BdNode& n) { return n.corner; }), 4);
+  EXPECT_EQ(
+      std::count_if(net.nodes.begin(), net.nodes.end(), [](const BdNode& n) { return n.corner; }),
+      4);
 }
 
 TEST(BdNetwork, PlateWithHoleFacesTileTheFaceExactly) {
@@ -228,7 +234,9 @@ TEST(BdNetwork, PlateWithHoleFacesTileTheFaceExactly) {
   }
   EXPECT_NEAR(area, 1e6 - 250.0 * 250.0, 1e-6);
   // the hole's corners are nodes
-  EXPECT_EQ(std::count_if(net.nodes.begin(), net.nodes.end(), [](const BdNode& n) { return n.corner; }), 8);
+  EXPECT_EQ(
+      std::count_if(net.nodes.begin(), net.nodes.end(), [](const BdNode& n) { return n.corner; }),
+      8);
 }
 
 // ---------------------------------------------------------------- stage 5
@@ -326,11 +334,13 @@ TEST(BdRefine, SmoothingRestoresARegularGridAndKeepsTrimNodesOnTheTrim) {
   net.nodes[id(2, 0)].s = s_of(Vec2(260, 0));
   for (auto& n : net.nodes) n.xyz = f.point(n.uv.x(), n.uv.y());
   for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) net.panels.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    for (int i = 0; i < 3; ++i)
+      net.panels.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
   smooth_bd_mesh(f, s.boundary, net, 200, 0.5);
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
-      EXPECT_NEAR((net.nodes[id(i, j)].uv - Vec2(100 * i, 100 * j)).norm(), 0.0, 1e-3) << i << "," << j;
+      EXPECT_NEAR((net.nodes[id(i, j)].uv - Vec2(100 * i, 100 * j)).norm(), 0.0, 1e-3)
+          << i << "," << j;
     }
   EXPECT_NEAR(net.nodes[id(2, 0)].uv.y(), 0.0, 1e-12);  // slid along the trim
 }
@@ -346,7 +356,8 @@ TEST(BoundaryDriven, PlateWithHoleIsAllQuadsTilingTheFaceWithNodesOnTheTrim) {
   for (const auto& panel : m.panels) {
     EXPECT_EQ(panel.size(), 4u);
     Vec3 a = Vec3::Zero();
-    for (std::size_t i = 0; i < panel.size(); ++i) a += m.xyz[panel[i]].cross(m.xyz[panel[(i + 1) % panel.size()]]);
+    for (std::size_t i = 0; i < panel.size(); ++i)
+      a += m.xyz[panel[i]].cross(m.xyz[panel[(i + 1) % panel.size()]]);
     EXPECT_GT(a.z(), 0.0);  // counter-clockwise about the normal (+z)
     area += 0.5 * a.z();
   }

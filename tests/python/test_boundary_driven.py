@@ -216,3 +216,40 @@ def test_cylinder_side_face_with_seam_does_not_crash():
     r = tessella.panelize(face, method="boundary_driven", size=1500.0)
     assert len(r.panels) > 0
     assert r.metrics["panel_area"].sum() == pytest.approx(face.Area, rel=0.05)
+
+
+def test_too_coarse_a_size_is_a_clear_error_not_a_wrong_mesh():
+    face = _load("vault_openings")
+    with pytest.raises(RuntimeError, match="too coarse"):
+        tessella.panelize(face, method="boundary_driven", size=math.sqrt(face.Area / 30))
+
+
+def test_panelization_document_object_with_boundary_driven(freeform):
+    from freecad_workbench.features import panelization as feat
+
+    doc = FreeCAD.newDocument("TessellaBdTest")
+    try:
+        src = doc.addObject("Part::Feature", "Src")
+        src.Shape = freeform
+        doc.recompute()
+        obj = tessella.make_panelization((src, "Face1"), method="boundary_driven", size=SIZE,
+                                         smoothing_iterations=12)
+        assert obj.SmoothingIterations == 12
+        for name in feat.BD_PROPERTIES:
+            assert name in obj.PropertiesList
+        assert obj.getEditorMode("Rho") == [] and obj.getEditorMode("UCount") == ["Hidden"]
+        doc.recompute()
+        assert obj.PanelCount > 50
+        assert obj.QuadShare == pytest.approx(1.0)
+        first = obj.PanelCount
+        obj.SourceLoops = [0]
+        obj.Rho = 3.0
+        doc.recompute()
+        res = obj.Proxy.result(obj).result
+        assert res.params["source_loops"] == [0] and res.params["rho"] == 3.0
+        assert obj.PanelCount > 0
+        assert first > 0
+        panels = feat.children_of(obj)[0]
+        assert len(panels.Shape.Faces) == obj.PanelCount
+    finally:
+        FreeCAD.closeDocument(doc.Name)

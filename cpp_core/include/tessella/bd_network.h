@@ -29,8 +29,8 @@ namespace tessella {
 struct BdNode {
   Vec2 uv = Vec2::Zero();
   Vec3 xyz = Vec3::Zero();
-  int loop = -1;       // trim loop (index into boundary) the node lies on, -1 inside
-  double s = 0.0;      // arc length along that loop
+  int loop = -1;        // trim loop (index into boundary) the node lies on, -1 inside
+  double s = 0.0;       // arc length along that loop
   bool corner = false;  // a trim corner: never moved or removed
 };
 

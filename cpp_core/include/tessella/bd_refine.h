@@ -31,14 +31,15 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
 // midpoint shared by two panels splits both). Midpoints of edges along the trim
 // are placed on the trim polyline (half-way in arc length); other new nodes are
 // projected onto the surface.
-void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net);
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                   BdNetwork& net);
 
 // Section 3.3: Laplacian smoothing (eq. 3, equal weights, step `factor`).
 // Interior nodes move toward the centroid of their neighbours and are projected
 // back onto the surface; nodes on the trim move along their loop toward the
 // middle of their two trim neighbours (so they stay on the trim polyline);
 // corners stay fixed. A move that would fold a panel (in (u,v)) is skipped.
-void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net,
-                    int iterations, double factor = 0.5);
+void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                    BdNetwork& net, int iterations, double factor = 0.5);
 
 }  // namespace tessella

@@ -38,7 +38,7 @@ BdTensor build_bd_tensor(const SurfaceFace& face, const std::vector<BdPolyline>&
 
 struct BdDirections {
   Vec3 normal;
-  Vec3 d1, d2;   // unit 3D directions, d2 = normal x d1
+  Vec3 d1, d2;    // unit 3D directions, d2 = normal x d1
   Vec2 uv1, uv2;  // the same directions in (u,v) per mm of 3D length
 };
 

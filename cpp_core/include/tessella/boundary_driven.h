@@ -12,8 +12,8 @@
 namespace tessella {
 
 struct BoundaryDrivenParams {
-  double size = 0.0;       // target panel edge length, mm (required)
-  double rho = 2.0;        // IDW power of the BDTensor (eq. 2)
+  double size = 0.0;        // target panel edge length, mm (required)
+  double rho = 2.0;         // IDW power of the BDTensor (eq. 2)
   double skew_ratio = 0.3;  // min/max corner angle under which a triangle is removed
   int smoothing_iterations = 10;
   // Split every panel by centre + edge midpoints (section 3.2). The curves are
@@ -38,7 +38,8 @@ struct BoundaryDrivenResult {
   PanelMesh mesh;
 };
 
-BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face, const BoundaryDrivenParams& params);
+BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
+                                            const BoundaryDrivenParams& params);
 
 // The final mesh: panels counter-clockwise about the face normal, rods built,
 // nominal_area = size^2.
