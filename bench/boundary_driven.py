@@ -13,7 +13,9 @@ both methods:
   size^2 (the nominal panel);
 - boundary-node-on-trim: largest distance (FreeCAD's distToShape against the
   face's edges) from a node on a boundary rod (a rod used by one panel) to the
-  trim curves, divided by the model size;
+  trim curves, divided by the model size; trim_tolerance is the largest edge
+  tolerance of the face / model size (how far OCCT lets an edge's 3D curve
+  stray from its curve on the surface, which our nodes follow);
 - coverage: sum of the panel areas / the face area;
 - edge-length CV: standard deviation / mean of all rod lengths;
 - core time: best of 3 of the core call alone (no metrics), seconds.
@@ -109,6 +111,7 @@ def measure(face, method, size):
         "min_angle_deg": float(min_angle.min()),
         "panels_under_15deg": int((min_angle < 15.0).sum()),
         "boundary_node_on_trim": float(max(dist) / model),
+        "trim_tolerance": float(max(e.Tolerance for e in edges) / model),
         "coverage": float(area.sum() / face.Area),
         "edge_cv": float(rods.std() / rods.mean()),
         "max_deviation_mm": float(r.metrics["panel_deviation"].max()),
@@ -152,6 +155,7 @@ COLUMNS = (
     ("min_angle_deg", "{:.1f}"),
     ("panels_under_15deg", "{:d}"),
     ("boundary_node_on_trim", "{:.1e}"),
+    ("trim_tolerance", "{:.1e}"),
     ("coverage", "{:.4f}"),
     ("edge_cv", "{:.3f}"),
     ("max_deviation_mm", "{:.1f}"),

@@ -77,6 +77,7 @@ PYBIND11_MODULE(_core, m) {
       .def("point", &SurfaceFace::point, py::arg("u"), py::arg("v"))
       .def("normal", &SurfaceFace::normal, py::arg("u"), py::arg("v"))
       .def("is_inside", &SurfaceFace::is_inside, py::arg("u"), py::arg("v"))
+      .def("snap_to_trim", &SurfaceFace::snap_to_trim, py::arg("loop"), py::arg("uv"))
       .def("project",
            [](const SurfaceFace& f, const Vec3& p) {
              const Projection r = f.project(p);

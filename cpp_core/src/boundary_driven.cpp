@@ -93,6 +93,14 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
 
   check_mesh(face, r.boundary, net, params.size);
 
+  // Trim nodes sit on the trim polylines (chords within the deflection); move
+  // them onto the trims' own curves on the surface.
+  for (BdNode& n : net.nodes) {
+    if (n.loop < 0) continue;
+    n.uv = face.snap_to_trim(n.loop, n.uv);
+    n.xyz = face.point(n.uv.x(), n.uv.y());
+  }
+
   PanelMesh& m = r.mesh;
   for (const BdNode& n : net.nodes) m.uv.push_back(n.uv), m.xyz.push_back(n.xyz);
   m.panels = net.panels;

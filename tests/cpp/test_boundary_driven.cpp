@@ -2,8 +2,11 @@
 // expected answer is known in closed form.
 #include <gtest/gtest.h>
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <algorithm>
 #include <cmath>
+#include <gp_Circ.hxx>
 #include <set>
 
 #include "tessella/boundary_driven.h"
@@ -43,6 +46,10 @@ double mod90(const Vec3& d) {
 double dist_mod90(double a, double b) {
   const double d = std::fmod(std::abs(a - b), 90.0);
   return std::min(d, 90 - d);
+}
+
+double bd_angle_between(const Vec2& a, const Vec2& b) {
+  return std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)));
 }
 
 BdPolyline straight(const SurfaceFace& f, Vec2 a, Vec2 b) {
@@ -392,4 +399,32 @@ TEST(BoundaryDriven, PeriodicCylinderAndSphereDoNotCrash) {
   } catch (const GeometryFailure&) {
     // a clear error is acceptable on a closed sphere; a crash is not
   }
+}
+
+// ---------------------------------------------------------------- trim snapping
+TEST(SurfaceFaceSnapToTrim, ChordMidpointsGoBackOntoTheCircle) {
+  BRepBuilderAPI_MakeFace mk(gp_Pln(), rect_wire(0, 0, 1000, 1000, false));
+  TopoDS_Wire hole = BRepBuilderAPI_MakeWire(
+      BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(500, 500, 0), gp_Dir(0, 0, 1)), 200)));
+  hole.Reverse();
+  mk.Add(hole);
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(mk.Face()));
+  const std::vector<TrimLoop> loops = f.trim_loops(5.0);
+  ASSERT_EQ(loops.size(), 2u);
+  const int k = loops[0].outer ? 1 : 0;
+  const auto& uv = loops[k].uv;
+  ASSERT_GT(uv.size(), 8u);
+  for (std::size_t i = 0; i < uv.size(); ++i) {
+    const Vec2 mid = 0.5 * (uv[i] + uv[(i + 1) % uv.size()]);
+    const Vec2 c(500, 500);
+    EXPECT_LT((mid - c).norm(), 200.0 - 1e-3);  // a chord midpoint is inside the circle
+    const Vec2 s = f.snap_to_trim(k, mid);
+    EXPECT_NEAR((s - c).norm(), 200.0, 1e-9);
+    EXPECT_NEAR(bd_angle_between(s - c, mid - c), 0.0, 1e-9);
+  }
+  // a point of the outer square snaps onto its edge
+  const Vec2 s = f.snap_to_trim(1 - k, Vec2(300, 3));
+  EXPECT_NEAR(s.y(), 0.0, 1e-9);
+  EXPECT_NEAR(s.x(), 300.0, 1e-9);
+  EXPECT_THROW(f.snap_to_trim(2, Vec2(0, 0)), InvalidParameter);
 }
