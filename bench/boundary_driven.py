@@ -4,8 +4,9 @@
 
 For each trimmed example (openings and notches) both methods run at the same
 nominal panel size; the script prints a table and writes
-out/bench/boundary_driven.{md,json} and out/bench/boundary_driven_<example>.png
-(the two meshes side by side, irregular panels in red).
+out/bench/boundary_driven.{md,json} and one picture per run,
+out/bench/boundary_driven_<example>_<size>.png (the two meshes side by side,
+irregular panels in red).
 
 Every figure is measured here from the returned arrays, with one definition for
 both methods:
@@ -40,11 +41,10 @@ import freecad_workbench as tessella  # noqa: E402
 from freecad_workbench import api, core  # noqa: E402
 
 #: (example, nominal size in mm)
-RUNS = (
-    ("cone_facade", 900.0),
-    ("notched_shell", 900.0),
-    ("vault_openings", 900.0),
-    ("trimmed_bspline_holes", 900.0),
+RUNS = tuple(
+    (name, size)
+    for name in ("cone_facade", "notched_shell", "vault_openings", "trimmed_bspline_holes")
+    for size in (600.0, 900.0, 1200.0)
 )
 #: a larger run for the timing target (a few thousand panels)
 TIMING_RUN = ("cone_facade", 220.0)
@@ -173,7 +173,7 @@ def main(out_dir=os.path.join(REPO, "out", "bench")):
             r, m, irregular = measure(face, method, size)
             results[method] = (r, m, irregular)
             rows.append({"example": name, "size_mm": size, "method": method, **m})
-        plot(name, size, results, os.path.join(out_dir, f"boundary_driven_{name}.png"))
+        plot(name, size, results, os.path.join(out_dir, f"boundary_driven_{name}_{size:.0f}.png"))
         iso, bd = results["iso_grid"][1], results["boundary_driven"][1]
         fewer = 1.0 - bd["irregular"] / iso["irregular"] if iso["irregular"] else float("nan")
         rows[-1]["irregular_reduction"] = fewer
