@@ -14,10 +14,18 @@ Document objects (need FreeCAD):
 __version__ = "0.1.0"
 
 from .api import METHODS, PanelizeResult, panelize  # noqa: F401,E402
+from .boundary_driven import boundary_driven_stages  # noqa: F401,E402
 
 
 def make_panelization(*args, **kwargs):
     """Create a parametric Panelization object (see freecad_workbench.make)."""
     from .make import make_panelization as _make
+
+    return _make(*args, **kwargs)
+
+
+def make_curve_network(*args, **kwargs):
+    """Show the traced curves of a boundary_driven Panelization (see freecad_workbench.make)."""
+    from .make import make_curve_network as _make
 
     return _make(*args, **kwargs)

@@ -253,3 +253,27 @@ def test_panelization_document_object_with_boundary_driven(freeform):
         assert len(panels.Shape.Faces) == obj.PanelCount
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_curve_network_object_shows_the_traced_curves(freeform):
+    doc = FreeCAD.newDocument("TessellaBdCurves")
+    try:
+        src = doc.addObject("Part::Feature", "Src")
+        src.Shape = freeform
+        doc.recompute()
+        par = tessella.make_panelization((src, "Face1"), method="boundary_driven", size=SIZE)
+        net = tessella.make_curve_network(par)
+        stages = tessella.boundary_driven_stages(freeform, size=SIZE)
+        assert net.CurveCount == len(stages["curves_xyz"]) > 10
+        assert len(net.Shape.Edges) > 0
+        # every curve vertex lies on the face (FreeCAD's own distance)
+        for v in net.Shape.Vertexes[:: max(1, len(net.Shape.Vertexes) // 50)]:
+            assert freeform.distToShape(v)[0] < 1e-6 * freeform.BoundBox.DiagonalLength
+        net.Show = "Network"
+        doc.recompute()
+        assert len(net.Shape.Edges) == len(stages["network_edges"])
+        iso = tessella.make_panelization((src, "Face1"), method="iso_grid", size=SIZE)
+        with pytest.raises(ValueError, match="not boundary_driven"):
+            tessella.make_curve_network(iso)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
