@@ -22,7 +22,6 @@ class Tracer {
   Tracer(const SurfaceFace& face, const BdTensor& tensor, const std::vector<BdPolyline>& boundary,
          const BdCurveParams& p)
       : face_(face),
-        tensor_(tensor),
         boundary_(boundary),
         p_(p),
         h_(p.spacing * p.step_fraction),
@@ -226,16 +225,15 @@ class Tracer {
       }
     }
     // 2. offset seeds, line by line (boundary loops first, then curves as made)
-    for (std::size_t k = 0; k < boundary_.size(); ++k)
-      offset_seeds_along(boundary_[k].uv, true, &boundary_[k]);
+    for (std::size_t k = 0; k < boundary_.size(); ++k) offset_seeds_along(boundary_[k].uv, true);
     for (std::size_t c = 0; c < curves_.size(); ++c) {
       if (curves_[c].uv.size() < 2) continue;
       const std::vector<Vec2> uv = curves_[c].uv;  // copy: curves_ grows
-      offset_seeds_along(uv, false, nullptr);
+      offset_seeds_along(uv, false);
     }
   }
 
-  void offset_seeds_along(const std::vector<Vec2>& uv, bool is_boundary, const BdPolyline* line) {
+  void offset_seeds_along(const std::vector<Vec2>& uv, bool is_boundary) {
     const double sp = p_.spacing;
     // points every `spacing` of 3D arc length, starting half a spacing in
     double acc = 0.5 * sp;
@@ -259,7 +257,6 @@ class Tracer {
         t = acc / l;
       }
       acc -= l;
-      (void)line;
     }
   }
 
@@ -321,7 +318,6 @@ class Tracer {
   }
 
   const SurfaceFace& face_;
-  const BdTensor& tensor_;
   const std::vector<BdPolyline>& boundary_;
   BdCurveParams p_;
   double h_;

@@ -83,7 +83,7 @@ Vec2 idw_c4s4(const BdTensor& tensor, const Frame& f) {
   return wsum > 0 ? Vec2(sc / wsum, ss / wsum) : Vec2(1, 0);
 }
 
-BdDirections directions(const SurfaceFace& face, const Frame& f, const Vec2& c4s4) {
+BdDirections directions(const Frame& f, const Vec2& c4s4) {
   BdDirections out;
   out.normal = f.normal;
   const double theta = c4s4.squaredNorm() > 1e-30 ? std::atan2(c4s4.y(), c4s4.x()) / 4.0 : 0.0;
@@ -91,7 +91,6 @@ BdDirections directions(const SurfaceFace& face, const Frame& f, const Vec2& c4s
   out.d2 = out.normal.cross(out.d1);
   out.uv1 = tangent_to_uv(f.sp.du, f.sp.dv, out.d1);
   out.uv2 = tangent_to_uv(f.sp.du, f.sp.dv, out.d2);
-  (void)face;
   return out;
 }
 
@@ -99,7 +98,7 @@ BdDirections directions(const SurfaceFace& face, const Frame& f, const Vec2& c4s
 
 BdDirections eval_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, const Vec2& uv) {
   const Frame f = frame_at(face, uv);
-  return directions(face, f, idw_c4s4(tensor, f));
+  return directions(f, idw_c4s4(tensor, f));
 }
 
 BdTensorGrid sample_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, int nu, int nv) {
@@ -128,7 +127,7 @@ BdDirections eval_bd_tensor(const BdTensorGrid& g, const SurfaceFace& face, cons
   auto at = [&](int a, int b) { return g.c4s4[static_cast<std::size_t>(a) * g.nv + b]; };
   const Vec2 c = (1 - fx) * ((1 - fy) * at(i, j) + fy * at(i, j + 1)) +
                  fx * ((1 - fy) * at(i + 1, j) + fy * at(i + 1, j + 1));
-  return directions(face, frame_at(face, uv), c);
+  return directions(frame_at(face, uv), c);
 }
 
 }  // namespace tessella
