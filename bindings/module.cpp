@@ -17,6 +17,8 @@
 namespace py = pybind11;
 using namespace tessella;
 
+void bind_boundary_driven(py::module_& m);
+
 namespace {
 
 template <int N>
@@ -99,6 +101,7 @@ PYBIND11_MODULE(_core, m) {
       .def("point", &SurfaceFace::point, py::arg("u"), py::arg("v"))
       .def("normal", &SurfaceFace::normal, py::arg("u"), py::arg("v"))
       .def("is_inside", &SurfaceFace::is_inside, py::arg("u"), py::arg("v"))
+      .def("snap_to_trim", &SurfaceFace::snap_to_trim, py::arg("loop"), py::arg("uv"))
       .def("project",
            [](const SurfaceFace& f, const Vec3& p) {
              const Projection r = f.project(p);
@@ -227,4 +230,5 @@ PYBIND11_MODULE(_core, m) {
         [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
   m.def("nodes_to_brep",
         [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
+  bind_boundary_driven(m);
 }

@@ -162,6 +162,183 @@ def full_cylinder():
     return _single_face(Part.Compound(lateral))
 
 
+def _prism_tool(profile_2d, origin, x_axis, z_axis, depth):
+    """A solid: the closed 2D profile [(x, z), ...] (or a Part.Wire builder) drawn in
+    the plane through `origin` spanned by x_axis and z_axis, extruded both ways
+    along their normal by `depth` (mm). Used to cut openings and notches."""
+    normal = x_axis.cross(z_axis)
+    normal.normalize()
+
+    def to3d(x, z):
+        return origin + x_axis * x + z_axis * z
+
+    if callable(profile_2d):
+        wire = profile_2d(to3d)
+    else:
+        pts = [to3d(x, z) for x, z in profile_2d]
+        wire = Part.makePolygon(pts + pts[:1])
+    face = Part.Face(wire)
+    face.translate(normal * -depth)
+    return face.extrude(normal * (2 * depth))
+
+
+def _circle_wire(cx, cz, r):
+    def build(to3d):
+        pts = [to3d(cx + r * math.cos(2 * math.pi * k / 64), cz + r * math.sin(2 * math.pi * k / 64))
+               for k in range(64)]
+        spline = Part.BSplineCurve()
+        spline.interpolate(pts, PeriodicFlag=True)
+        return Part.Wire([spline.toShape()])
+
+    return build
+
+
+def _ellipse_wire(cx, cz, a, b, turn):
+    def build(to3d):
+        pts = []
+        for k in range(64):
+            t = 2 * math.pi * k / 64
+            x, z = a * math.cos(t), b * math.sin(t)
+            c, s = math.cos(turn), math.sin(turn)
+            pts.append(to3d(cx + c * x - s * z, cz + s * x + c * z))
+        spline = Part.BSplineCurve()
+        spline.interpolate(pts, PeriodicFlag=True)
+        return Part.Wire([spline.toShape()])
+
+    return build
+
+
+@example(
+    "cone_facade",
+    3,
+    (1.2e8, 1.9e8),
+    "partial cone (R 14 m to 9 m, 100 degrees, 10 m high) trimmed by six curves like the "
+    "west facade of seed 001 section 4.1: a curved sloping top, a round bite and a door "
+    "notch in the outline, an elliptic and a round opening",
+)
+def cone_facade():
+    r1, r2, h, sweep = 14000.0, 9000.0, 10000.0, 100.0
+    cone = Part.makeCone(r1, r2, h, Vector(0, 0, 0), Vector(0, 0, 1), sweep)
+    face = [f for f in cone.Faces if f.Surface.TypeId == "Part::GeomCone"][0]
+    mid = math.radians(sweep / 2)
+    view = Vector(math.cos(mid), math.sin(mid), 0)  # facade normal at its middle
+    x_axis = Vector(-math.sin(mid), math.cos(mid), 0)
+    z_axis = Vector(0, 0, 1)
+    origin = view * 11500.0
+    depth = 20000.0
+    tools = []
+
+    # 1. curved sloping top: everything above a spline from (left, 9.2 m) to (right, 6.5 m)
+    def top(to3d):
+        xs = [-13000.0 + 2600.0 * k for k in range(11)]
+        curve_pts = [to3d(x, 7900.0 - 1350.0 * math.sin(x / 9000.0) + 500.0 * math.cos(x / 3000.0))
+                     for x in xs]
+        spline = Part.BSplineCurve()
+        spline.interpolate(curve_pts)
+        a, b = curve_pts[0], curve_pts[-1]
+        up_b, up_a = to3d(13000.0, 20000.0), to3d(-13000.0, 20000.0)
+        return Part.Wire([spline.toShape(), Part.makeLine(b, up_b), Part.makeLine(up_b, up_a),
+                          Part.makeLine(up_a, a)])
+
+    tools.append(_prism_tool(top, origin, x_axis, z_axis, depth))
+    # 2. a round bite out of the lower right corner (notch in the outline)
+    tools.append(_prism_tool(_circle_wire(10500.0, 700.0, 2600.0), origin, x_axis, z_axis, depth))
+    # 3. a door notch in the bottom edge, with a round arch
+    def door(to3d):
+        w, hh = 1400.0, 2600.0
+        left = [to3d(-3000.0 - w, -1000.0), to3d(-3000.0 - w, hh)]
+        right = [to3d(-3000.0 + w, hh), to3d(-3000.0 + w, -1000.0)]
+        arch = Part.Arc(left[1], to3d(-3000.0, hh + w), right[0]).toShape()
+        return Part.Wire([Part.makeLine(left[0], left[1]), arch, Part.makeLine(right[0], right[1]),
+                          Part.makeLine(right[1], left[0])])
+
+    tools.append(_prism_tool(door, origin, x_axis, z_axis, depth))
+    # 4.-5. an elliptic and a round opening
+    tools.append(_prism_tool(_ellipse_wire(3500.0, 4300.0, 2300.0, 1200.0, 0.35), origin, x_axis,
+                             z_axis, depth))
+    tools.append(_prism_tool(_circle_wire(-7500.0, 5200.0, 1100.0), origin, x_axis, z_axis, depth))
+    shape = face
+    for t in tools:
+        shape = shape.cut(t)
+    return _single_face(shape)
+
+
+@example(
+    "notched_shell",
+    3,
+    (1.3e8, 2.0e8),
+    "doubly curved B-spline shell ~18 m x 12 m with three notches in its outline (corner, "
+    "edge, V) and two openings (rotated rectangle, circle)",
+)
+def notched_shell():
+    nu, nv = 6, 5
+    poles = []
+    for i in range(nu):
+        row = []
+        for j in range(nv):
+            x, y = -500.0 + 3800.0 * i, -500.0 + 3200.0 * j
+            z = 1500.0 * math.cos(0.8 * i - 1.5) * math.sin(0.6 * j + 0.4) + 90.0 * i * j
+            row.append(Vector(x, y, z))
+        poles.append(row)
+    surface = Part.BSplineSurface()
+    surface.buildFromPolesMultsKnots(poles, [4, 1, 1, 4], [4, 1, 4], [0.0, 0.3, 0.55, 1.0],
+                                     [0.0, 0.4, 1.0], False, False, 3, 3)
+    base = surface.toShape()
+    down, up = Vector(0, 0, -8000), Vector(0, 0, 16000)
+
+    def prism(points):
+        pts = [Vector(x, y, 0) + down for x, y in points]
+        return Part.Face(Part.makePolygon(pts + pts[:1])).extrude(up)
+
+    outline = prism([(0, 0), (18000, 0), (18000, 12000), (0, 12000)])
+    shape = base.common(outline)
+    shape = shape.cut(prism([(-100, 8500), (3500, 8500), (3500, 12100), (-100, 12100)]))  # corner
+    shape = shape.cut(prism([(8000, -100), (10500, -100), (10500, 2600), (8000, 2600)]))  # edge
+    shape = shape.cut(prism([(18100, 4500), (15200, 6500), (18100, 8500)]))  # V notch
+    c, s = math.cos(0.5), math.sin(0.5)
+    rect = [(-1500, -900), (1500, -900), (1500, 900), (-1500, 900)]
+    shape = shape.cut(prism([(5500 + c * x - s * y, 5000 + s * x + c * y) for x, y in rect]))
+    shape = shape.cut(Part.makeCylinder(1300, 24000, Vector(12500, 7200, -8000)))
+    return _single_face(shape)
+
+
+@example(
+    "vault_openings",
+    4,
+    (1.6e8, 2.2e8),
+    "partial cylinder vault (R 7 m, 140 degrees, 12 m long) with an arched door notch in "
+    "one long edge and three round windows",
+)
+def vault_openings():
+    cyl = Part.makeCylinder(7000.0, 12000.0, Vector(0, 0, 0), Vector(1, 0, 0), 140.0)
+    face = [f for f in cyl.Faces if f.Surface.TypeId == "Part::GeomCylinder"][0]
+    shape = face
+    surf = face.Surface
+    u_end = face.ParameterRange[1]
+    # windows: radial prisms through the vault at three positions
+    for k, (u, x) in enumerate(((0.55, 2500.0), (1.2, 6000.0), (1.85, 9500.0))):
+        radial = surf.value(u, 0.0)
+        radial.normalize()
+        x_axis = Vector(1, 0, 0)
+        z_axis = radial.cross(x_axis)
+        tool = _prism_tool(_circle_wire(0.0, 0.0, 900.0 + 150.0 * k), Vector(x, 0, 0) + radial * 7000.0,
+                           x_axis, z_axis, 3000.0)
+        shape = shape.cut(tool)
+    # an arched door notch in the long edge at u = u_end, drawn in the tangent plane there
+    edge_point = surf.value(u_end, 0.0)
+    inward = surf.tangent(u_end, 0.0)[0] * -1.0  # toward smaller u, into the face
+
+    def door(to3d):
+        w, hh = 1300.0, 2200.0
+        a, b = to3d(6000.0 - w, -1000.0), to3d(6000.0 - w, hh)
+        c, d = to3d(6000.0 + w, hh), to3d(6000.0 + w, -1000.0)
+        arch = Part.Arc(b, to3d(6000.0, hh + w), c).toShape()
+        return Part.Wire([Part.makeLine(a, b), arch, Part.makeLine(c, d), Part.makeLine(d, a)])
+
+    shape = shape.cut(_prism_tool(door, edge_point, Vector(1, 0, 0), inward, 3000.0))
+    return _single_face(shape)
+
+
 def check(name, face, wires, area_range):
     problems = []
     if face.ShapeType != "Face":

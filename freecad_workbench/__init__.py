@@ -15,6 +15,7 @@ __version__ = "0.1.0"
 
 from .api import METHODS, Cancelled, PanelizeResult, panelize  # noqa: F401,E402
 from .plots import histograms  # noqa: F401,E402
+from .boundary_driven import boundary_driven_stages  # noqa: F401,E402
 
 
 def gui_progress(title="Tessella"):
@@ -28,5 +29,12 @@ def gui_progress(title="Tessella"):
 def make_panelization(*args, **kwargs):
     """Create a parametric Panelization object (see freecad_workbench.make)."""
     from .make import make_panelization as _make
+
+    return _make(*args, **kwargs)
+
+
+def make_curve_network(*args, **kwargs):
+    """Show the traced curves of a boundary_driven Panelization (see freecad_workbench.make)."""
+    from .make import make_curve_network as _make
 
     return _make(*args, **kwargs)

@@ -43,6 +43,10 @@ PARAM_INFO = {
     "sliver_fraction": ("Sliver fraction", ""),
     "min_angle": ("Min angle", "deg"),
     "max_panels": ("Max panels", None),
+    "rho": ("Rho (IDW power)", ""),
+    "skew_ratio": ("Skew ratio (min/max angle)", ""),
+    "smoothing_iterations": ("Smoothing iterations", None),
+    "quadrangulate": ("Quadrangulate", bool),
 }
 
 #: The methods, by name. A new method adds one entry here.
@@ -58,6 +62,24 @@ METHODS = {
         lambda: core.EqualSizeGridParams(),
         lambda surface, p, progress=None: core.equal_size_grid(surface, p, progress),
         reports_progress=True,
+    ),
+    # Seed 001: lines that follow the trims (docs/boundary_driven.md).
+    "boundary_driven": MethodSpec(
+        {
+            "size": float,
+            "rho": float,
+            "skew_ratio": float,
+            "smoothing_iterations": int,
+            "quadrangulate": bool,
+            "source_loops": list,
+            "extra_curves": list,
+            "corner_angle": float,
+            "min_edge_fraction": float,
+            "trim_deflection": float,
+            "max_panels": int,
+        },
+        lambda: core.BoundaryDrivenParams(),
+        lambda surface, p: core.boundary_driven(surface, p),
     ),
 }
 
@@ -173,11 +195,14 @@ def _check_kwargs(method, params):
 
 
 def _set(struct, name, value, kind):
+    what = "a list" if kind is list else "a number"
     try:
         value = kind(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    setattr(struct, name, value)
+        setattr(struct, name, value)
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, ValueError) and kind is list:
+            raise  # the core's own message (e.g. an unusable extra curve)
+        raise ValueError(f"{name} must be {what}, got {value!r}") from None
 
 
 def _method_params(method, params):

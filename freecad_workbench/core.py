@@ -11,6 +11,7 @@ except ImportError as exc:  # pragma: no cover - message for a user without a bu
 
 from ._core import (  # noqa: E402,F401
     Cancelled,
+    BoundaryDrivenParams,
     EqualSizeGridParams,
     GridClipParams,
     IrregularParams,
@@ -18,6 +19,8 @@ from ._core import (  # noqa: E402,F401
     MetricsParams,
     PanelMesh,
     SurfaceFace,
+    boundary_driven,
+    boundary_driven_stages,
     equal_size_grid,
     irregular_panels,
     iso_grid,

@@ -21,6 +21,11 @@ _PARAM_TO_PROPERTY = {
     "max_panels": "MaxPanels",
     "trim_deflection": "TrimDeflection",
     "samples": "Samples",
+    "rho": "Rho",
+    "skew_ratio": "SkewRatio",
+    "smoothing_iterations": "SmoothingIterations",
+    "quadrangulate": "Quadrangulate",
+    "source_loops": "SourceLoops",
 }
 
 _VIEW_STYLE = {
@@ -146,3 +151,30 @@ def _attach_gui(parent, children):
         for name, value in _VIEW_STYLE.get(child.Role, {}).items():
             if hasattr(child.ViewObject, name):
                 setattr(child.ViewObject, name, value)
+
+
+def make_curve_network(panelization, show="Curves"):
+    """Create a CurveNetwork object showing the traced BDCurves ("Curves") or the
+    preliminary network ("Network") of a boundary_driven Panelization. One undo
+    step; raises ValueError (and creates nothing) for another method."""
+    from .features import curve_network as cn
+    from .features import panelization as feat
+
+    if not feat.is_panelization(panelization):
+        raise ValueError("make_curve_network needs a Panelization object")
+    if panelization.Method != "boundary_driven":
+        raise ValueError(f"{panelization.Label} uses {panelization.Method}, not boundary_driven")
+    if show not in cn.SHOW:
+        raise ValueError(f"show must be one of {cn.SHOW}, got {show!r}")
+    doc = panelization.Document
+    doc.openTransaction("Curve network")
+    try:
+        obj = doc.addObject("Part::FeaturePython", "CurveNetwork")
+        cn.CurveNetwork(obj, panelization)
+        obj.Show = show
+        doc.recompute()
+    except BaseException:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    return obj

@@ -12,6 +12,8 @@
 #include <Bnd_Box.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
+#include <Geom2dAPI_ProjectPointOnCurve.hxx>
+#include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_Surface.hxx>
 #include <Standard_Failure.hxx>
@@ -174,6 +176,33 @@ Vec3 SurfaceFace::normal(double u, double v) const {
 
 bool SurfaceFace::is_inside(double u, double v) const {
   return impl_->classifier->Perform(gp_Pnt2d(u, v)) != TopAbs_OUT;
+}
+
+Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
+  int k = 0;
+  for (TopExp_Explorer wx(impl_->face, TopAbs_WIRE); wx.More(); wx.Next(), ++k) {
+    if (k != loop) continue;
+    Vec2 best = uv;
+    double best_d = std::numeric_limits<double>::infinity();
+    const gp_Pnt2d p(uv.x(), uv.y());
+    for (TopExp_Explorer ex(wx.Current(), TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& edge = TopoDS::Edge(ex.Current());
+      double first = 0, last = 0;
+      const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, impl_->face, first, last);
+      if (c.IsNull()) continue;
+      auto consider = [&](const gp_Pnt2d& q) {
+        const double d = q.Distance(p);
+        if (d < best_d) best_d = d, best = Vec2(q.X(), q.Y());
+      };
+      consider(c->Value(first));
+      consider(c->Value(last));
+      Geom2dAPI_ProjectPointOnCurve proj(p, c, first, last);
+      for (int i = 1; i <= proj.NbPoints(); ++i) consider(proj.Point(i));
+    }
+    return best;
+  }
+  require_in_range("trim loop index", loop, 0, k - 1);
+  return uv;
 }
 
 std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {

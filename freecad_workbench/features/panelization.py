@@ -56,6 +56,35 @@ def _core_defaults():
     }
 
 
+#: Properties that only the boundary_driven method reads (shown only for it).
+BD_PROPERTIES = ("Rho", "SkewRatio", "SmoothingIterations", "Quadrangulate", "SourceLoops")
+
+
+def _upgrade_enumeration(obj, name, values):
+    """Give an enumeration saved by an older version the values this one knows."""
+    try:
+        known = list(obj.getEnumerationsOfProperty(name))
+    except Exception:  # pragma: no cover - very old FreeCAD
+        return
+    if known != values:
+        current = getattr(obj, name)
+        setattr(obj, name, values)
+        if current in values:
+            setattr(obj, name, current)
+
+
+def _bd_defaults():
+    from .. import core
+
+    p = core.BoundaryDrivenParams()
+    return {
+        "rho": float(p.rho),
+        "skew_ratio": float(p.skew_ratio),
+        "smoothing_iterations": int(p.smoothing_iterations),
+        "quadrangulate": bool(p.quadrangulate),
+    }
+
+
 def value_of(quantity):
     """Float value of a property that may be a Base.Quantity (mm, deg) or a number."""
     return float(getattr(quantity, "Value", quantity))
@@ -156,8 +185,10 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyLinkSub", "Source", "Input",
                      "The face to panelize: (object, ['FaceN'])")
         add_property(obj, "App::PropertyEnumeration", "Method", "Panelization",
-                     "iso_grid: uniform in (u,v); equal_size_grid: lines spaced by arc length",
+                     "iso_grid: uniform in (u,v); equal_size_grid: lines spaced by arc length; "
+                     "boundary_driven: quad mesh whose lines follow the trims",
                      default="iso_grid", enum=list(api.METHODS))
+        _upgrade_enumeration(obj, "Method", list(api.METHODS))
         add_property(obj, "App::PropertyLength", "Size", "Panelization",
                      "Target panel edge length (equal_size_grid; iso_grid when "
                      "UCount and VCount are 0)", default=0.0)
@@ -179,6 +210,23 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyString", "PanelIdFormat", "Output",
                      "Python format of the panel IDs from the panel number, e.g. P-{:04d}",
                      default="P-{:04d}")
+        # boundary_driven (seed 001, docs/boundary_driven.md)
+        bd = _bd_defaults()
+        add_property(obj, "App::PropertyFloat", "Rho", "Boundary driven",
+                     "Power of the inverse distance weighting of the direction field "
+                     "(higher: the nearest trim dominates)", default=bd["rho"])
+        add_property(obj, "App::PropertyFloat", "SkewRatio", "Boundary driven",
+                     "Triangles whose smallest / largest corner angle is under this are removed",
+                     default=bd["skew_ratio"])
+        add_property(obj, "App::PropertyInteger", "SmoothingIterations", "Boundary driven",
+                     "Laplacian smoothing passes (nodes stay on the surface and the trims)",
+                     default=bd["smoothing_iterations"])
+        add_property(obj, "App::PropertyBool", "Quadrangulate", "Boundary driven",
+                     "Split every panel by centre and edge midpoints (all quads; curves are "
+                     "then traced 2 x Size apart)", default=bd["quadrangulate"])
+        add_property(obj, "App::PropertyIntegerList", "SourceLoops", "Boundary driven",
+                     "Trim loops (0 = outer, then the holes) the direction field follows; "
+                     "empty = all")
         add_property(obj, "App::PropertyLength", "TrimDeflection", "Advanced",
                      "Chord deflection of the trim polylines (0 = automatic)", default=0.0)
         add_property(obj, "App::PropertyInteger", "Samples", "Advanced",
@@ -204,6 +252,10 @@ class Panelization(_StateMixin):
             return
         hide = 0 if obj.Method == "iso_grid" else 2
         for name in ("UCount", "VCount"):
+            if name in obj.PropertiesList:
+                obj.setEditorMode(name, hide)
+        hide = 0 if obj.Method == "boundary_driven" else 2
+        for name in BD_PROPERTIES:
             if name in obj.PropertiesList:
                 obj.setEditorMode(name, hide)
 
@@ -241,6 +293,13 @@ class Panelization(_StateMixin):
             params = {"u_count": int(obj.UCount), "v_count": int(obj.VCount)}
         else:
             params = {"size": value_of(obj.Size)}
+        if method == "boundary_driven":
+            params["rho"] = float(obj.Rho)
+            params["skew_ratio"] = float(obj.SkewRatio)
+            params["smoothing_iterations"] = int(obj.SmoothingIterations)
+            params["quadrangulate"] = bool(obj.Quadrangulate)
+            if obj.SourceLoops:
+                params["source_loops"] = [int(k) for k in obj.SourceLoops]
         params["sliver_fraction"] = float(obj.SliverFraction)
         params["min_angle"] = value_of(obj.MinAngle)
         params["max_panels"] = int(obj.MaxPanels)

@@ -149,6 +149,10 @@ class PanelizationTaskPanel:
         from PySide import QtGui
 
         label, unit = api.PARAM_INFO.get(name, (name, ""))
+        if unit is bool:
+            box = QtGui.QCheckBox()
+            box.setChecked(bool(value))
+            return box
         if unit is None:  # a count
             box = QtGui.QSpinBox()
             box.setRange(0 if name.endswith("_count") else 1, 100000000)
@@ -164,7 +168,7 @@ class PanelizationTaskPanel:
         return _quantity_box(unit, value, 0.0, 180.0 if unit == "deg" else 1e9)
 
     def _connect(self, box):
-        sig = getattr(box, "valueChanged", None)
+        sig = getattr(box, "valueChanged", None) or getattr(box, "toggled", None)
         if sig is not None:
             sig.connect(self.schedule_preview)
 
@@ -174,13 +178,17 @@ class PanelizationTaskPanel:
         return getattr(struct, name, 0)
 
     def _build_method_rows(self):
-        """One row per numeric parameter of the chosen method."""
+        """One row per numeric or yes/no parameter of the chosen method that the
+        Panelization stores (the common ones have their own rows below)."""
+        from ..make import _PARAM_TO_PROPERTY
+
         while self.method_form.rowCount():
             self.method_form.removeRow(0)
         self.widgets = {}
         method = self.method.currentText()
+        common = ("sliver_fraction", "min_angle", "max_panels", "trim_deflection", "samples")
         for name, kind in api.METHODS[method].params.items():
-            if kind not in (int, float):
+            if kind not in (int, float, bool) or name in common or name not in _PARAM_TO_PROPERTY:
                 continue  # e.g. guide curves: picked, not typed
             value = self.values.get(name, self._default_of(method, name))
             box = self._make_widget(name, value)
@@ -195,6 +203,8 @@ class PanelizationTaskPanel:
 
     @staticmethod
     def _read(box):
+        if hasattr(box, "isChecked") and not hasattr(box, "value"):
+            return bool(box.isChecked())
         return _value(box) if box.property("rawValue") is not None or \
             hasattr(box, "decimals") else int(box.value())
 

@@ -80,6 +80,11 @@ class SurfaceFace {
   // the loops close in the parameter plane.
   std::vector<TrimLoop> trim_loops(double deflection) const;
 
+  // The point of trim loop `loop` (trim_loops order) closest in (u,v) to `uv`,
+  // taken on the edges' own curves on the surface (pcurves), so it lies on the
+  // true trim, not on a polyline chord. Throws InvalidParameter for a bad loop.
+  Vec2 snap_to_trim(int loop, const Vec2& uv) const;
+
   // Area of the trimmed face (OCCT's surface integral).
   double area() const;
 

@@ -1,0 +1,395 @@
+#include "tessella/bd_refine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "bd_geometry.h"
+#include "tessella/errors.h"
+
+namespace tessella {
+
+namespace {
+
+double corner_angle(const Vec3& prev, const Vec3& p, const Vec3& next) {
+  const Vec3 a = prev - p, b = next - p;
+  const double na = a.norm(), nb = b.norm();
+  if (na == 0 || nb == 0) return 0;
+  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
+}
+
+int rank(const BdNode& n) { return n.corner ? 2 : (n.loop >= 0 ? 1 : 0); }
+
+// Nodes per trim loop used by the panels (a loop keeps at least four).
+std::map<int, int> loop_node_counts(const BdNetwork& net) {
+  std::vector<char> used(net.nodes.size(), 0);
+  for (const auto& p : net.panels)
+    for (int v : p) used[v] = 1;
+  std::map<int, int> count;
+  for (std::size_t v = 0; v < net.nodes.size(); ++v)
+    if (used[v] && net.nodes[v].loop >= 0) ++count[net.nodes[v].loop];
+  return count;
+}
+constexpr int kMinLoopNodes = 4;
+
+// Whether replacing node v by w (w moved to w_uv) keeps every panel around v
+// and w unfolded in (u,v) (panels that vanish do not count).
+bool merge_keeps_panels(const BdNetwork& net, const std::vector<int>& panels, int v, int w,
+                        const Vec2& w_uv) {
+  for (int pi : panels) {
+    std::vector<int> q;
+    for (int x : net.panels[pi]) {
+      const int y = x == v ? w : x;
+      if (q.empty() || q.back() != y) q.push_back(y);
+    }
+    while (q.size() > 1 && q.front() == q.back()) q.pop_back();
+    if (q.size() < 3) continue;
+    double a = 0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      const Vec2 p0 = q[i] == w ? w_uv : net.nodes[q[i]].uv;
+      const Vec2 p1 = q[(i + 1) % q.size()] == w ? w_uv : net.nodes[q[(i + 1) % q.size()]].uv;
+      a += bd::cross2(p0, p1);
+    }
+    if (!(a > 0)) return false;
+  }
+  return true;
+}
+
+// Drops repeated consecutive corners and panels left with fewer than three.
+void clean_panels(std::vector<std::vector<int>>& panels) {
+  std::vector<std::vector<int>> out;
+  for (auto& p : panels) {
+    std::vector<int> q;
+    for (int v : p)
+      if (q.empty() || q.back() != v) q.push_back(v);
+    while (q.size() > 1 && q.front() == q.back()) q.pop_back();
+    if (q.size() >= 3) out.push_back(std::move(q));
+  }
+  panels = std::move(out);
+}
+
+double uv_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    a += bd::cross2(nodes[p[i]].uv, nodes[p[(i + 1) % p.size()]].uv);
+  return 0.5 * a;
+}
+
+// Splits p (counter-clockwise in (u,v)) along a diagonal from its first reflex
+// corner into two polygons (a, b) when one exists that stays inside p; the
+// diagonal chosen makes the two parts' corner counts closest to quads.
+bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<int>& p,
+                            std::vector<int>& a, std::vector<int>& b) {
+  const int n = static_cast<int>(p.size());
+  auto uv = [&](int i) { return nodes[p[((i % n) + n) % n]].uv; };
+  for (int r = 0; r < n; ++r) {
+    if (bd::cross2(uv(r) - uv(r - 1), uv(r + 1) - uv(r)) >= 0) continue;  // convex corner
+    int best = -1;
+    double best_score = 1e300;
+    for (int k = r + 2; k <= r + n - 2; ++k) {
+      // the diagonal r-k must not cross an edge of p and must leave both parts positive
+      bool crosses = false;
+      for (int e = 0; e < n && !crosses; ++e) {
+        const int e0 = e, e1 = (e + 1) % n;
+        if (e0 == r || e1 == r || e0 == k % n || e1 == k % n) continue;
+        double t, s;
+        if (bd::intersect_segments(uv(r), uv(k), uv(e0), uv(e1), t, s)) crosses = true;
+      }
+      if (crosses) continue;
+      std::vector<int> pa, pb;
+      for (int i = r; i <= k; ++i) pa.push_back(p[i % n]);
+      for (int i = k; i <= r + n; ++i) pb.push_back(p[i % n]);
+      auto area = [&](const std::vector<int>& q) {
+        double s2 = 0;
+        for (std::size_t i = 0; i < q.size(); ++i)
+          s2 += bd::cross2(nodes[q[i]].uv, nodes[q[(i + 1) % q.size()]].uv);
+        return s2;
+      };
+      if (area(pa) <= 0 || area(pb) <= 0) continue;
+      const double score = std::abs(double(pa.size()) - 4) + std::abs(double(pb.size()) - 4);
+      if (score < best_score) best_score = score, best = k, a = pa, b = pb;
+    }
+    if (best >= 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int remove_skewed_triangles(BdNetwork& net, double ratio) {
+  require_in_range("skew_ratio", ratio, 0.0, 1.0);
+  int removed = 0;
+  for (int pass = 0; pass < 20; ++pass) {
+    std::vector<int> rep(net.nodes.size());
+    std::iota(rep.begin(), rep.end(), 0);
+    std::vector<char> touched(net.nodes.size(), 0);
+    std::map<int, int> on_loop = loop_node_counts(net);
+    std::vector<std::vector<int>> incident(net.nodes.size());
+    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
+      for (int x : net.panels[pi]) incident[x].push_back(static_cast<int>(pi));
+    int merged = 0;
+    for (const auto& p : net.panels) {
+      if (p.size() != 3) continue;
+      if (touched[p[0]] || touched[p[1]] || touched[p[2]]) continue;  // next pass
+      double ang[3];
+      for (int i = 0; i < 3; ++i)
+        ang[i] = corner_angle(net.nodes[p[(i + 2) % 3]].xyz, net.nodes[p[i]].xyz,
+                              net.nodes[p[(i + 1) % 3]].xyz);
+      const int imax = static_cast<int>(std::max_element(ang, ang + 3) - ang);
+      const double amin = *std::min_element(ang, ang + 3);
+      if (ang[imax] <= 0 || amin / ang[imax] >= ratio) continue;
+      int v = p[imax];
+      const int a = p[(imax + 1) % 3], b = p[(imax + 2) % 3];
+      int w = (net.nodes[a].xyz - net.nodes[v].xyz).norm() <=
+                      (net.nodes[b].xyz - net.nodes[v].xyz).norm()
+                  ? a
+                  : b;
+      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);  // v is removed, w kept
+      if (rank(net.nodes[v]) == 2) continue;
+      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
+      if (!merge_keeps_panels(net, incident[v], v, w, net.nodes[w].uv)) continue;
+      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
+      rep[v] = w;
+      touched[v] = touched[w] = 1;
+      for (int pi : incident[v])
+        for (int x : net.panels[pi]) touched[x] = 1;
+      ++merged;
+    }
+    if (merged == 0) break;
+    removed += merged;
+    for (auto& p : net.panels)
+      for (int& v : p) v = rep[v];
+    clean_panels(net.panels);
+  }
+  return removed;
+}
+
+int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_length) {
+  require_in_range("min edge length (mm)", min_length, 0.0, face.model_size());
+  int merged_total = 0;
+  for (int pass = 0; pass < 20; ++pass) {
+    // candidate edges, shortest first
+    std::vector<std::pair<double, std::pair<int, int>>> cand;
+    for (const auto& p : net.panels)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const int a = p[i], b = p[(i + 1) % p.size()];
+        const double l = (net.nodes[a].xyz - net.nodes[b].xyz).norm();
+        if (a < b && l < min_length) cand.push_back({l, {a, b}});
+        if (b < a && l < min_length) cand.push_back({l, {b, a}});
+      }
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    std::vector<std::vector<int>> incident(net.nodes.size());
+    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
+      for (int v : net.panels[pi]) incident[v].push_back(static_cast<int>(pi));
+    std::vector<char> touched(net.nodes.size(), 0);
+    std::vector<int> rep(net.nodes.size());
+    std::iota(rep.begin(), rep.end(), 0);
+    std::map<int, int> on_loop = loop_node_counts(net);
+    int merged = 0;
+    for (const auto& [len, e] : cand) {
+      int v = e.first, w = e.second;  // v is removed, w kept
+      if (touched[v] || touched[w]) continue;
+      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);
+      if (rank(net.nodes[v]) == 2) continue;
+      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
+      // would a panel visit w twice?
+      bool bad = false;
+      for (int pi : incident[v]) {
+        const auto& p = net.panels[pi];
+        const std::size_t n = p.size();
+        for (std::size_t i = 0; i < n && !bad; ++i) {
+          if (p[i] != w) continue;
+          const bool adjacent = p[(i + 1) % n] == v || p[(i + n - 1) % n] == v;
+          if (!adjacent) bad = true;
+        }
+      }
+      if (bad) continue;
+      Projection moved;
+      const bool both_inside = rank(net.nodes[v]) == 0 && rank(net.nodes[w]) == 0;
+      if (both_inside) {
+        const BdNode& k = net.nodes[w];
+        moved = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
+      }
+      const Vec2 w_uv = both_inside ? moved.uv : net.nodes[w].uv;
+      std::vector<int> around = incident[v];
+      around.insert(around.end(), incident[w].begin(), incident[w].end());
+      if (!merge_keeps_panels(net, around, v, w, w_uv)) continue;
+      if (both_inside) net.nodes[w].uv = moved.uv, net.nodes[w].xyz = moved.point;
+      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
+      rep[v] = w;
+      touched[v] = touched[w] = 1;
+      for (int pi : incident[v])
+        for (int x : net.panels[pi]) touched[x] = 1;
+      ++merged;
+    }
+    if (merged == 0) break;
+    merged_total += merged;
+    for (auto& p : net.panels)
+      for (int& v : p) v = rep[v];
+    clean_panels(net.panels);
+  }
+  return merged_total;
+}
+
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                   BdNetwork& net) {
+  std::map<std::pair<int, int>, int> uses;
+  std::map<std::pair<int, int>, int> mid;
+  auto add = [&](const BdNode& n) {
+    net.nodes.push_back(n);
+    return static_cast<int>(net.nodes.size()) - 1;
+  };
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  auto is_in = [&](const Vec2& uv) { return boundary.empty() || inside.inside(uv); };
+  auto midpoint = [&](int a, int b, const Vec2& centre_uv) {
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    const BdNode na = net.nodes[a], nb = net.nodes[b];
+    BdNode m;
+    if (uses[key] == 1 && na.loop >= 0 && na.loop == nb.loop) {
+      // along the trim from a to b (panels run along their loop's orientation)
+      const BdPolyline& L = boundary[na.loop];
+      double ds = std::fmod(nb.s - na.s, L.length());
+      if (ds < 0) ds += L.length();
+      double s = na.s + 0.5 * ds;
+      L.segment_at(s);
+      m.loop = na.loop, m.s = s;
+      m.uv = L.uv_at(s);
+      m.xyz = face.point(m.uv.x(), m.uv.y());
+    } else {
+      const Projection pr = face.project(0.5 * (na.xyz + nb.xyz), 0.5 * (na.uv + nb.uv));
+      m.uv = pr.uv, m.xyz = pr.point;
+      // an edge between two trim nodes may chord across an opening: move its
+      // midpoint toward the panel's centre until it is on the face
+      for (int k = 1; k <= 4 && !is_in(m.uv); ++k) {
+        m.uv = 0.5 * (na.uv + nb.uv) + 0.25 * k * (centre_uv - 0.5 * (na.uv + nb.uv));
+        m.xyz = face.point(m.uv.x(), m.uv.y());
+      }
+    }
+    return mid[key] = add(m);
+  };
+  // A panel with a reflex corner (in (u,v)) has no centre that sees all its
+  // corners: cut it first along a diagonal from that corner.
+  std::vector<std::vector<int>> convex;
+  std::vector<std::vector<int>> todo = net.panels;
+  while (!todo.empty()) {
+    std::vector<int> p = std::move(todo.back());
+    todo.pop_back();
+    std::vector<int> a, b;
+    if (p.size() >= 4 && split_at_reflex_corner(net.nodes, p, a, b)) {
+      todo.push_back(std::move(a));
+      todo.push_back(std::move(b));
+    } else {
+      convex.push_back(std::move(p));
+    }
+  }
+  std::reverse(convex.begin(), convex.end());
+  net.panels = std::move(convex);
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::vector<int>> out;
+  for (const auto& p : net.panels) {
+    const std::size_t n = p.size();
+    Vec3 c3 = Vec3::Zero();
+    Vec2 c2 = Vec2::Zero();
+    for (int v : p) c3 += net.nodes[v].xyz, c2 += net.nodes[v].uv;
+    c3 /= double(n), c2 /= double(n);
+    BdNode c;
+    const Projection pr = face.project(c3, c2);
+    c.uv = pr.uv, c.xyz = pr.point;
+    if (!is_in(c.uv)) c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
+    const int ci = add(c);
+    std::vector<int> m(n);
+    for (std::size_t i = 0; i < n; ++i) m[i] = midpoint(p[i], p[(i + 1) % n], c.uv);
+    std::vector<std::vector<int>> quads;
+    bool folded = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      quads.push_back({p[i], m[i], ci, m[(i + n - 1) % n]});
+      folded = folded || !(uv_area(net.nodes, quads.back()) > 0);
+    }
+    if (!folded) {
+      out.insert(out.end(), quads.begin(), quads.end());
+    } else {  // no centre sees every corner: keep the panel, with its midpoints
+      std::vector<int> poly;
+      for (std::size_t i = 0; i < n; ++i) poly.push_back(p[i]), poly.push_back(m[i]);
+      out.push_back(std::move(poly));
+    }
+  }
+  net.panels = std::move(out);
+}
+
+void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                    BdNetwork& net, int iterations, double factor) {
+  require_in_range("smoothing_iterations", iterations, 0, 1000);
+  require_in_range("smoothing factor", factor, 0.0, 1.0);
+  const std::size_t nn = net.nodes.size();
+  std::map<std::pair<int, int>, int> uses;
+  std::vector<std::vector<int>> nbr(nn), incident(nn);
+  for (std::size_t pi = 0; pi < net.panels.size(); ++pi) {
+    const auto& p = net.panels[pi];
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+      nbr[a].push_back(b), nbr[b].push_back(a);
+      incident[a].push_back(static_cast<int>(pi));
+    }
+  }
+  // trim neighbours: previous / next node along the loop through trim edges
+  std::vector<int> prev(nn, -1), next(nn, -1);
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && net.nodes[a].loop >= 0 &&
+          net.nodes[a].loop == net.nodes[b].loop)
+        next[a] = b, prev[b] = a;
+    }
+  for (auto& v : nbr) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+  auto folds = [&](int v) {
+    for (int pi : incident[v])
+      if (uv_area(net.nodes, net.panels[pi]) <= 0) return true;
+    return false;
+  };
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t v = 0; v < nn; ++v) {
+      BdNode& n = net.nodes[v];
+      if (n.corner || nbr[v].empty()) continue;
+      const BdNode old = n;
+      if (n.loop >= 0) {
+        if (prev[v] < 0 || next[v] < 0) continue;
+        const BdPolyline& L = boundary[n.loop];
+        const double len = L.length();
+        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len),
+               dn = std::fmod(net.nodes[next[v]].s - n.s, len);
+        if (dp < 0) dp += len;
+        if (dn < 0) dn += len;
+        double s = n.s + factor * 0.5 * (dn - dp);
+        L.segment_at(s);
+        n.s = s;
+        n.uv = L.uv_at(s);
+        n.xyz = face.point(n.uv.x(), n.uv.y());
+      } else {
+        Vec3 c = Vec3::Zero();
+        for (int w : nbr[v]) c += net.nodes[w].xyz;
+        c /= double(nbr[v].size());
+        const Projection pr = face.project(n.xyz + factor * (c - n.xyz), n.uv);
+        if (!inside.inside(pr.uv)) continue;
+        n.uv = pr.uv, n.xyz = pr.point;
+      }
+      if (folds(static_cast<int>(v))) n = old;
+    }
+  }
+}
+
+}  // namespace tessella

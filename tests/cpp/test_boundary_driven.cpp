@@ -1,0 +1,430 @@
+// Boundary-driven meshing (seed 001), stage by stage, on planar faces where the
+// expected answer is known in closed form.
+#include <gtest/gtest.h>
+
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <algorithm>
+#include <cmath>
+#include <gp_Circ.hxx>
+#include <set>
+
+#include "tessella/boundary_driven.h"
+#include "tessella/errors.h"
+#include "test_faces.h"
+
+using namespace tessella;
+using namespace tessella::test;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+SurfaceFace square_plate(double size) {
+  BRepBuilderAPI_MakeFace mk(gp_Pln(), rect_wire(0, 0, size, size, false));
+  return SurfaceFace::from_brep_string(brep(mk.Face()));
+}
+
+BdSources sources_of(const SurfaceFace& f, const BdSourceParams& p = {}) {
+  return select_bd_sources(f, f.trim_loops(1e-4), p);
+}
+
+double polygon_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
+  Vec3 a = Vec3::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    a += nodes[p[i]].xyz.cross(nodes[p[(i + 1) % p.size()]].xyz);
+  return 0.5 * a.z();
+}
+
+// Angle (deg, modulo 90) of a direction in the xy plane.
+double mod90(const Vec3& d) {
+  double a = std::atan2(d.y(), d.x()) * 180 / kPi;
+  a = std::fmod(a, 90.0);
+  return a < 0 ? a + 90 : a;
+}
+
+double dist_mod90(double a, double b) {
+  const double d = std::fmod(std::abs(a - b), 90.0);
+  return std::min(d, 90 - d);
+}
+
+double bd_angle_between(const Vec2& a, const Vec2& b) {
+  return std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)));
+}
+
+BdPolyline straight(const SurfaceFace& f, Vec2 a, Vec2 b) {
+  BdPolyline l;
+  l.uv = {a, b};
+  l.xyz = {f.point(a.x(), a.y()), f.point(b.x(), b.y())};
+  finish_polyline(l);
+  return l;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- stage 1
+TEST(BdSources, AllLoopsByDefaultSubsetAndExtraCurves) {
+  const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
+  const BdSources all = sources_of(f);
+  ASSERT_EQ(all.boundary.size(), 2u);
+  ASSERT_EQ(all.sources.size(), 2u);
+  std::multiset<long> lengths;
+  for (const auto& l : all.boundary) lengths.insert(std::lround(l.length()));
+  EXPECT_EQ(lengths, (std::multiset<long>{800, 4000}));
+
+  BdSourceParams p;
+  p.loops = {1};
+  p.extra_curves = {{Vec2(100, 100), Vec2(100, 900)}};
+  const BdSources sub = sources_of(f, p);
+  ASSERT_EQ(sub.sources.size(), 2u);
+  EXPECT_EQ(sub.sources[0].loop, 1);
+  EXPECT_EQ(sub.sources[1].loop, -1);
+  EXPECT_NEAR(sub.sources[1].length(), 800.0, 1e-9);
+  EXPECT_EQ(sub.boundary.size(), 2u);  // clipping always uses every loop
+}
+
+TEST(BdSources, BadSelectionsThrowNamingTheProblem) {
+  const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
+  BdSourceParams p;
+  p.loops = {2};
+  EXPECT_THROW(sources_of(f, p), InvalidParameter);
+  p.loops = {};
+  p.extra_curves = {{Vec2(500, 500), Vec2(510, 510)}};  // inside the hole
+  EXPECT_THROW(sources_of(f, p), InvalidParameter);
+  p.extra_curves = {{Vec2(100, 100)}};
+  EXPECT_THROW(sources_of(f, p), InvalidParameter);
+}
+
+TEST(BdSources, CornersOfASquareAreItsFourVertices) {
+  const SurfaceFace f = square_plate(1000);
+  const BdSources s = sources_of(f);
+  const std::vector<double> c = bd_corners(s.boundary[0], 30);
+  ASSERT_EQ(c.size(), 4u);
+  for (std::size_t i = 1; i < c.size(); ++i) EXPECT_NEAR(c[i] - c[i - 1], 1000.0, 1e-9);
+}
+
+// ---------------------------------------------------------------- stage 2
+TEST(BdTensor, StraightSourceGivesAParallelFieldEverywhere) {
+  const SurfaceFace f = square_plate(1000);
+  BdTensorParams tp;
+  tp.sample_spacing = 50;
+  const double angle = 25 * kPi / 180;
+  const BdTensor t = build_bd_tensor(
+      f,
+      {straight(f, Vec2(300, 300), Vec2(300 + 400 * std::cos(angle), 300 + 400 * std::sin(angle)))},
+      tp);
+  for (Vec2 uv : {Vec2(10, 10), Vec2(900, 100), Vec2(500, 950)}) {
+    const BdDirections d = eval_bd_tensor(t, f, uv);
+    EXPECT_NEAR(dist_mod90(mod90(d.d1), 25.0), 0.0, 1e-9);
+    EXPECT_NEAR(d.d1.dot(d.d2), 0.0, 1e-12);
+    EXPECT_NEAR(std::abs(d.normal.z()), 1.0, 1e-12);
+    // (u,v) = (x,y) on this plane: the uv directions are the 3D ones
+    EXPECT_NEAR((Vec3(d.uv1.x(), d.uv1.y(), 0) - d.d1).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(BdTensor, InverseDistanceWeightingOfDoubledAnglesEq1And2) {
+  const SurfaceFace f = square_plate(1000);
+  // Two samples: tangent at 0 deg at (0,0) and at 40 deg at (300,0).
+  BdTensor t;
+  t.samples.push_back({Vec2(0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0)});
+  t.samples.push_back(
+      {Vec2(300, 0), Vec3(300, 0, 0), Vec3(std::cos(40 * kPi / 180), std::sin(40 * kPi / 180), 0)});
+  for (double rho : {1.0, 2.0, 3.5}) {
+    t.rho = rho;
+    // at x = 100: distances 100 and 200
+    const double w1 = std::pow(100.0, -rho), w2 = std::pow(200.0, -rho);
+    const double c = w1 * 1 + w2 * std::cos(160 * kPi / 180), s = w2 * std::sin(160 * kPi / 180);
+    const double expected = std::atan2(s, c) / 4 * 180 / kPi;
+    const BdDirections d = eval_bd_tensor(t, f, Vec2(100, 0));
+    EXPECT_NEAR(dist_mod90(mod90(d.d1), expected), 0.0, 1e-9) << rho;
+  }
+  // at a sample: that sample's direction (eq. 1, d = 0)
+  EXPECT_NEAR(dist_mod90(mod90(eval_bd_tensor(t, f, Vec2(300, 0)).d1), 40.0), 0.0, 1e-9);
+  // a source and the same source turned by 90 deg (or reversed) give the same field
+  BdTensor r = t;
+  r.samples[1].tangent = Vec3(-std::sin(40 * kPi / 180), std::cos(40 * kPi / 180), 0);
+  r.samples[0].tangent = Vec3(-1, 0, 0);
+  EXPECT_NEAR(dist_mod90(mod90(eval_bd_tensor(r, f, Vec2(100, 0)).d1),
+                         mod90(eval_bd_tensor(t, f, Vec2(100, 0)).d1)),
+              0.0, 1e-9);
+}
+
+TEST(BdTensor, GridSamplingAgreesWithTheExactField) {
+  const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
+  const BdSources s = sources_of(f);
+  BdTensorParams tp;
+  tp.sample_spacing = 25;
+  const BdTensor t = build_bd_tensor(f, s.sources, tp);
+  const BdTensorGrid g = sample_bd_tensor(t, f, 201, 201);
+  double worst = 0;
+  for (double x = 37; x < 1000; x += 91)
+    for (double y = 23; y < 1000; y += 87) {
+      if (!f.is_inside(x, y)) continue;
+      worst = std::max(worst, dist_mod90(mod90(eval_bd_tensor(t, f, Vec2(x, y)).d1),
+                                         mod90(eval_bd_tensor(g, f, Vec2(x, y)).d1)));
+    }
+  EXPECT_LT(worst, 1.0);  // degrees
+  EXPECT_THROW(build_bd_tensor(f, s.sources, BdTensorParams{0.1, 25}), InvalidParameter);
+}
+
+// ---------------------------------------------------------------- stage 3
+TEST(BdCurves, SquarePlateGivesStraightEvenlySpacedLinesEndingOnTheTrim) {
+  const SurfaceFace f = square_plate(1000);
+  const BdSources s = sources_of(f);
+  BdTensorParams tp;
+  tp.sample_spacing = 50;
+  const BdTensor t = build_bd_tensor(f, s.sources, tp);
+  BdCurveParams cp;
+  cp.spacing = 250;
+  const std::vector<BdCurve> curves = trace_bd_curves(f, t, s.boundary, cp);
+  ASSERT_EQ(curves.size(), 6u);
+  std::multiset<long> xs, ys;
+  for (const BdCurve& c : curves) {
+    const bool vertical = std::abs(c.uv.front().x() - c.uv.back().x()) < 1e-6;
+    for (const Vec2& p : c.uv) {
+      if (vertical) {
+        EXPECT_NEAR(p.x(), c.uv.front().x(), 1e-9);
+      } else {
+        EXPECT_NEAR(p.y(), c.uv.front().y(), 1e-9);
+      }
+    }
+    (vertical ? xs : ys).insert(std::lround(vertical ? c.uv.front().x() : c.uv.front().y()));
+    EXPECT_EQ(c.start.loop, 0);
+    EXPECT_EQ(c.end.loop, 0);
+    // from one side to the other
+    EXPECT_NEAR((c.xyz.front() - c.xyz.back()).norm(), 1000.0, 1e-6);
+  }
+  EXPECT_EQ(xs, (std::multiset<long>{250, 500, 750}));
+  EXPECT_EQ(ys, (std::multiset<long>{250, 500, 750}));
+  cp.spacing = 0;
+  EXPECT_THROW(trace_bd_curves(f, t, s.boundary, cp), InvalidParameter);
+}
+
+// ---------------------------------------------------------------- stage 4
+namespace {
+BdNetwork network_of(const SurfaceFace& f, double spacing) {
+  const BdSources s = sources_of(f);
+  BdTensorParams tp;
+  tp.sample_spacing = spacing / 4;
+  const BdTensor t = build_bd_tensor(f, s.sources, tp);
+  BdCurveParams cp;
+  cp.spacing = spacing;
+  return build_bd_network(f, s.boundary, trace_bd_curves(f, t, s.boundary, cp), {});
+}
+}  // namespace
+
+TEST(BdNetwork, SquarePlateIsAFourByFourGridOfQuads) {
+  const SurfaceFace f = square_plate(1000);
+  const BdNetwork net = network_of(f, 250);
+  ASSERT_EQ(net.panels.size(), 16u);
+  double area = 0;
+  for (const auto& p : net.panels) {
+    EXPECT_EQ(p.size(), 4u);
+    EXPECT_NEAR(polygon_area(net.nodes, p), 62500.0, 1e-6);
+    area += polygon_area(net.nodes, p);
+  }
+  EXPECT_NEAR(area, 1e6, 1e-6);
+  EXPECT_EQ(net.nodes.size(), 25u);  // 9 crossings, 12 curve ends, 4 corners
+  EXPECT_EQ(
+      std::count_if(net.nodes.begin(), net.nodes.end(), [](const BdNode& n) { return n.corner; }),
+      4);
+}
+
+TEST(BdNetwork, PlateWithHoleFacesTileTheFaceExactly) {
+  const SurfaceFace f = plate_with_square_hole(1000, 375, 625);
+  const BdNetwork net = network_of(f, 250);
+  double area = 0;
+  for (const auto& p : net.panels) {
+    EXPECT_GT(polygon_area(net.nodes, p), 0.0);
+    area += polygon_area(net.nodes, p);
+  }
+  EXPECT_NEAR(area, 1e6 - 250.0 * 250.0, 1e-6);
+  // the hole's corners are nodes
+  EXPECT_EQ(
+      std::count_if(net.nodes.begin(), net.nodes.end(), [](const BdNode& n) { return n.corner; }),
+      8);
+}
+
+// ---------------------------------------------------------------- stage 5
+TEST(BdRefine, SkewedTriangleLosesItsLargestAngleVertex) {
+  const SurfaceFace f = square_plate(100);
+  BdNetwork net;
+  for (Vec2 p : {Vec2(0, 0), Vec2(10, 0), Vec2(10, 10), Vec2(0, 10), Vec2(4, 0.2)}) {
+    BdNode n;
+    n.uv = p, n.xyz = f.point(p.x(), p.y());
+    net.nodes.push_back(n);
+  }
+  net.panels = {{0, 1, 4}, {0, 4, 1, 2, 3}};
+  EXPECT_EQ(remove_skewed_triangles(net, 0.3), 1);
+  ASSERT_EQ(net.panels.size(), 1u);
+  EXPECT_EQ(net.panels[0], (std::vector<int>{0, 1, 2, 3}));  // (4, 0.2) merged into (0, 0)
+  // a well-shaped triangle stays
+  BdNetwork ok;
+  ok.nodes = {net.nodes[0], net.nodes[1], net.nodes[2]};
+  ok.panels = {{0, 1, 2}};
+  EXPECT_EQ(remove_skewed_triangles(ok, 0.3), 0);
+  EXPECT_EQ(ok.panels.size(), 1u);
+}
+
+TEST(BdRefine, TrimCornersAreNeverRemoved) {
+  const SurfaceFace f = square_plate(100);
+  BdNetwork net;
+  for (Vec2 p : {Vec2(0, 0), Vec2(10, 0), Vec2(4, 0.2)}) {
+    BdNode n;
+    n.uv = p, n.xyz = f.point(p.x(), p.y());
+    n.loop = 0, n.corner = true;
+    net.nodes.push_back(n);
+  }
+  net.panels = {{0, 1, 2}};
+  EXPECT_EQ(remove_skewed_triangles(net, 0.3), 0);
+  EXPECT_EQ(net.panels.size(), 1u);
+}
+
+TEST(BdRefine, QuadrangulationSplitsAnNGonIntoNQuadsKeepingItsArea) {
+  const SurfaceFace f = square_plate(1000);
+  BdNetwork net;
+  std::vector<int> pent;
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2 * kPi * k / 5;
+    BdNode n;
+    n.uv = Vec2(500 + 200 * std::cos(a), 500 + 200 * std::sin(a));
+    n.xyz = f.point(n.uv.x(), n.uv.y());
+    net.nodes.push_back(n);
+    pent.push_back(k);
+  }
+  net.panels = {pent};
+  const double before = polygon_area(net.nodes, pent);
+  quadrangulate(f, {}, net);
+  ASSERT_EQ(net.panels.size(), 5u);
+  EXPECT_EQ(net.nodes.size(), 11u);  // 5 corners, 5 midpoints, 1 centre
+  double after = 0;
+  for (const auto& p : net.panels) {
+    EXPECT_EQ(p.size(), 4u);
+    EXPECT_GT(polygon_area(net.nodes, p), 0.0);
+    after += polygon_area(net.nodes, p);
+  }
+  EXPECT_NEAR(after, before, 1e-6);
+}
+
+TEST(BdRefine, SmoothingRestoresARegularGridAndKeepsTrimNodesOnTheTrim) {
+  const SurfaceFace f = square_plate(300);
+  const BdSources s = sources_of(f);
+  const BdPolyline& loop = s.boundary[0];
+  // arc length of a point of the outer loop
+  auto s_of = [&](const Vec2& p) {
+    for (int i = 0; i < loop.segment_count(); ++i) {
+      const Vec2 a = loop.uv[i], b = loop.seg_end_uv(i);
+      const double l = (b - a).norm();
+      const double t = (p - a).dot(b - a) / (l * l);
+      if (t >= 0 && t <= 1 && (a + t * (b - a) - p).norm() < 1e-9) return loop.s_at(i, t);
+    }
+    return -1.0;
+  };
+  BdNetwork net;
+  auto id = [](int i, int j) { return 4 * j + i; };
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      BdNode n;
+      n.uv = Vec2(100 * i, 100 * j);
+      const bool edge = i == 0 || j == 0 || i == 3 || j == 3;
+      if (edge) {
+        n.loop = 0;
+        n.s = s_of(n.uv);
+        n.corner = (i == 0 || i == 3) && (j == 0 || j == 3);
+      }
+      net.nodes.push_back(n);
+    }
+  // perturb an interior node and a trim node along the bottom edge
+  net.nodes[id(1, 1)].uv += Vec2(30, 15);
+  net.nodes[id(2, 0)].uv = Vec2(260, 0);
+  net.nodes[id(2, 0)].s = s_of(Vec2(260, 0));
+  for (auto& n : net.nodes) n.xyz = f.point(n.uv.x(), n.uv.y());
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      net.panels.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  smooth_bd_mesh(f, s.boundary, net, 200, 0.5);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_NEAR((net.nodes[id(i, j)].uv - Vec2(100 * i, 100 * j)).norm(), 0.0, 1e-3)
+          << i << "," << j;
+    }
+  EXPECT_NEAR(net.nodes[id(2, 0)].uv.y(), 0.0, 1e-12);  // slid along the trim
+}
+
+// ---------------------------------------------------------------- end to end
+TEST(BoundaryDriven, PlateWithHoleIsAllQuadsTilingTheFaceWithNodesOnTheTrim) {
+  const SurfaceFace f = plate_with_square_hole(1000, 375, 625);
+  BoundaryDrivenParams p;
+  p.size = 125;
+  const PanelMesh m = boundary_driven(f, p);
+  ASSERT_FALSE(m.panels.empty());
+  double area = 0;
+  for (const auto& panel : m.panels) {
+    EXPECT_EQ(panel.size(), 4u);
+    Vec3 a = Vec3::Zero();
+    for (std::size_t i = 0; i < panel.size(); ++i)
+      a += m.xyz[panel[i]].cross(m.xyz[panel[(i + 1) % panel.size()]]);
+    EXPECT_GT(a.z(), 0.0);  // counter-clockwise about the normal (+z)
+    area += 0.5 * a.z();
+  }
+  EXPECT_NEAR(area, 1e6 - 250.0 * 250.0, 1e-6 * 1e6);
+  EXPECT_NEAR(m.nominal_area, 125.0 * 125.0, 1e-9);
+  EXPECT_FALSE(m.rods.empty());
+}
+
+TEST(BoundaryDriven, BadParametersThrowInvalidParameter) {
+  const SurfaceFace f = plate_with_square_hole(1000, 375, 625);
+  BoundaryDrivenParams p;
+  EXPECT_THROW(boundary_driven(f, p), InvalidParameter);  // size missing
+  p.size = 100;
+  p.rho = 0.1;
+  EXPECT_THROW(boundary_driven(f, p), InvalidParameter);
+  p.rho = 2;
+  p.skew_ratio = -1;
+  EXPECT_THROW(boundary_driven(f, p), InvalidParameter);
+  p.skew_ratio = 0.3;
+  p.size = 2;
+  p.max_panels = 1000;
+  EXPECT_THROW(boundary_driven(f, p), LimitExceeded);
+}
+
+TEST(BoundaryDriven, PeriodicCylinderAndSphereDoNotCrash) {
+  BoundaryDrivenParams p;
+  p.size = 1500;
+  EXPECT_FALSE(boundary_driven(cylinder_face(3000, 6000), p).panels.empty());
+  try {
+    const PanelMesh m = boundary_driven(sphere_face(3000), p);
+    (void)m;
+  } catch (const GeometryFailure&) {
+    // a clear error is acceptable on a closed sphere; a crash is not
+  }
+}
+
+// ---------------------------------------------------------------- trim snapping
+TEST(SurfaceFaceSnapToTrim, ChordMidpointsGoBackOntoTheCircle) {
+  BRepBuilderAPI_MakeFace mk(gp_Pln(), rect_wire(0, 0, 1000, 1000, false));
+  TopoDS_Wire hole = BRepBuilderAPI_MakeWire(
+      BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(500, 500, 0), gp_Dir(0, 0, 1)), 200)));
+  hole.Reverse();
+  mk.Add(hole);
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(mk.Face()));
+  const std::vector<TrimLoop> loops = f.trim_loops(5.0);
+  ASSERT_EQ(loops.size(), 2u);
+  const int k = loops[0].outer ? 1 : 0;
+  const auto& uv = loops[k].uv;
+  ASSERT_GT(uv.size(), 8u);
+  for (std::size_t i = 0; i < uv.size(); ++i) {
+    const Vec2 mid = 0.5 * (uv[i] + uv[(i + 1) % uv.size()]);
+    const Vec2 c(500, 500);
+    EXPECT_LT((mid - c).norm(), 200.0 - 1e-3);  // a chord midpoint is inside the circle
+    const Vec2 s = f.snap_to_trim(k, mid);
+    EXPECT_NEAR((s - c).norm(), 200.0, 1e-9);
+    EXPECT_NEAR(bd_angle_between(s - c, mid - c), 0.0, 1e-9);
+  }
+  // a point of the outer square snaps onto its edge
+  const Vec2 s = f.snap_to_trim(1 - k, Vec2(300, 3));
+  EXPECT_NEAR(s.y(), 0.0, 1e-9);
+  EXPECT_NEAR(s.x(), 300.0, 1e-9);
+  EXPECT_THROW(f.snap_to_trim(2, Vec2(0, 0)), InvalidParameter);
+}

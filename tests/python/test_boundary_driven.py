@@ -1,0 +1,279 @@
+"""method="boundary_driven" (seed 001) on real trimmed OCCT faces, checked with
+FreeCAD's own geometry (distToShape, isInside, Surface.parameter) and numpy,
+never with the core's own figures alone."""
+
+import math
+import os
+import sys
+
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+for _p in ("/usr/lib/freecad-python3/lib", REPO):
+    if _p not in sys.path:
+        sys.path.append(_p)
+
+import FreeCAD  # noqa: E402  (before Part)
+import Part  # noqa: E402
+import numpy as np  # noqa: E402
+
+import freecad_workbench as tessella  # noqa: E402
+from freecad_workbench import core  # noqa: E402
+
+SIZE = 900.0
+
+
+def _load(name):
+    shape = Part.Shape()
+    shape.read(os.path.join(REPO, "examples", name + ".brep"))
+    return shape.Faces[0]
+
+
+_cache = {}
+
+
+def run(face_key, face, **kw):
+    key = (face_key, tuple(sorted((k, str(v)) for k, v in kw.items())))
+    if key not in _cache:
+        _cache[key] = tessella.panelize(face, **kw)
+    return _cache[key]
+
+
+def corner_angles(xyz, panel):
+    out = []
+    n = len(panel)
+    for i in range(n):
+        a = xyz[panel[i - 1]] - xyz[panel[i]]
+        b = xyz[panel[(i + 1) % n]] - xyz[panel[i]]
+        out.append(math.degrees(math.acos(np.clip(np.dot(a, b) / np.linalg.norm(a) / np.linalg.norm(b), -1, 1))))
+    return out
+
+
+def boundary_rods(panels):
+    uses = {}
+    for p in panels:
+        for i in range(len(p)):
+            e = tuple(sorted((p[i], p[(i + 1) % len(p)])))
+            uses[e] = uses.get(e, 0) + 1
+    return [e for e, n in uses.items() if n == 1]
+
+
+@pytest.fixture(scope="module")
+def freeform(freeform_face):
+    return freeform_face
+
+
+def test_freeform_face_all_quads_nodes_on_surface_and_inside(freeform):
+    r = run("freeform", freeform, method="boundary_driven", size=SIZE)
+    assert len(r.panels) > 50
+    assert all(len(p) == 4 for p in r.panels)
+    model = r.summary["model_size"]
+    surface = freeform.Surface
+    # every node on the surface (FreeCAD's own projection)
+    for x in r.vertices[:: max(1, len(r.vertices) // 150)]:
+        v = FreeCAD.Vector(*x)
+        u, w = surface.parameter(v)
+        assert (surface.value(u, w) - v).Length < 1e-6 * model
+    # panel centres (mean of corners, projected) lie on the trimmed face: no panel
+    # covers a hole or reaches outside
+    for p in r.panels:
+        c = FreeCAD.Vector(*r.vertices[list(p)].mean(axis=0))
+        u, w = surface.parameter(c)
+        assert freeform.isInside(surface.value(u, w), 1e-3 * SIZE, True), p
+
+
+def test_freeform_boundary_nodes_on_trim_and_boundary_closed(freeform):
+    r = run("freeform", freeform, method="boundary_driven", size=SIZE)
+    model = r.summary["model_size"]
+    tol = max(e.Tolerance for e in freeform.Edges) + 1e-6 * model
+    edges = Part.Compound(freeform.Edges)
+    rods = boundary_rods(r.panels)
+    nodes = sorted({v for e in rods for v in e})
+    assert len(nodes) > 20
+    for v in nodes:
+        assert edges.distToShape(Part.Vertex(FreeCAD.Vector(*r.vertices[v])))[0] < tol
+    # the boundary rods form closed loops (every boundary node meets exactly two):
+    # the trim is covered with no gap
+    count = {}
+    for a, b in rods:
+        count[a] = count.get(a, 0) + 1
+        count[b] = count.get(b, 0) + 1
+    assert set(count.values()) == {2}
+    # one loop per wire: walk the boundary graph
+    adj = {}
+    for a, b in rods:
+        adj.setdefault(a, []).append(b)
+        adj.setdefault(b, []).append(a)
+    seen, loops = set(), 0
+    for start in adj:
+        if start in seen:
+            continue
+        loops += 1
+        stack = [start]
+        while stack:
+            v = stack.pop()
+            if v not in seen:
+                seen.add(v)
+                stack.extend(adj[v])
+    assert loops == len(freeform.Wires)
+    # and the chords add up to the perimeter (within the chord sagitta)
+    length = sum(np.linalg.norm(r.vertices[a] - r.vertices[b]) for a, b in rods)
+    perimeter = sum(e.Length for e in freeform.Edges)
+    assert 0.97 * perimeter < length <= perimeter * (1 + 1e-9)
+
+
+def test_freeform_area_and_fewer_irregular_than_clipped_iso_grid(freeform):
+    bd = run("freeform", freeform, method="boundary_driven", size=SIZE)
+    iso = run("freeform", freeform, method="iso_grid", size=SIZE)
+    # area of the panel models adds up to the face area (no gap, no overlap)
+    assert bd.metrics["panel_area"].sum() == pytest.approx(freeform.Area, rel=0.02)
+
+    def irregular(r):
+        count = 0
+        for p, area in zip(r.panels, r.metrics["panel_area"]):
+            if len(p) != 4 or min(corner_angles(r.vertices, p)) < 30 or area < 0.25 * SIZE**2:
+                count += 1
+        return count
+
+    assert irregular(bd) < 0.5 * irregular(iso)
+    lengths_bd = np.linalg.norm(bd.vertices[bd.rods[:, 0]] - bd.vertices[bd.rods[:, 1]], axis=1)
+    lengths_iso = np.linalg.norm(iso.vertices[iso.rods[:, 0]] - iso.vertices[iso.rods[:, 1]], axis=1)
+    assert lengths_bd.std() / lengths_bd.mean() < lengths_iso.std() / lengths_iso.mean()
+    # panels come out near the nominal size
+    assert 0.5 * SIZE < np.median(lengths_bd) < 1.5 * SIZE
+
+
+@pytest.mark.parametrize("name", ["cone_facade", "notched_shell", "vault_openings"])
+def test_examples_quad_mesh_covering_the_face(name):
+    face = _load(name)
+    r = run(name, face, method="boundary_driven", size=SIZE)
+    assert all(len(p) == 4 for p in r.panels)
+    assert r.metrics["panel_area"].sum() == pytest.approx(face.Area, rel=0.03)
+    worst = min(min(corner_angles(r.vertices, p)) for p in r.panels)
+    assert worst > 5.0
+
+
+def test_stages_curves_stay_inside_and_end_on_the_trim(freeform):
+    surface = core.SurfaceFace.from_brep_string(freeform.exportBrepToString())
+    p = core.BoundaryDrivenParams()
+    p.size = SIZE
+    d = core.boundary_driven_stages(surface, p)
+    assert len(d["curves_uv"]) > 10
+    fs = freeform.Surface
+    model = surface.model_size()
+    edges = Part.Compound(freeform.Edges)
+    tol = max(e.Tolerance for e in freeform.Edges) + 1e-6 * model
+    for uv, xyz in zip(d["curves_uv"], d["curves_xyz"]):
+        for (u, v), x in zip(uv[:: max(1, len(uv) // 6)], xyz[:: max(1, len(uv) // 6)]):
+            assert freeform.isInside(fs.value(u, v), 1e-6 * model, True)
+            assert (fs.value(u, v) - FreeCAD.Vector(*x)).Length < 1e-9 * model
+    # network nodes flagged as on a trim loop are on the face's edges
+    on_loop = [x for x, loop in zip(d["network_xyz"], d["network_loop"]) if loop >= 0]
+    for x in on_loop[:: max(1, len(on_loop) // 40)]:
+        assert edges.distToShape(Part.Vertex(FreeCAD.Vector(*x)))[0] < tol
+    assert len(d["network_panels"]) > 5
+
+
+def test_source_selection_changes_the_field(freeform):
+    all_loops = run("freeform", freeform, method="boundary_driven", size=SIZE)
+    outer_only = run("freeform", freeform, method="boundary_driven", size=SIZE, source_loops=[0])
+    assert len(outer_only.panels) > 0
+    assert len(outer_only.panels) != len(all_loops.panels) or not np.allclose(
+        outer_only.vertices, all_loops.vertices)
+    # an extra source curve (paper Figure 20): a diagonal line across the face
+    surface = core.SurfaceFace.from_brep_string(freeform.exportBrepToString())
+    u0, u1, v0, v1 = surface.bounds()
+    t = np.linspace(0.35, 0.65, 5)
+    curve = np.column_stack([u0 + t * (u1 - u0), v0 + t * (v1 - v0)])
+    curve = np.array([c for c in curve if surface.is_inside(*c)])
+    extra = tessella.panelize(freeform, method="boundary_driven", size=SIZE, source_loops=[0],
+                              extra_curves=[curve])
+    assert not np.allclose(extra.vertices[: 20], outer_only.vertices[: 20]) or len(
+        extra.panels) != len(outer_only.panels)
+
+
+@pytest.mark.parametrize(
+    "kw, words",
+    [
+        ({"size": -1.0}, "size"),
+        ({"size": SIZE, "rho": 0.0}, "rho"),
+        ({"size": SIZE, "skew_ratio": 2.0}, "skew_ratio"),
+        ({"size": SIZE, "smoothing_iterations": -3}, "smoothing_iterations"),
+        ({"size": SIZE, "source_loops": [7]}, "source loop index"),
+        ({"size": SIZE, "extra_curves": [[[1e9, 1e9], [2e9, 2e9]]]}, "not inside the face"),
+        ({"size": SIZE, "extra_curves": [[[0.5, 0.5]]]}, "at least 2"),
+        ({"size": 200.0, "max_panels": 100}, "max_panels"),
+        ({}, "size"),
+    ],
+)
+def test_bad_parameters_raise_value_error_naming_them(freeform, kw, words):
+    with pytest.raises(ValueError, match=words):
+        tessella.panelize(freeform, method="boundary_driven", **kw)
+
+
+def test_cylinder_side_face_with_seam_does_not_crash():
+    face = Part.makeCylinder(3000, 6000).Faces[0]
+    r = tessella.panelize(face, method="boundary_driven", size=1500.0)
+    assert len(r.panels) > 0
+    assert r.metrics["panel_area"].sum() == pytest.approx(face.Area, rel=0.05)
+
+
+def test_too_coarse_a_size_is_a_clear_error_not_a_wrong_mesh():
+    face = _load("vault_openings")
+    with pytest.raises(RuntimeError, match="too coarse"):
+        tessella.panelize(face, method="boundary_driven", size=math.sqrt(face.Area / 30))
+
+
+def test_panelization_document_object_with_boundary_driven(freeform):
+    from freecad_workbench.features import panelization as feat
+
+    doc = FreeCAD.newDocument("TessellaBdTest")
+    try:
+        src = doc.addObject("Part::Feature", "Src")
+        src.Shape = freeform
+        doc.recompute()
+        obj = tessella.make_panelization((src, "Face1"), method="boundary_driven", size=SIZE,
+                                         smoothing_iterations=12)
+        assert obj.SmoothingIterations == 12
+        for name in feat.BD_PROPERTIES:
+            assert name in obj.PropertiesList
+        assert obj.getEditorMode("Rho") == [] and obj.getEditorMode("UCount") == ["Hidden"]
+        doc.recompute()
+        assert obj.PanelCount > 50
+        assert obj.QuadShare == pytest.approx(1.0)
+        first = obj.PanelCount
+        obj.SourceLoops = [0]
+        obj.Rho = 3.0
+        doc.recompute()
+        res = obj.Proxy.result(obj).result
+        assert res.params["source_loops"] == [0] and res.params["rho"] == 3.0
+        assert obj.PanelCount > 0
+        assert first > 0
+        panels = feat.children_of(obj)[0]
+        assert len(panels.Shape.Faces) == obj.PanelCount
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_curve_network_object_shows_the_traced_curves(freeform):
+    doc = FreeCAD.newDocument("TessellaBdCurves")
+    try:
+        src = doc.addObject("Part::Feature", "Src")
+        src.Shape = freeform
+        doc.recompute()
+        par = tessella.make_panelization((src, "Face1"), method="boundary_driven", size=SIZE)
+        net = tessella.make_curve_network(par)
+        stages = tessella.boundary_driven_stages(freeform, size=SIZE)
+        assert net.CurveCount == len(stages["curves_xyz"]) > 10
+        assert len(net.Shape.Edges) > 0
+        # every curve vertex lies on the face (FreeCAD's own distance)
+        for v in net.Shape.Vertexes[:: max(1, len(net.Shape.Vertexes) // 50)]:
+            assert freeform.distToShape(v)[0] < 1e-6 * freeform.BoundBox.DiagonalLength
+        net.Show = "Network"
+        doc.recompute()
+        assert len(net.Shape.Edges) == len(stages["network_edges"])
+        iso = tessella.make_panelization((src, "Face1"), method="iso_grid", size=SIZE)
+        with pytest.raises(ValueError, match="not boundary_driven"):
+            tessella.make_curve_network(iso)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
