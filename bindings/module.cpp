@@ -16,6 +16,8 @@
 namespace py = pybind11;
 using namespace tessella;
 
+void bind_fabrication(py::module_& m);
+
 namespace {
 
 template <int N>
@@ -42,6 +44,7 @@ auto nogil(F f) {
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
+  bind_fabrication(m);
 
   py::register_exception_translator([](std::exception_ptr p) {
     try {

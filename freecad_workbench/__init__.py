@@ -21,3 +21,19 @@ def make_panelization(*args, **kwargs):
     from .make import make_panelization as _make
 
     return _make(*args, **kwargs)
+
+from .fabrication import FlatPanel, NestLayout, nest, unfold  # noqa: F401,E402
+
+
+def export_dxf(*args, **kwargs):
+    """Write flat panels (optionally nested) to a DXF file (see freecad_workbench.export.dxf)."""
+    from .export.dxf import export_dxf as _export
+
+    return _export(*args, **kwargs)
+
+
+def export_svg(*args, **kwargs):
+    """Write flat panels (optionally nested) to an SVG file (see freecad_workbench.export.svg)."""
+    from .export.svg import export_svg as _export
+
+    return _export(*args, **kwargs)

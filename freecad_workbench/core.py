@@ -11,6 +11,14 @@ except ImportError as exc:  # pragma: no cover - message for a user without a bu
 
 from ._core import (  # noqa: E402,F401
     EqualSizeGridParams,
+    NestParams,
+    OutlineOffsetParams,
+    UnfoldParams,
+    fold_angle_deg,
+    nest_parts,
+    offset_outline,
+    unfold_panel,
+    unfold_panels,
     GridClipParams,
     IrregularParams,
     IsoGridParams,
