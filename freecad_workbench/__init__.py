@@ -37,3 +37,11 @@ def export_svg(*args, **kwargs):
     from .export.svg import export_svg as _export
 
     return _export(*args, **kwargs)
+from .members import (  # noqa: F401,E402
+    buildability,
+    cut_list,
+    freegrid_planarity,
+    node_frames,
+    node_types,
+    rod_data,
+)
