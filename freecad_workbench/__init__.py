@@ -45,3 +45,10 @@ from .members import (  # noqa: F401,E402
     node_types,
     rod_data,
 )
+
+
+def make_unfold(*args, **kwargs):
+    """Create a parametric Unfold object of a Panelization (see freecad_workbench.make_fabrication)."""
+    from .make_fabrication import make_unfold as _make
+
+    return _make(*args, **kwargs)

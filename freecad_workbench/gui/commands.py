@@ -119,3 +119,7 @@ Gui.addCommand("Tessella_Panelize", PanelizeCommand())
 
 #: Command names, in toolbar order (used by InitGui.py).
 COMMANDS = ["Tessella_Panelize"]
+
+from . import fabrication_commands  # noqa: E402  (registers Tessella_Unfold)
+
+COMMANDS += fabrication_commands.COMMANDS

@@ -1,0 +1,63 @@
+"""Fabrication commands: Tessella_Unfold (imported by gui/commands.py)."""
+
+import FreeCAD
+import FreeCADGui as Gui
+
+from .view_providers import icon_path
+
+SELECT_PANELIZATION = (
+    "Select one Panelization (or one of its Panels, Rods or Nodes) in the tree, "
+    "then run Unfold again."
+)
+
+
+def selected_panelization():
+    """The selected Panelization (a selected child counts as its parent), else None."""
+    from ..features.panelization import is_panelization, is_panelization_part
+
+    picks = []
+    for obj in Gui.Selection.getSelection():
+        if is_panelization(obj):
+            picks.append(obj)
+        elif is_panelization_part(obj) and obj.Base is not None:
+            picks.append(obj.Base)
+    picks = list({o.Name: o for o in picks}.values())
+    return picks[0] if len(picks) == 1 else None
+
+
+class UnfoldCommand:
+    """Tessella_Unfold: flat outlines (true edge lengths, folds) of a Panelization."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": icon_path("Tessella_Unfold"),
+            "MenuText": "Unfold panels",
+            "ToolTip": ("Draw every panel of the selected Panelization flat with true edge "
+                        "lengths and fold lines (set Nest and the sheet size in the property "
+                        "view to lay them out on stock sheets)"),
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self):
+        from .commands import _warn
+
+        obj = selected_panelization()
+        if obj is None:
+            _warn("Tessella: Unfold", SELECT_PANELIZATION)
+            return
+        call = ("tessella.make_unfold("
+                f"FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}))")
+        try:
+            Gui.doCommand("import freecad_workbench as tessella")
+            Gui.doCommand(call)
+        except Exception as exc:
+            _warn("Tessella: Unfold", f"Unfold failed: {exc}")
+            return
+        Gui.Selection.clearSelection()
+
+
+Gui.addCommand("Tessella_Unfold", UnfoldCommand())
+
+COMMANDS = ["Tessella_Unfold"]
