@@ -111,14 +111,20 @@ Inner inner_fit(const Pose& pose, const NestParams& p, double scale) {
 
 bool fits(const Inner& r) { return r.x0 <= r.x1 && r.y0 <= r.y1; }
 
+// Placement rules tried in turn; the layout with the fewest sheets (then the
+// smallest used box on its last sheet) wins.
+enum class Rule { BottomLeft, LeftBottom };
+
 struct Candidate {
   bool found = false;
-  double top = 0, left = 0;
+  double top = 0, left = 0, right = 0;
   int rotation = 0;
   long long x = 0, y = 0;
-  bool better_than(const Candidate& o) const {
+  bool better_than(const Candidate& o, Rule rule) const {
     if (!o.found) return true;
-    return std::tie(top, left, rotation) < std::tie(o.top, o.left, o.rotation);
+    if (rule == Rule::BottomLeft)
+      return std::tie(top, left, rotation) < std::tie(o.top, o.left, o.rotation);
+    return std::tie(right, top, rotation) < std::tie(o.right, o.top, o.rotation);
   }
 };
 
@@ -206,88 +212,103 @@ NestLayout nest_parts(const std::vector<std::vector<Vec2>>& outlines, const Nest
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return hull_area[a] > hull_area[b]; });
 
-  NestLayout layout;
-  layout.placements.resize(n);
-  std::vector<std::vector<std::vector<Vec2>>> sheets;  // grown hulls placed, per sheet
-  std::vector<double> failed_area;  // per sheet: smallest hull area that found no room
+  auto run = [&](Rule rule, double& last_box) {
+    NestLayout layout;
+    layout.placements.resize(n);
+    std::vector<std::vector<std::vector<Vec2>>> sheets;  // grown hulls placed, per sheet
+    std::vector<double> failed_area;  // per sheet: smallest hull area that found no room
 
-  auto best_on = [&](std::size_t i, const std::vector<std::vector<Vec2>>& placed) {
-    Candidate best;
-    for (int k = 0; k < params.rotations; ++k) {
-      const Pose& pose = poses[i][k];
-      const Inner r = inner_fit(pose, params, scale);
-      if (!fits(r)) continue;
-      ClipperLib::Path rect{{r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}};
-      ClipperLib::Paths free_region;
-      if (placed.empty()) {
-        free_region.push_back(rect);
-      } else {
-        ClipperLib::Paths nfps;
-        for (const auto& a : placed) {
-          nfps.push_back(to_path(minkowski_convex(a, pose.reflected), scale));
+    auto best_on = [&](std::size_t i, const std::vector<std::vector<Vec2>>& placed) {
+      Candidate best;
+      for (int k = 0; k < params.rotations; ++k) {
+        const Pose& pose = poses[i][k];
+        const Inner r = inner_fit(pose, params, scale);
+        if (!fits(r)) continue;
+        ClipperLib::Path rect{{r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}};
+        ClipperLib::Paths free_region;
+        if (placed.empty()) {
+          free_region.push_back(rect);
+        } else {
+          ClipperLib::Paths nfps;
+          for (const auto& a : placed) {
+            nfps.push_back(to_path(minkowski_convex(a, pose.reflected), scale));
+          }
+          ClipperLib::Clipper c;
+          c.AddPath(rect, ClipperLib::ptSubject, true);
+          c.AddPaths(nfps, ClipperLib::ptClip, true);
+          c.Execute(ClipperLib::ctDifference, free_region, ClipperLib::pftNonZero,
+                    ClipperLib::pftNonZero);
         }
-        ClipperLib::Clipper c;
-        c.AddPath(rect, ClipperLib::ptSubject, true);
-        c.AddPaths(nfps, ClipperLib::ptClip, true);
-        c.Execute(ClipperLib::ctDifference, free_region, ClipperLib::pftNonZero,
-                  ClipperLib::pftNonZero);
+        for (const auto& path : free_region)
+          for (const auto& q : path) {
+            Candidate cand;
+            cand.found = true;
+            cand.rotation = k;
+            cand.x = q.X, cand.y = q.Y;
+            cand.top = q.Y / scale + pose.max_y;
+            cand.left = q.X / scale + pose.min_x;
+            cand.right = q.X / scale + pose.max_x;
+            if (cand.better_than(best, rule)) best = cand;
+          }
       }
-      for (const auto& path : free_region)
-        for (const auto& q : path) {
-          Candidate cand;
-          cand.found = true;
-          cand.rotation = k;
-          cand.x = q.X, cand.y = q.Y;
-          cand.top = q.Y / scale + pose.max_y;
-          cand.left = q.X / scale + pose.min_x;
-          if (cand.better_than(best)) best = cand;
+      return best;
+    };
+
+    for (std::size_t i : order) {
+      Candidate best;
+      int sheet = -1;
+      for (std::size_t s = 0; s < sheets.size() && !best.found; ++s) {
+        // A sheet where a part at most 1% larger found no room is skipped
+        // (saves most of the time once sheets fill; a heuristic, never unsafe).
+        if (failed_area[s] <= 1.01 * hull_area[i]) continue;
+        best = best_on(i, sheets[s]);
+        if (best.found) {
+          sheet = static_cast<int>(s);
+        } else {
+          failed_area[s] = std::min(failed_area[s], hull_area[i]);
         }
+      }
+      if (!best.found) {
+        if (static_cast<int>(sheets.size()) >= params.max_sheets)
+          throw LimitExceeded("nesting needs more than max_sheets (" +
+                              std::to_string(params.max_sheets) + ") sheets");
+        sheets.emplace_back();
+        failed_area.push_back(std::numeric_limits<double>::infinity());
+        sheet = static_cast<int>(sheets.size()) - 1;
+        best = best_on(i, sheets.back());
+        if (!best.found) throw GeometryFailure("nesting: a part that fits found no place");
+      }
+      const Pose& pose = poses[i][best.rotation];
+      const Vec2 offset(best.x / scale, best.y / scale);
+      std::vector<Vec2> hull = pose.hull;
+      for (Vec2& p : hull) p += offset;
+      sheets[sheet].push_back(grow(hull, grow_by));
+      layout.placements[i] = {sheet, pose.angle_deg, offset};
     }
-    return best;
+
+    layout.sheet_count = static_cast<int>(sheets.size());
+    layout.sheet_utilization.assign(sheets.size(), 0.0);
+    const double sheet_area = params.sheet_width * params.sheet_height;
+    double total = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      layout.sheet_utilization[layout.placements[i].sheet] += area[i] / sheet_area;
+      total += area[i];
+    }
+    layout.utilization = sheets.empty() ? 0.0 : total / (sheet_area * sheets.size());
+    // used box of the last sheet (what a better layout leaves free)
+    double x1 = 0, y1 = 0;
+    if (!sheets.empty())
+      for (const auto& h : sheets.back())
+        for (const Vec2& q : h) x1 = std::max(x1, q.x()), y1 = std::max(y1, q.y());
+    last_box = x1 * y1;
+    return layout;
   };
 
-  for (std::size_t i : order) {
-    Candidate best;
-    int sheet = -1;
-    for (std::size_t s = 0; s < sheets.size() && !best.found; ++s) {
-      // A sheet where a part at most 1% larger found no room is skipped
-      // (saves most of the time once sheets fill; a heuristic, never unsafe).
-      if (failed_area[s] <= 1.01 * hull_area[i]) continue;
-      best = best_on(i, sheets[s]);
-      if (best.found) {
-        sheet = static_cast<int>(s);
-      } else {
-        failed_area[s] = std::min(failed_area[s], hull_area[i]);
-      }
-    }
-    if (!best.found) {
-      if (static_cast<int>(sheets.size()) >= params.max_sheets)
-        throw LimitExceeded("nesting needs more than max_sheets (" +
-                            std::to_string(params.max_sheets) + ") sheets");
-      sheets.emplace_back();
-      failed_area.push_back(std::numeric_limits<double>::infinity());
-      sheet = static_cast<int>(sheets.size()) - 1;
-      best = best_on(i, sheets.back());
-      if (!best.found) throw GeometryFailure("nesting: a part that fits found no place");
-    }
-    const Pose& pose = poses[i][best.rotation];
-    const Vec2 offset(best.x / scale, best.y / scale);
-    std::vector<Vec2> hull = pose.hull;
-    for (Vec2& p : hull) p += offset;
-    sheets[sheet].push_back(grow(hull, grow_by));
-    layout.placements[i] = {sheet, pose.angle_deg, offset};
-  }
-
-  layout.sheet_count = static_cast<int>(sheets.size());
-  layout.sheet_utilization.assign(sheets.size(), 0.0);
-  const double sheet_area = params.sheet_width * params.sheet_height;
-  double total = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    layout.sheet_utilization[layout.placements[i].sheet] += area[i] / sheet_area;
-    total += area[i];
-  }
-  layout.utilization = sheets.empty() ? 0.0 : total / (sheet_area * sheets.size());
-  return layout;
+  double box_a = 0, box_b = 0;
+  NestLayout a = run(Rule::BottomLeft, box_a);
+  NestLayout b = run(Rule::LeftBottom, box_b);
+  if (b.sheet_count < a.sheet_count || (b.sheet_count == a.sheet_count && box_b < box_a)) return b;
+  return a;
 }
 
 }  // namespace tessella
