@@ -43,6 +43,7 @@ from .members import (  # noqa: F401,E402
     freegrid_planarity,
     node_frames,
     node_types,
+    panel_types,
     rod_data,
 )
 

@@ -193,32 +193,36 @@ def node_types(result, angle_tol=0.5, frames=None):
     return types, summary
 
 
-def _panel_types(flat, length_tol, angle_tol):
+def panel_types(flat, length_tol=1.0, angle_tol=0.5):
+    """Flat panels congruent within length_tol (mm) and angle_tol (deg, corner
+    angles and fold angle) share a type; corner order may start anywhere (a panel
+    can be turned), mirror images differ (front and back differ).
+    Returns (type index per panel, number of types)."""
     sigs = []
     for f in flat:
         p = np.asarray(f.outline)
         e = np.roll(p, -1, axis=0) - p
+        prev = np.roll(e, 1, axis=0)
         lengths = np.linalg.norm(e, axis=1)
-        ang = np.degrees(np.arctan2(np.cross(np.roll(e, 1, axis=0), e), np.sum(np.roll(e, 1, axis=0) * e, axis=1)))
+        ang = np.degrees(np.arctan2(np.cross(prev, e), np.sum(prev * e, axis=1)))
         sigs.append((list(zip(lengths, ang)), f.fold_angle))
-    reps, count = [], 0
+    reps, types = [], []
     for s, fold in sigs:
-        found = False
-        for rs, rfold in reps:
+        found = -1
+        for t, (rs, rfold) in enumerate(reps):
             if abs(rfold - fold) > angle_tol or len(rs) != len(s):
                 continue
             k = len(s)
-            for shift in range(k):
-                if all(abs(s[i][0] - rs[(i + shift) % k][0]) <= length_tol
-                       and abs(s[i][1] - rs[(i + shift) % k][1]) <= angle_tol for i in range(k)):
-                    found = True
-                    break
-            if found:
+            if any(all(abs(s[i][0] - rs[(i + shift) % k][0]) <= length_tol
+                       and abs(s[i][1] - rs[(i + shift) % k][1]) <= angle_tol for i in range(k))
+                   for shift in range(k)):
+                found = t
                 break
-        if not found:
+        if found < 0:
+            found = len(reps)
             reps.append((s, fold))
-        count = len(reps)
-    return count
+        types.append(found)
+    return types, len(reps)
 
 
 def freegrid_planarity(result):
@@ -254,7 +258,7 @@ def buildability(result, flat=None, layout=None, length_tol=1.0, angle_tol=0.5):
         "panel_area_3d": float(np.sum(result.metrics["panel_area"])),
     }
     if flat is not None:
-        s["panel_types"] = _panel_types(flat, length_tol, angle_tol)
+        s["panel_types"] = panel_types(flat, length_tol, angle_tol)[1]
         s["flat_area"] = float(sum(f.area for f in flat))
         s["folded_panels"] = sum(1 for f in flat if f.folds)
         s["max_fold_angle"] = float(max((f.fold_angle for f in flat), default=0.0))

@@ -24,6 +24,11 @@ NODE_SCHEDULE_COLUMNS = ("id", "type", "x", "y", "z", "axis_x", "axis_y", "axis_
                          "rods")
 
 
+PANEL_FAB_COLUMNS = ("id", "type", "vertex_count", "flat_width_mm", "flat_height_mm", "area_mm2",
+                     "flat_area_mm2", "perimeter_mm", "deviation_mm", "planarity", "fold",
+                     "fold_angle_deg", "fold_valley", "folds")
+
+
 def _open(path):
     return open(path, "w", newline="", encoding="utf-8")
 
@@ -134,3 +139,26 @@ def write_abaqus_inp(result, path, profile=("pipe", 60.0, 4.0), young=210000.0, 
     with open(path, "w", encoding="utf-8") as f:
         f.write("\n".join(lines) + "\n")
     return path
+
+
+def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_tol=0.5):
+    """One row per panel: type (congruent flat panels), flat size (bounding box of
+    the outline as unfolded), 3D model area and flat area, perimeter, deviation,
+    planarity, fold diagonal ("a-b", corner indices) and angle. Returns the row count."""
+    from .schedule_csv import panel_perimeters
+
+    types, _ = m.panel_types(flat, length_tol, angle_tol)
+    per = panel_perimeters(result)
+    with _open(path) as f:
+        w = csv.writer(f)
+        w.writerow(PANEL_FAB_COLUMNS)
+        for k, fp in enumerate(flat):
+            size = fp.outline.max(axis=0) - fp.outline.min(axis=0)
+            w.writerow([fp.id, f"PT-{types[k] + 1:03d}", len(fp.outline), repr(float(size[0])),
+                        repr(float(size[1])), repr(float(result.metrics["panel_area"][k])),
+                        repr(float(fp.area)), repr(float(per[k])),
+                        repr(float(result.metrics["panel_deviation"][k])),
+                        repr(float(result.metrics["panel_planarity"][k])),
+                        f"{fp.fold[0]}-{fp.fold[1]}" if fp.fold else "",
+                        repr(float(fp.fold_angle)), int(fp.fold_valley), len(fp.folds)])
+    return len(flat)

@@ -159,3 +159,32 @@ def test_structural_json_and_abaqus(cyl, tmp_path):
         mx.write_abaqus_inp(cyl, ip, profile=("pipe", 10.0, 20.0))
     with pytest.raises(ValueError):
         mx.write_abaqus_inp(cyl, ip, profile=("rect", -1.0, 2.0))
+
+
+def test_panel_fabrication_schedule(tmp_path):
+    """Saddle quads: the schedule's fold angle equals the dihedral recomputed from
+    the 3D corners; mirror-symmetric panels of the saddle share types."""
+    pts = [[FreeCAD.Vector(x, y, x * y / 4000.0) for y in (-2000, 2000)] for x in (-2000, 2000)]
+    s = Part.BezierSurface()
+    s.increase(1, 1)
+    for i in range(2):
+        for j in range(2):
+            s.setPole(i + 1, j + 1, pts[i][j])
+    r = tessella.panelize(s.toShape(), method="iso_grid", u_count=4, v_count=4)
+    flat = tessella.unfold(r)
+    path = str(tmp_path / "panels_fab.csv")
+    assert mx.write_panel_fabrication_schedule(r, flat, path) == 16
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for row, panel in zip(rows, r.panels):
+        p = r.vertices[list(panel)]
+        a, b = (int(t) for t in row["fold"].split("-"))
+        c, d = [i for i in range(4) if i not in (a, b)]
+        n1 = np.cross(p[b] - p[a], p[c] - p[a])
+        n2 = np.cross(p[b] - p[a], p[d] - p[a])
+        dihedral = 180 - math.degrees(math.acos(np.dot(n1, n2) / np.linalg.norm(n1) / np.linalg.norm(n2)))
+        assert float(row["fold_angle_deg"]) == pytest.approx(dihedral, abs=1e-7)
+        assert float(row["flat_area_mm2"]) > 0
+    types = {row["type"] for row in rows}
+    # z = xy/4000 on a 4x4 grid: a panel and its 180-degree-turned partner match
+    assert 1 < len(types) < 16
