@@ -53,3 +53,17 @@ def make_unfold(*args, **kwargs):
     from .make_fabrication import make_unfold as _make
 
     return _make(*args, **kwargs)
+
+
+def rod_solids(*args, **kwargs):
+    """Rods as solids with a profile (see freecad_workbench.solids; needs FreeCAD)."""
+    from .solids import rod_solids as _f
+
+    return _f(*args, **kwargs)
+
+
+def hub_solids(*args, **kwargs):
+    """Simple cylindrical hubs along the node axes (see freecad_workbench.solids)."""
+    from .solids import hub_solids as _f
+
+    return _f(*args, **kwargs)

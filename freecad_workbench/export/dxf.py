@@ -26,6 +26,17 @@ def fold_text(angle):
     return f"{'V' if angle > 0 else 'M'} {abs(angle):.4f}°"
 
 
+def _layout_kerf(layout, kerf):
+    """The kerf of a nested layout wins; a different non-zero kerf is an error (the
+    cut paths were nested at the layout's kerf)."""
+    if kerf and layout.kerf and abs(kerf - layout.kerf) > 1e-12:
+        raise ValueError(f"kerf {kerf} differs from the kerf the layout was nested with "
+                         f"({layout.kerf}): nest again with kerf={kerf}")
+    if kerf and not layout.kerf:
+        raise ValueError(f"the layout was nested without kerf: nest again with kerf={kerf}")
+    return layout.kerf
+
+
 def export_dxf(flat, path, layout=None, kerf=0.0):
     """Write the flat panels to `path` (DXF R2010). Returns a dict summary.
 
@@ -35,8 +46,8 @@ def export_dxf(flat, path, layout=None, kerf=0.0):
     from ezdxf import units
 
     flat = list(flat)
-    if layout is not None and kerf == 0.0:
-        kerf = layout.kerf
+    if layout is not None:
+        kerf = _layout_kerf(layout, kerf)
     cuts = [cut_outline(f, kerf) for f in flat]  # validates kerf
     placements, sheets = _arrange.arrange(flat, layout)
 

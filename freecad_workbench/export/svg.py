@@ -13,13 +13,13 @@ import numpy as np
 
 from ..fabrication import cut_outline
 from . import _arrange
-from .dxf import fold_text
+from .dxf import _layout_kerf, fold_text
 
 
 def export_svg(flat, path, layout=None, kerf=0.0):
     flat = list(flat)
-    if layout is not None and kerf == 0.0:
-        kerf = layout.kerf
+    if layout is not None:
+        kerf = _layout_kerf(layout, kerf)
     cuts = [cut_outline(f, kerf) for f in flat]
     placements, sheets = _arrange.arrange(flat, layout)
     placed = [_arrange.transform(c, *pl) for c, pl in zip(cuts, placements)]

@@ -314,6 +314,10 @@ def test_dxf_kerf_offsets_the_cut(tmp_path, saddle):
         assert Part.Face(wc).Area > Part.Face(wn).Area
     with pytest.raises(ValueError, match="kerf"):
         tessella.export_dxf(flat, path, kerf=-0.1)
+    with pytest.raises(ValueError, match="differs"):  # cut paths nested at another kerf
+        tessella.export_dxf(flat, path, layout=lay, kerf=0.5)
+    with pytest.raises(ValueError, match="without kerf"):
+        tessella.export_svg(flat, path, layout=tessella.nest(flat, 2500, 1250), kerf=0.5)
 
 
 def test_svg(tmp_path, saddle):

@@ -188,3 +188,30 @@ def test_panel_fabrication_schedule(tmp_path):
     types = {row["type"] for row in rows}
     # z = xy/4000 on a 4x4 grid: a panel and its 180-degree-turned partner match
     assert 1 < len(types) < 16
+
+
+def test_rod_and_hub_solids(cyl):
+    lengths = [math.dist(cyl.vertices[a], cyl.vertices[b]) for a, b in cyl.rods]
+    rect = tessella.rod_solids(cyl, profile=("rect", 60.0, 160.0))
+    assert len(rect.Solids) == len(cyl.rods)
+    for s, length, (a, b) in zip(rect.Solids, lengths, cyl.rods):
+        assert s.isValid()
+        assert s.Volume == pytest.approx(60.0 * 160.0 * length, rel=1e-9)
+        # the 160 mm side follows the (radial) surface normal: the solid's extent
+        # along the normal at the rod's midpoint is 160
+        mid = 0.5 * (cyl.vertices[a] + cyl.vertices[b])
+        radial = FreeCAD.Vector(mid[0], mid[1], 0).normalize()
+        ext = [v.Point.dot(radial) for v in s.Vertexes]
+        assert max(ext) - min(ext) == pytest.approx(160.0, abs=1e-6 + 60 * math.sin(math.pi / N_AROUND))
+    pipe = tessella.rod_solids(cyl, profile=("pipe", 30.0, 3.0))
+    total = sum(lengths) * math.pi * (30.0 ** 2 - 27.0 ** 2)
+    assert pipe.Volume == pytest.approx(total, rel=1e-6)
+    hubs = tessella.hub_solids(cyl, radius=50.0, height=100.0)
+    assert len(hubs.Solids) == len(cyl.vertices)
+    for h, p in zip(hubs.Solids, cyl.vertices):
+        c = h.CenterOfMass
+        assert math.dist((c.x, c.y, c.z), p) < 1e-6
+    with pytest.raises(ValueError):
+        tessella.rod_solids(cyl, profile=("rect", 0.0, 1.0))
+    with pytest.raises(ValueError):
+        tessella.hub_solids(cyl, radius=-1)

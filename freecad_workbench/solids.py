@@ -1,0 +1,77 @@
+"""Solids for the workshop model: rods with a profile and simple hubs (needs FreeCAD).
+
+    shape = tessella.rod_solids(r, profile=("rect", 60.0, 160.0))   # or ("pipe", R, t), ("circ", R)
+    hubs = tessella.hub_solids(r, radius=80.0, height=200.0)
+
+Rods run node to node; a rectangular profile's height is oriented along the mean
+of the two node normals (projected square to the rod), its width across.
+Hubs are cylinders centred on the nodes along the node axis. Compounds in rod /
+node order.
+"""
+
+import numpy as np
+
+
+def _profile(profile):
+    kind = profile[0]
+    dims = [float(v) for v in profile[1:]]
+    need = {"rect": 2, "pipe": 2, "circ": 1}.get(kind)
+    if need is None:
+        raise ValueError(f"profile must start with 'rect', 'pipe' or 'circ', got {kind!r}")
+    if len(dims) != need or any(not v > 0 for v in dims):
+        raise ValueError(f"profile {kind!r} needs {need} positive dimension(s) (mm), got {dims}")
+    if kind == "pipe" and dims[1] >= dims[0]:
+        raise ValueError("pipe thickness must be less than its radius")
+    return kind, dims
+
+
+def rod_solids(result, profile=("rect", 60.0, 160.0)):
+    import FreeCAD
+    import Part
+
+    kind, dims = _profile(profile)
+    xyz = np.asarray(result.vertices, dtype=float)
+    nrm = np.asarray(result.normals, dtype=float)
+    solids = []
+    for a, b in np.asarray(result.rods).reshape(-1, 2):
+        p, q = xyz[a], xyz[b]
+        t = q - p
+        length = float(np.linalg.norm(t))
+        t = t / length
+        up = nrm[a] + nrm[b]
+        up = up - np.dot(up, t) * t
+        if np.linalg.norm(up) < 1e-12:
+            up = np.cross(t, [1.0, 0, 0]) if abs(t[0]) < 0.9 else np.cross(t, [0, 1.0, 0])
+        up = up / np.linalg.norm(up)
+        side = np.cross(up, t)
+        if kind == "rect":
+            w, h = dims
+            base = p - 0.5 * w * side - 0.5 * h * up
+            corners = [base, base + w * side, base + w * side + h * up, base + h * up]
+            pts = [FreeCAD.Vector(*map(float, c)) for c in corners]
+            face = Part.Face(Part.makePolygon(pts + [pts[0]]))
+            solids.append(face.extrude(FreeCAD.Vector(*map(float, t * length))))
+        else:
+            d = FreeCAD.Vector(*map(float, t))
+            s = Part.makeCylinder(dims[0], length, FreeCAD.Vector(*map(float, p)), d)
+            if kind == "pipe":
+                s = s.cut(Part.makeCylinder(dims[0] - dims[1], length, FreeCAD.Vector(*map(float, p)), d))
+            solids.append(s)
+    return Part.makeCompound(solids)
+
+
+def hub_solids(result, radius=80.0, height=200.0):
+    import FreeCAD
+    import Part
+
+    if not (radius > 0 and height > 0):
+        raise ValueError("radius and height (mm) must be > 0")
+    xyz = np.asarray(result.vertices, dtype=float)
+    nrm = np.asarray(result.normals, dtype=float)
+    hubs = []
+    for p, n in zip(xyz, nrm):
+        n = n / np.linalg.norm(n)
+        base = p - 0.5 * height * n
+        hubs.append(Part.makeCylinder(float(radius), float(height),
+                                      FreeCAD.Vector(*map(float, base)), FreeCAD.Vector(*map(float, n))))
+    return Part.makeCompound(hubs)
