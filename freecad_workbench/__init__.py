@@ -67,3 +67,10 @@ def hub_solids(*args, **kwargs):
     from .solids import hub_solids as _f
 
     return _f(*args, **kwargs)
+
+
+def make_schedules(*args, **kwargs):
+    """Panel, rod and node schedules as Spreadsheet objects (see freecad_workbench.spreadsheets)."""
+    from .spreadsheets import make_schedules as _f
+
+    return _f(*args, **kwargs)

@@ -58,19 +58,27 @@ def rod_data(result):
     }
 
 
-def _greedy_groups(keys, close):
+def _greedy_groups(keys, close, tol0):
     """Deterministic clustering: items in key order join the first group whose
-    representative is close, else start a group. Returns group index per item."""
+    representative is close, else start a group. keys[i][0] must differ by at
+    most tol0 within a group (used to look only at nearby representatives).
+    Returns (group index per item, representative item per group)."""
+    import bisect
+
     order = sorted(range(len(keys)), key=lambda i: keys[i])
-    reps, group = [], [0] * len(keys)
+    reps, rep_first, group = [], [], [0] * len(keys)
     for i in order:
-        for g, rep in enumerate(reps):
-            if close(keys[rep], keys[i]):
+        lo = bisect.bisect_left(rep_first, keys[i][0] - tol0)
+        for g in range(lo, len(reps)):
+            if rep_first[g] > keys[i][0] + tol0:
+                break
+            if close(keys[reps[g]], keys[i]):
                 group[i] = g
                 break
         else:
             group[i] = len(reps)
             reps.append(i)
+            rep_first.append(keys[i][0])  # increasing: items come in key order
     return group, reps
 
 
@@ -91,7 +99,7 @@ def cut_list(result, length_tol=1.0, angle_tol=0.5):
         return (abs(p[0] - q[0]) <= length_tol and abs(p[1] - q[1]) <= angle_tol
                 and abs(p[2] - q[2]) <= angle_tol)
 
-    group, reps = _greedy_groups(keys, close)
+    group, reps = _greedy_groups(keys, close, length_tol)
     out = []
     for g, rep in enumerate(reps):
         members = [i for i in range(len(keys)) if group[i] == g]
@@ -175,16 +183,30 @@ def node_types(result, angle_tol=0.5, frames=None):
     if not angle_tol >= 0:
         raise ValueError("angle_tol must be >= 0")
     frames = frames if frames is not None else node_frames(result)
+    import bisect
+
     sigs = [_node_signature(f) for f in frames]
+    # Candidates share the valence and the smallest azimuth gap within angle_tol
+    # (a necessary condition), looked up by bisection.
+    buckets = {}  # valence -> (sorted smallest gaps, type indices)
     reps, types = [], []
     for n, sig in enumerate(sigs):
-        for t, rep in enumerate(reps):
-            if _same_cyclic(sigs[rep], sig, angle_tol):
-                types.append(t)
+        g0 = min((g for g, _ in sig), default=0.0)
+        firsts, idx = buckets.setdefault(len(sig), ([], []))
+        lo = bisect.bisect_left(firsts, g0 - angle_tol)
+        hi = bisect.bisect_right(firsts, g0 + angle_tol)
+        found = -1
+        for t in sorted(idx[lo:hi]):
+            if _same_cyclic(sigs[reps[t]], sig, angle_tol):
+                found = t
                 break
-        else:
-            types.append(len(reps))
+        if found < 0:
+            found = len(reps)
             reps.append(n)
+            pos = bisect.bisect_right(firsts, g0)
+            firsts.insert(pos, g0)
+            idx.insert(pos, found)
+        types.append(found)
     summary = []
     for t, rep in enumerate(reps):
         members = [frames[n]["id"] for n in range(len(sigs)) if types[n] == t]

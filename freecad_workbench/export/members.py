@@ -52,11 +52,12 @@ def write_rod_data(result, path, length_tol=1.0, angle_tol=0.5):
     for t in m.cut_list(result, length_tol, angle_tol):
         for rid in t["rods"]:
             types[rid] = t["type"]
+    node_ids = list(result.node_ids)  # a property that builds the list on every access
     with _open(path) as f:
         w = csv.writer(f)
         w.writerow(ROD_DATA_COLUMNS)
         for k, rid in enumerate(rd["id"]):
-            w.writerow([rid, result.node_ids[rd["node_a"][k]], result.node_ids[rd["node_b"][k]],
+            w.writerow([rid, node_ids[rd["node_a"][k]], node_ids[rd["node_b"][k]],
                         repr(float(rd["length"][k])), repr(float(rd["cut_angle_a"][k])),
                         repr(float(rd["cut_angle_b"][k])), repr(float(rd["twist"][k])), types[rid]])
     return len(rd["id"])
@@ -79,12 +80,13 @@ def write_node_schedule(result, path, angle_tol=0.5):
 
 def structural_model(result):
     rd = m.rod_data(result)
+    node_ids = list(result.node_ids)
     return {
         "units": {"length": "mm"},
         "nodes": [{"id": nid, "xyz": [float(v) for v in p], "normal": [float(v) for v in n]}
                   for nid, p, n in zip(result.node_ids, np.asarray(result.vertices),
                                        np.asarray(result.normals))],
-        "elements": [{"id": rid, "nodes": [result.node_ids[a], result.node_ids[b]],
+        "elements": [{"id": rid, "nodes": [node_ids[a], node_ids[b]],
                       "length": float(length)}
                      for rid, a, b, length in zip(rd["id"], rd["node_a"], rd["node_b"], rd["length"])],
     }

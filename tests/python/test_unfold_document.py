@@ -123,3 +123,27 @@ def test_one_undo_step_and_reopen(doc, tmp_path):
         assert u2.isValid() and u2.SheetCount == sheets
     finally:
         FreeCAD.closeDocument(d2.Name)
+
+
+def test_make_schedules_match_the_objects(doc):
+    d, p = doc
+    sheets = tessella.make_schedules(p)
+    assert [s.TypeId for s in sheets] == ["Spreadsheet::Sheet"] * 3
+    panels, rods, nodes = sheets
+    child = panels_child(p)
+    faces = child.Shape.childShapes()
+    ids = list(child.PanelIds)
+    assert panels.get("A1") == "id" and panels.get(f"A{len(ids) + 1}") == ids[-1]
+    # the area column (3D panel model) against FreeCAD's own face areas
+    header = [panels.get(f"{c}1") for c in "ABCDEFGHIJKLMN"]
+    col = "ABCDEFGHIJKLMN"[header.index("area_mm2")]
+    for k, face in enumerate(faces):
+        assert panels.get(f"{col}{k + 2}") == pytest.approx(face.Area, rel=1e-6)
+    rods_child = [c for c in pfeat.children_of(p) if c.Role == "Rods"][0]
+    for k, edge in enumerate(rods_child.Shape.childShapes()[:50]):
+        assert rods.get(f"A{k + 2}") == rods_child.RodIds[k]
+        assert rods.get(f"D{k + 2}") == pytest.approx(edge.Length, rel=1e-9)
+    nodes_child = [c for c in pfeat.children_of(p) if c.Role == "Nodes"][0]
+    assert nodes.get(f"A{len(nodes_child.NodeIds) + 1}") == nodes_child.NodeIds[-1]
+    with pytest.raises(ValueError):
+        tessella.make_schedules(d.getObject("Surface"))
