@@ -74,3 +74,10 @@ def make_schedules(*args, **kwargs):
     from .spreadsheets import make_schedules as _f
 
     return _f(*args, **kwargs)
+
+
+def panel_solids(*args, **kwargs):
+    """Panels with a thickness, offset along the node normals (see freecad_workbench.solids)."""
+    from .solids import panel_solids as _f
+
+    return _f(*args, **kwargs)

@@ -32,6 +32,7 @@ class FlatPanel:
     folds: list = field(default_factory=list)  # every fold: (a, b, signed degrees, + = valley)
     max_fold: float = 0.0  # largest |dihedral| over all diagonals, also under the tolerance
     u_direction: tuple = (1.0, 0.0)  # the surface's u direction on the flat panel (orientation mark)
+    triangles: list = field(default_factory=list)  # corner triples the panel was unfolded by
 
     @property
     def area(self):
@@ -74,6 +75,7 @@ def unfold(result, fold_tolerance=0.01):
             folds=folds,
             max_fold=float(f.max_fold_deg),
             u_direction=tuple(f.u_direction),
+            triangles=[tuple(t) for t in f.triangles],
         )
         if folds:
             a, b, angle = max(folds, key=lambda t: (abs(t[2]), -t[0], -t[1]))

@@ -75,3 +75,50 @@ def hub_solids(result, radius=80.0, height=200.0):
         hubs.append(Part.makeCylinder(float(radius), float(height),
                                       FreeCAD.Vector(*map(float, base)), FreeCAD.Vector(*map(float, n))))
     return Part.makeCompound(hubs)
+
+
+def panel_solids(result, thickness=8.0, side="back", flat=None):
+    """Panels as solids of the given thickness: each panel's triangles (as unfolded:
+    the fold diagonal of a bent quad, the (u,v) triangulation of an n-gon) offset
+    along the node normals. side: "back" (against the normal, the front face stays
+    on the surface), "front" (along it) or "center". Compound in panel order."""
+    import FreeCAD
+    import Part
+
+    from .fabrication import unfold
+
+    if not thickness > 0:
+        raise ValueError(f"thickness (mm) must be > 0, got {thickness!r}")
+    shift = {"back": (-1.0, 0.0), "front": (0.0, 1.0), "center": (-0.5, 0.5)}.get(side)
+    if shift is None:
+        raise ValueError(f"side must be 'back', 'front' or 'center', got {side!r}")
+    flat = flat if flat is not None else unfold(result)
+    xyz = np.asarray(result.vertices, dtype=float)
+    nrm = np.asarray(result.normals, dtype=float)
+    nrm = nrm / np.linalg.norm(nrm, axis=1)[:, None]
+    solids = []
+    for panel, f in zip(result.panels, flat):
+        idx = list(panel)
+        lo = xyz[idx] + shift[0] * thickness * nrm[idx]
+        hi = xyz[idx] + shift[1] * thickness * nrm[idx]
+        k = len(idx)
+        tris = []
+        for a, b, c in f.triangles:
+            tris.append((hi[a], hi[b], hi[c]))
+            tris.append((lo[a], lo[c], lo[b]))
+        for i in range(k):
+            j = (i + 1) % k
+            tris.append((lo[i], lo[j], hi[j]))
+            tris.append((lo[i], hi[j], hi[i]))
+        # exact double coordinates (a Mesh would round them to float32)
+        faces = []
+        for t in tris:
+            pts = [FreeCAD.Vector(*map(float, q)) for q in t]
+            faces.append(Part.Face(Part.makePolygon(pts + [pts[0]])))
+        shell = Part.Shell(faces)
+        shell.sewShape()
+        solid = Part.Solid(Part.Shell(shell.Faces))
+        if solid.Volume < 0:
+            solid.reverse()
+        solids.append(solid)
+    return Part.makeCompound(solids)

@@ -112,6 +112,7 @@ FlatPanel unfold_panel(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv
     }
 
   FlatPanel out;
+  out.triangles = tris;
   std::vector<Vec2> flat(n, Vec2::Zero());
   std::vector<bool> placed_corner(n, false), placed_tri(tris.size(), false);
   {

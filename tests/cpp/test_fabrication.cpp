@@ -52,6 +52,7 @@ TEST(Unfold, BentQuadFoldsAboutTheDiagonalWithTheSmallerFold) {
   const bool use02 = a02 <= a13;
   EXPECT_EQ(f.folds[0].a, use02 ? 0 : 1);
   EXPECT_EQ(f.folds[0].b, use02 ? 2 : 3);
+  ASSERT_EQ(f.triangles.size(), 2u);
   EXPECT_NEAR(std::abs(f.folds[0].angle_deg), std::min(a02, a13), 1e-9);
   // Every edge and the fold diagonal keep their 3D lengths.
   for (int i = 0; i < 4; ++i)

@@ -215,3 +215,34 @@ def test_rod_and_hub_solids(cyl):
         tessella.rod_solids(cyl, profile=("rect", 0.0, 1.0))
     with pytest.raises(ValueError):
         tessella.hub_solids(cyl, radius=-1)
+
+
+def test_panel_solids(cyl):
+    t = 10.0
+    flat = tessella.unfold(cyl)
+    back = tessella.panel_solids(cyl, thickness=t, side="back", flat=flat)
+    front = tessella.panel_solids(cyl, thickness=t, side="front", flat=flat)
+    assert len(back.Solids) == len(cyl.panels) == len(front.Solids)
+    w = 2 * R * math.sin(math.pi / N_AROUND)  # chord width of a panel
+    h = H / N_UP
+    for sb, sf, panel in zip(back.Solids, front.Solids, cyl.panels):
+        assert sb.isValid() and sf.isValid()
+        # a planar chord panel offset along the radial node normals: a prism whose
+        # cross-section is a trapezoid with parallel sides w and w(1 -+ t/R), the
+        # chords t cos(pi/n) apart -> volume = h t cos(pi/n) w (1 -+ t/(2R))
+        k = t / R
+        c = math.cos(math.pi / N_AROUND)
+        n0 = np.asarray(cyl.normals[panel[0]])
+        outward = np.dot(n0, [cyl.vertices[panel[0]][0], cyl.vertices[panel[0]][1], 0]) > 0
+        v_in = h * t * c * w * (1 - k / 2)
+        v_out = h * t * c * w * (1 + k / 2)
+        assert sb.Volume == pytest.approx(v_in if outward else v_out, rel=1e-6)
+        assert sf.Volume == pytest.approx(v_out if outward else v_in, rel=1e-6)
+        # the panel's own corners lie on the solid
+        for v in panel:
+            p = FreeCAD.Vector(*map(float, cyl.vertices[v]))
+            assert sb.distToShape(Part.Vertex(p))[0] < 1e-6
+    with pytest.raises(ValueError):
+        tessella.panel_solids(cyl, thickness=0)
+    with pytest.raises(ValueError):
+        tessella.panel_solids(cyl, side="up")

@@ -8,6 +8,7 @@
 // becomes two flat triangles folded along that diagonal (seed 000, 6.1.2).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "tessella/panel_mesh.h"
@@ -32,6 +33,8 @@ struct FlatPanel {
   // Corner 0 at the origin, edge 0->1 along +x.
   std::vector<Vec2> outline;
   std::vector<Fold> folds;  // empty for a flat panel
+  // The triangles (corner indices, the panel's orientation) it was unfolded by.
+  std::vector<std::array<int, 3>> triangles;
   // Largest |fold angle| among all diagonals, also those under the tolerance.
   double max_fold_deg = 0.0;
   // Unit direction, in the flat frame, of the surface's u parameter across the
