@@ -81,3 +81,10 @@ def panel_solids(*args, **kwargs):
     from .solids import panel_solids as _f
 
     return _f(*args, **kwargs)
+
+
+def export_unfold(*args, **kwargs):
+    """Write an Unfold object's panels to DXF or SVG (see freecad_workbench.make_fabrication)."""
+    from .make_fabrication import export_unfold as _f
+
+    return _f(*args, **kwargs)

@@ -68,3 +68,21 @@ def make_unfold(panelization, doc=None, **options):
         raise
     doc.commitTransaction()
     return obj
+
+
+def export_unfold(unfold_obj, path):
+    """Write an Unfold object's flat panels (as laid out: nested or in rows) to a
+    DXF or SVG file, chosen by the extension. Returns the writer's summary."""
+    from .export.dxf import export_dxf
+    from .export.svg import export_svg
+    from .features.unfold import Unfold
+
+    if not isinstance(getattr(unfold_obj, "Proxy", None), Unfold):
+        raise ValueError("export_unfold needs an Unfold object (select one, or pass it)")
+    ext = str(path).lower().rsplit(".", 1)[-1]
+    if ext not in ("dxf", "svg"):
+        raise ValueError(f"the file must end in .dxf or .svg, got {path!r}")
+    _res, flat, layout = unfold_obj.Proxy.compute(unfold_obj)
+    kerf = layout.kerf if layout else float(getattr(unfold_obj.Kerf, "Value", unfold_obj.Kerf))
+    writer = export_dxf if ext == "dxf" else export_svg
+    return writer(flat, path, layout=layout, kerf=kerf)

@@ -58,6 +58,61 @@ class UnfoldCommand:
         Gui.Selection.clearSelection()
 
 
-Gui.addCommand("Tessella_Unfold", UnfoldCommand())
+SELECT_UNFOLD = "Select one Unfold object in the tree, then run Export flat panels again."
 
-COMMANDS = ["Tessella_Unfold"]
+
+def selected_unfold():
+    from ..features.unfold import Unfold
+
+    picks = [o for o in Gui.Selection.getSelection()
+             if isinstance(getattr(o, "Proxy", None), Unfold)]
+    return picks[0] if len(picks) == 1 else None
+
+
+def ask_path(obj):
+    """The file to write (a save dialog); None when cancelled. Tests replace this."""
+    from PySide import QtGui
+
+    path, _ = QtGui.QFileDialog.getSaveFileName(
+        Gui.getMainWindow(), "Export flat panels", obj.Label + ".dxf",
+        "DXF (*.dxf);;SVG (*.svg)")
+    return path or None
+
+
+class ExportFlatCommand:
+    """Tessella_ExportFlat: write the selected Unfold to DXF or SVG."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": icon_path("Tessella_Unfold"),
+            "MenuText": "Export flat panels (DXF/SVG)",
+            "ToolTip": ("Write the selected Unfold's panels to a DXF (layers CUT, FOLD, LABEL; "
+                        "one block per panel; mm) or an SVG file"),
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self):
+        from .commands import _warn
+
+        obj = selected_unfold()
+        if obj is None:
+            _warn("Tessella: Export", SELECT_UNFOLD)
+            return
+        path = ask_path(obj)
+        if not path:
+            return
+        call = ("tessella.export_unfold("
+                f"FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}), {path!r})")
+        try:
+            Gui.doCommand("import freecad_workbench as tessella")
+            Gui.doCommand(call)
+        except Exception as exc:
+            _warn("Tessella: Export", f"Export failed: {exc}")
+
+
+Gui.addCommand("Tessella_Unfold", UnfoldCommand())
+Gui.addCommand("Tessella_ExportFlat", ExportFlatCommand())
+
+COMMANDS = ["Tessella_Unfold", "Tessella_ExportFlat"]

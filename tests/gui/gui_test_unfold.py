@@ -150,6 +150,28 @@ def test_unfold_command():
             check("view provider", type(vp).__name__ == "ViewProviderUnfold", type(vp).__name__)
             icon = vp.getIcon() if vp else ""
             check("icon file exists", bool(icon) and os.path.isfile(icon), repr(icon))
+        # Export: no Unfold selected -> message; selected -> a DXF that reads back
+        from freecad_workbench.gui import fabrication_commands as fc
+
+        Gui.Selection.clearSelection()
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_ExportFlat")
+        check("export without an Unfold selected: told to select one",
+              any("Unfold" in t for t in dc.texts), str(dc.texts))
+        out = os.path.join(tempfile.mkdtemp(prefix="tessella_gui_"), "flat.dxf")
+        original_ask = fc.ask_path
+        fc.ask_path = lambda obj: out
+        try:
+            Gui.Selection.addSelection(doc.Name, us[0].Name)
+            with DialogCatcher() as dc:
+                Gui.runCommand("Tessella_ExportFlat")
+        finally:
+            fc.ask_path = original_ask
+        if check("export wrote the DXF", os.path.isfile(out), str(dc.texts)):
+            import ezdxf
+
+            names = sorted(i.dxf.name for i in ezdxf.readfile(out).modelspace().query("INSERT"))
+            check("DXF holds one block per panel", names == sorted(us[0].PanelIds), str(names[:5]))
         panels = [c for c in children_of(p) if c.Role == "Panels"][0]
         Gui.Selection.clearSelection()
         Gui.Selection.addSelection(doc.Name, panels.Name)

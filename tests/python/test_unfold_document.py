@@ -147,3 +147,27 @@ def test_make_schedules_match_the_objects(doc):
     assert nodes.get(f"A{len(nodes_child.NodeIds) + 1}") == nodes_child.NodeIds[-1]
     with pytest.raises(ValueError):
         tessella.make_schedules(d.getObject("Surface"))
+
+
+def test_export_unfold_object(doc, tmp_path):
+    import ezdxf
+
+    d, p = doc
+    u = tessella.make_unfold(p, nest=True, sheet_width=4000.0, sheet_height=2500.0)
+    path = str(tmp_path / "u.dxf")
+    tessella.export_unfold(u, path)
+    dxf = ezdxf.readfile(path)
+    faces = panels_child(p).Shape.childShapes()
+    for pid, face in zip(u.PanelIds, faces):
+        cut = [e for e in dxf.blocks[pid] if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "CUT"][0]
+        pts = [(x, y) for x, y, *_ in cut.get_points()]
+        l2 = sorted(((pts[i][0] - pts[i - 1][0]) ** 2 + (pts[i][1] - pts[i - 1][1]) ** 2) ** 0.5
+                    for i in range(len(pts)))
+        l3 = sorted(e.Length for e in boundary_edges(face))
+        assert max(abs(a - b) for a, b in zip(l2, l3)) < 1e-6
+    tessella.export_unfold(u, str(tmp_path / "u.svg"))
+    assert os.path.getsize(str(tmp_path / "u.svg")) > 0
+    with pytest.raises(ValueError, match="dxf or .svg"):
+        tessella.export_unfold(u, str(tmp_path / "u.pdf"))
+    with pytest.raises(ValueError, match="Unfold"):
+        tessella.export_unfold(p, path)
