@@ -5,9 +5,11 @@
 #include <pybind11/stl.h>
 
 #include "tessella/errors.h"
+#include "tessella/flatten.h"
 #include "tessella/nest.h"
 #include "tessella/outline_offset.h"
 #include "tessella/panel_mesh.h"
+#include "tessella/surface_face.h"
 #include "tessella/unfold.h"
 
 namespace py = pybind11;
@@ -55,6 +57,20 @@ void bind_fabrication(py::module_& m) {
   });
   m.def("unfold_panel", &unfold_panel, py::arg("xyz"), py::arg("uv"), py::arg("params"));
   m.def("fold_angle_deg", &fold_angle_deg);
+
+  py::class_<FlattenParams>(m, "FlattenParams")
+      .def(py::init<>())
+      .def_readwrite("subdivisions", &FlattenParams::subdivisions);
+  py::class_<FlatPatch>(m, "FlatPatch")
+      .def_property_readonly("outline", [](const FlatPatch& f) { return rows2(f.outline); })
+      .def_readonly("corner_index", &FlatPatch::corner_index)
+      .def_readonly("strain_max", &FlatPatch::strain_max)
+      .def_readonly("strain_mean", &FlatPatch::strain_mean)
+      .def_readonly("area_3d", &FlatPatch::area_3d);
+  m.def("flatten_panels", [](const SurfaceFace& f, const PanelMesh& mesh, const FlattenParams& p) {
+    py::gil_scoped_release release;
+    return flatten_panels(f, mesh, p);
+  });
 
   py::class_<NestParams>(m, "NestParams")
       .def(py::init<>())

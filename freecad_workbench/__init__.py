@@ -22,7 +22,7 @@ def make_panelization(*args, **kwargs):
 
     return _make(*args, **kwargs)
 
-from .fabrication import FlatPanel, NestLayout, nest, unfold  # noqa: F401,E402
+from .fabrication import FlatPanel, FlatPatch, NestLayout, flatten, nest, unfold  # noqa: F401,E402
 
 
 def export_dxf(*args, **kwargs):

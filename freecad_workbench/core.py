@@ -11,6 +11,8 @@ except ImportError as exc:  # pragma: no cover - message for a user without a bu
 
 from ._core import (  # noqa: E402,F401
     EqualSizeGridParams,
+    FlattenParams,
+    flatten_panels,
     NestParams,
     OutlineOffsetParams,
     UnfoldParams,

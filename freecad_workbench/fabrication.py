@@ -171,3 +171,39 @@ def nest(flat, sheet_width=2500.0, sheet_height=1250.0, margin=10.0, spacing=6.0
         kerf=kerf,
         outlines=outlines,
     )
+
+
+@dataclass
+class FlatPatch:
+    """A panel kept as its curved surface patch, flattened (LSCM, scaled to the 3D area)."""
+
+    id: str
+    outline: np.ndarray  # (n*subdivisions, 2): points along the panel's edges, CCW from the front
+    corner_index: list  # outline index of panel corner i
+    strain_max: float  # max |flat / 3D length - 1| over the edges of the fine mesh
+    strain_mean: float
+    area_3d: float  # area of the fine 3D mesh of the patch
+
+    @property
+    def area(self):
+        x, y = self.outline[:, 0], self.outline[:, 1]
+        return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def flatten(result, face, subdivisions=8):
+    """Flatten every panel as the curved patch of `face` it covers (the face the
+    result was panelized from). Each patch is meshed with subdivisions^2 pieces per
+    triangle of its (u,v) outline, flattened by least-squares conformal maps and
+    scaled to its 3D area. Returns one FlatPatch per panel, with the strain."""
+    from .api import face_to_brep
+
+    n = _check_number("subdivisions", subdivisions, 1, 64)
+    if n != int(n):
+        raise ValueError(f"subdivisions must be a whole number in [1, 64], got {subdivisions!r}")
+    p = core.FlattenParams()
+    p.subdivisions = int(n)
+    surface = core.SurfaceFace.from_brep_string(face_to_brep(face))
+    patches = core.flatten_panels(surface, result._mesh, p)
+    return [FlatPatch(pid, np.asarray(f.outline), list(f.corner_index), float(f.strain_max),
+                      float(f.strain_mean), float(f.area_3d))
+            for pid, f in zip(result.panel_ids, patches)]

@@ -4,9 +4,11 @@
 #include <cmath>
 
 #include "tessella/errors.h"
+#include "tessella/flatten.h"
 #include "tessella/nest.h"
 #include "tessella/outline_offset.h"
 #include "tessella/unfold.h"
+#include "test_faces.h"
 
 using namespace tessella;
 
@@ -151,4 +153,23 @@ TEST(OutlineOffset, SquareGrowsByTheDistance) {
   EXPECT_NEAR(polygon_area(out), 104.0 * 54.0, 1e-3);
   p.distance = -30;
   EXPECT_THROW(offset_outline({{0, 0}, {100, 0}, {100, 50}, {0, 50}}, p), InvalidParameter);
+}
+
+TEST(Flatten, PlanarPatchWithStretchedParametersIsExact) {
+  // The planar square 1000 x 1000 with x(u) = 400u + 600u^2: the (u,v) mesh is
+  // distorted but the flattening of a plane must be the plane itself.
+  const SurfaceFace face = test::stretched_plate();
+  const FlatPatch f = flatten_patch(face, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, FlattenParams{6});
+  EXPECT_LT(f.strain_max, 1e-9);
+  EXPECT_NEAR(f.area_3d, 1e6, 1e-3);
+  ASSERT_EQ(f.outline.size(), 24u);
+  ASSERT_EQ(f.corner_index.size(), 4u);
+  for (int c = 0; c < 4; ++c) {
+    const Vec2 a = f.outline[f.corner_index[c]], b = f.outline[f.corner_index[(c + 1) % 4]];
+    EXPECT_NEAR((b - a).norm(), 1000.0, 1e-6);
+  }
+  EXPECT_NEAR(polygon_area(f.outline), 1e6, 1e-3);  // counter-clockwise
+  FlattenParams bad;
+  bad.subdivisions = 0;
+  EXPECT_THROW(flatten_patch(face, {{0, 0}, {1, 0}, {1, 1}}, bad), InvalidParameter);
 }

@@ -336,3 +336,39 @@ def test_svg(tmp_path, saddle):
         assert np.allclose(l2, f.edge_lengths, atol=1e-5)
         assert len(g.findall("s:line", ns)) == len(f.folds)
     assert len(root.findall("s:rect", ns)) == lay.sheet_count
+
+
+# ---------------------------------------------------------------- curved patches
+
+def test_flatten_cylinder_patch_is_developable():
+    """A cylinder panel spanning 360/n degrees flattens to an R*2pi/n x h rectangle."""
+    R, H, n, m = 3000.0, 2000.0, 12, 8
+    face = Part.makeCylinder(R, H).Faces[0]
+    r = tessella.panelize(face, method="iso_grid", u_count=n, v_count=2)
+    patches = tessella.flatten(r, face, subdivisions=m)
+    assert [p.id for p in patches] == r.panel_ids
+    arc = m * 2 * R * math.sin(math.pi / n / m)  # the m chords of the subdivided arc
+    for patch, panel in zip(patches, r.panels):
+        assert patch.outline.shape == (4 * m, 2)
+        assert patch.strain_max < 2e-3
+        assert patch.area > 0 and patch.area == pytest.approx(patch.area_3d, rel=1e-9)
+        # edge lengths: every outline segment keeps its 3D chord within the strain
+        c = patch.corner_index
+        for k in range(4):
+            seg = patch.outline[c[k]:c[k] + m + 1] if k < 3 else np.vstack(
+                [patch.outline[c[k]:], patch.outline[:1]])
+            length = np.linalg.norm(np.diff(seg, axis=0), axis=1).sum()
+            a, b = r.vertices[panel[k]], r.vertices[panel[(k + 1) % 4]]
+            expect = H / 2 if abs(a[2] - b[2]) > 1 else arc
+            assert length == pytest.approx(expect, rel=2e-3)
+
+
+def test_flatten_sphere_reports_strain():
+    face = Part.makeSphere(2000.0).Faces[0]
+    r = tessella.panelize(face, method="iso_grid", u_count=12, v_count=8)
+    patches = tessella.flatten(r, face, subdivisions=6)
+    quads = [p for p, panel in zip(patches, r.panels) if len(panel) == 4]
+    assert quads and all(1e-4 < p.strain_max < 0.2 for p in quads)
+    assert all(p.area > 0 for p in patches)
+    with pytest.raises(ValueError, match="subdivisions"):
+        tessella.flatten(r, face, subdivisions=0)
