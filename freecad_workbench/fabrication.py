@@ -124,7 +124,7 @@ class NestLayout:
 def cut_outline(panel, kerf):
     """The cutter path of a flat panel: its outline grown by kerf/2 (kerf = cut width, mm)."""
     kerf = _check_number("kerf (mm)", kerf, 0.0, 1000.0)
-    outline = panel.outline if isinstance(panel, FlatPanel) else np.asarray(panel, dtype=float)
+    outline = np.asarray(getattr(panel, "outline", panel), dtype=float)
     if kerf == 0.0:
         return np.array(outline, dtype=float)
     p = core.OutlineOffsetParams()
@@ -153,7 +153,7 @@ def nest(flat, sheet_width=2500.0, sheet_height=1250.0, margin=10.0, spacing=6.0
     params.rotations = int(r)
     kerf = _check_number("kerf (mm)", kerf, 0.0, 1000.0)
     flat = list(flat)
-    ids = [f.id if isinstance(f, FlatPanel) else f"part {i}" for i, f in enumerate(flat)]
+    ids = [getattr(f, "id", f"part {i}") for i, f in enumerate(flat)]
     outlines = [cut_outline(f, kerf) for f in flat]
     lay = core.nest_parts(outlines, params, ids)
     placements = [Placement(int(p.sheet), float(p.angle_deg), tuple(p.offset)) for p in lay.placements]

@@ -370,5 +370,7 @@ def test_flatten_sphere_reports_strain():
     quads = [p for p, panel in zip(patches, r.panels) if len(panel) == 4]
     assert quads and all(1e-4 < p.strain_max < 0.2 for p in quads)
     assert all(p.area > 0 for p in patches)
+    lay = tessella.nest(patches, sheet_width=3000, sheet_height=2000, margin=10, spacing=6)
+    assert lay.ids == r.panel_ids and lay.sheet_count >= 1
     with pytest.raises(ValueError, match="subdivisions"):
         tessella.flatten(r, face, subdivisions=0)
