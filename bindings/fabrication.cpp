@@ -66,7 +66,10 @@ void bind_fabrication(py::module_& m) {
       .def_readonly("corner_index", &FlatPatch::corner_index)
       .def_readonly("strain_max", &FlatPatch::strain_max)
       .def_readonly("strain_mean", &FlatPatch::strain_mean)
-      .def_readonly("area_3d", &FlatPatch::area_3d);
+      .def_readonly("area_3d", &FlatPatch::area_3d)
+      .def_property_readonly("u_direction", [](const FlatPatch& f) {
+        return py::make_tuple(f.u_direction.x(), f.u_direction.y());
+      });
   m.def("flatten_panels", [](const SurfaceFace& f, const PanelMesh& mesh, const FlattenParams& p) {
     py::gil_scoped_release release;
     return flatten_panels(f, mesh, p);

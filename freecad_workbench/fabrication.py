@@ -183,6 +183,8 @@ class FlatPatch:
     strain_max: float  # max |flat / 3D length - 1| over the edges of the fine mesh
     strain_mean: float
     area_3d: float  # area of the fine 3D mesh of the patch
+    u_direction: tuple = (1.0, 0.0)  # the surface's u direction on the flat patch
+    folds: list = field(default_factory=list)  # none: a curved panel is not folded
 
     @property
     def area(self):
@@ -205,5 +207,5 @@ def flatten(result, face, subdivisions=8):
     surface = core.SurfaceFace.from_brep_string(face_to_brep(face))
     patches = core.flatten_panels(surface, result._mesh, p)
     return [FlatPatch(pid, np.asarray(f.outline), list(f.corner_index), float(f.strain_max),
-                      float(f.strain_mean), float(f.area_3d))
+                      float(f.strain_mean), float(f.area_3d), tuple(f.u_direction))
             for pid, f in zip(result.panel_ids, patches)]

@@ -1,5 +1,6 @@
 #include "tessella/flatten.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
@@ -176,9 +177,27 @@ FlatPatch flatten_patch(const SurfaceFace& face, const std::vector<Vec2>& corner
       out.outline.push_back(flat[it->second]);
     }
   }
+  // Orientation mark: flat = A (u,v) + t by least squares; u maps along A's first column.
+  Eigen::MatrixXd lm(nv, 3), lr(nv, 2);
+  for (int i = 0; i < nv; ++i) {
+    lm.row(i) << vuv[i].x() - uv[0].x(), vuv[i].y() - uv[0].y(), 1.0;
+    lr.row(i) << flat[i].x(), flat[i].y();
+  }
+  const Eigen::MatrixXd fit = lm.colPivHouseholderQr().solve(lr);
+  const Vec2 du(fit(0, 0), fit(0, 1));
+  if (du.allFinite() && du.norm() > 0) out.u_direction = du.normalized();
   // A reversed (u,v) outline flattens mirrored relative to the panel's front.
-  if (!ccw)
+  if (!ccw) {
     for (Vec2& p : out.outline) p.y() = -p.y();
+    out.u_direction.y() = -out.u_direction.y();
+  }
+  // Like an unfolded panel: corner 0 at the origin, its first edge along +x.
+  const Vec2 origin = out.outline[0];
+  const Vec2 e =
+      (out.outline[out.corner_index.size() > 1 ? out.corner_index[1] : 1] - origin).normalized();
+  auto rot = [&](const Vec2& d) { return Vec2(d.dot(e), -e.y() * d.x() + e.x() * d.y()); };
+  for (Vec2& p : out.outline) p = rot(p - origin);
+  out.u_direction = rot(out.u_direction);
   return out;
 }
 

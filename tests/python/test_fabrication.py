@@ -372,5 +372,27 @@ def test_flatten_sphere_reports_strain():
     assert all(p.area > 0 for p in patches)
     lay = tessella.nest(patches, sheet_width=3000, sheet_height=2000, margin=10, spacing=6)
     assert lay.ids == r.panel_ids and lay.sheet_count >= 1
+
+
+def test_flatten_patches_to_dxf(tmp_path):
+    import ezdxf
+
+    R, H, n, m = 3000.0, 2000.0, 12, 4
+    face = Part.makeCylinder(R, H).Faces[0]
+    r = tessella.panelize(face, method="iso_grid", u_count=n, v_count=2)
+    patches = tessella.flatten(r, face, subdivisions=m)
+    lay = tessella.nest(patches, sheet_width=2500, sheet_height=1250, margin=10, spacing=6)
+    path = str(tmp_path / "patches.dxf")
+    tessella.export_dxf(patches, path, layout=lay)
+    doc = ezdxf.readfile(path)
+    for patch in patches:
+        cut = [e for e in doc.blocks[patch.id] if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "CUT"][0]
+        assert np.allclose([(x, y) for x, y, *_ in cut.get_points()], patch.outline, atol=1e-9)
+        # the u direction of a cylinder runs around it: along the flat patch's hoop edges
+        c = patch.corner_index
+        hoop = [k for k in range(4) if abs(np.linalg.norm(
+            patch.outline[c[(k + 1) % 4]] - patch.outline[c[k]]) - H / 2) > 1]
+        e = patch.outline[c[(hoop[0] + 1) % 4]] - patch.outline[c[hoop[0]]]
+        assert abs(abs(np.dot(e / np.linalg.norm(e), patch.u_direction)) - 1) < 1e-6
     with pytest.raises(ValueError, match="subdivisions"):
         tessella.flatten(r, face, subdivisions=0)

@@ -24,6 +24,8 @@ struct FlatPatch {
   double strain_max = 0.0;        // max |flat length / 3D length - 1| over mesh edges
   double strain_mean = 0.0;
   double area_3d = 0.0;  // area of the fine 3D mesh of the patch
+  // Unit direction, in the flat frame, of the surface's u parameter (orientation mark).
+  Vec2 u_direction{1.0, 0.0};
 };
 
 // Flattens the patch of `face` bounded by the (u,v) polygon `corner_uv` (a panel).
