@@ -112,7 +112,38 @@ class ExportFlatCommand:
             _warn("Tessella: Export", f"Export failed: {exc}")
 
 
+class SchedulesCommand:
+    """Tessella_Schedules: panel, rod and node schedules as spreadsheets."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": icon_path("Tessella_Panelization"),
+            "MenuText": "Schedules (spreadsheets)",
+            "ToolTip": ("Add panel, rod and node schedules of the selected Panelization as "
+                        "spreadsheets (a snapshot: run again after changes)"),
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self):
+        from .commands import _warn
+
+        obj = selected_panelization()
+        if obj is None:
+            _warn("Tessella: Schedules", SELECT_PANELIZATION.replace("Unfold", "Schedules"))
+            return
+        call = ("tessella.make_schedules("
+                f"FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}))")
+        try:
+            Gui.doCommand("import freecad_workbench as tessella")
+            Gui.doCommand(call)
+        except Exception as exc:
+            _warn("Tessella: Schedules", f"Schedules failed: {exc}")
+
+
 Gui.addCommand("Tessella_Unfold", UnfoldCommand())
 Gui.addCommand("Tessella_ExportFlat", ExportFlatCommand())
+Gui.addCommand("Tessella_Schedules", SchedulesCommand())
 
-COMMANDS = ["Tessella_Unfold", "Tessella_ExportFlat"]
+COMMANDS = ["Tessella_Unfold", "Tessella_ExportFlat", "Tessella_Schedules"]

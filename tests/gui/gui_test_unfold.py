@@ -172,6 +172,25 @@ def test_unfold_command():
 
             names = sorted(i.dxf.name for i in ezdxf.readfile(out).modelspace().query("INSERT"))
             check("DXF holds one block per panel", names == sorted(us[0].PanelIds), str(names[:5]))
+        Gui.Selection.clearSelection()
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Schedules")
+        check("schedules without a selection: told to select a Panelization",
+              any("Panelization" in t for t in dc.texts), str(dc.texts))
+        undo_before = doc.UndoCount
+        Gui.Selection.addSelection(doc.Name, p.Name)
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Schedules")
+        sheets = [o for o in doc.Objects if o.TypeId == "Spreadsheet::Sheet"]
+        check("schedules: three spreadsheets", len(sheets) == 3, str(dc.texts))
+        check("schedules: one undo step", doc.UndoCount == undo_before + 1
+              and doc.UndoNames[0] == "Schedules", str(doc.UndoNames))
+        if sheets:
+            check("schedules: panel rows", sheets[0].get(f"A{p.PanelCount + 1}")
+                  == f"P-{p.PanelCount:04d}", str(sheets[0].get("A2")))
+        doc.undo()
+        check("schedules: undo removes them",
+              not [o for o in doc.Objects if o.TypeId == "Spreadsheet::Sheet"])
         panels = [c for c in children_of(p) if c.Role == "Panels"][0]
         Gui.Selection.clearSelection()
         Gui.Selection.addSelection(doc.Name, panels.Name)
