@@ -9,6 +9,8 @@ import FreeCAD
 
 _OPTIONS = {
     "fold_tolerance": "FoldTolerance",
+    "curved_panels": "CurvedPanels",
+    "subdivisions": "Subdivisions",
     "nest": "Nest",
     "sheet_width": "SheetWidth",
     "sheet_height": "SheetHeight",
@@ -36,7 +38,11 @@ def make_unfold(panelization, doc=None, **options):
         raise ValueError(f"unknown option(s) {unknown}; accepted: {sorted(_OPTIONS)}")
     doc = doc or panelization.Document
     res = panelization.Proxy.result(panelization).result
-    flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance", 0.01))
+    if options.get("curved_panels"):
+        face_arg, _label = panelization.Proxy.source_face(panelization)
+        flat = fabrication.flatten(res, face_arg, subdivisions=options.get("subdivisions", 8))
+    else:
+        flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance", 0.01))
     kerf = options.get("kerf", 0.0)
     if options.get("nest"):
         nest_opts = {k: options[k] for k in ("sheet_width", "sheet_height", "margin", "spacing",

@@ -2,9 +2,9 @@
 
     Unfold (Part::FeaturePython, proxy `Unfold`)
         Base -> Panelization
-        FoldTolerance (deg); Nest, SheetWidth, SheetHeight, Margin, Spacing,
+        FoldTolerance (deg); CurvedPanels, Subdivisions; Nest, SheetWidth, SheetHeight, Margin, Spacing,
         Rotations, Kerf (mm)
-        read-only: PanelIds, FoldAngles, FoldedPanels, MaxFoldAngle, SheetCount,
+        read-only: PanelIds, FoldAngles, FoldedPanels, MaxFoldAngle, MaxStrain, SheetCount,
         Utilization
 
 Shape: a compound with one sub-compound per panel (panel order) holding the
@@ -51,6 +51,11 @@ class Unfold:
         add_property(obj, "App::PropertyLink", "Base", "Unfold", "The Panelization to unfold")
         add_property(obj, "App::PropertyAngle", "FoldTolerance", "Unfold",
                      "Folds under this angle count as flat", default=0.01)
+        add_property(obj, "App::PropertyBool", "CurvedPanels", "Unfold",
+                     "Keep panels as curved patches of the surface and flatten them (LSCM)",
+                     default=False)
+        add_property(obj, "App::PropertyInteger", "Subdivisions", "Unfold",
+                     "Curved panels: mesh pieces per triangle edge", default=8)
         add_property(obj, "App::PropertyBool", "Nest", "Nesting",
                      "Lay the panels out on stock sheets", default=False)
         add_property(obj, "App::PropertyLength", "SheetWidth", "Nesting", "Sheet width",
@@ -74,6 +79,8 @@ class Unfold:
                      "Panels with at least one fold", attr=ro)
         add_property(obj, "App::PropertyFloat", "MaxFoldAngle", "Result",
                      "Largest fold angle (deg)", attr=ro)
+        add_property(obj, "App::PropertyFloat", "MaxStrain", "Result",
+                     "Curved panels: largest flattening strain |flat/3D length - 1|", attr=ro)
         add_property(obj, "App::PropertyInteger", "SheetCount", "Result",
                      "Sheets used (0 without nesting)", attr=ro)
         add_property(obj, "App::PropertyFloat", "Utilization", "Result",
@@ -92,6 +99,8 @@ class Unfold:
     def options(self, obj):
         return {
             "fold_tolerance": value_of(obj.FoldTolerance),
+            "curved": bool(obj.CurvedPanels),
+            "subdivisions": int(obj.Subdivisions),
             "nest": bool(obj.Nest),
             "sheet_width": value_of(obj.SheetWidth),
             "sheet_height": value_of(obj.SheetHeight),
@@ -110,7 +119,11 @@ class Unfold:
             raise ValueError("Base must link to a Panelization object")
         res = base.Proxy.result(base).result
         o = self.options(obj)
-        flat = fabrication.unfold(res, fold_tolerance=o["fold_tolerance"])
+        if o["curved"]:
+            face_arg, _label = base.Proxy.source_face(base)
+            flat = fabrication.flatten(res, face_arg, subdivisions=o["subdivisions"])
+        else:
+            flat = fabrication.unfold(res, fold_tolerance=o["fold_tolerance"])
         layout = None
         if o["nest"]:
             layout = fabrication.nest(flat, sheet_width=o["sheet_width"],
@@ -145,8 +158,9 @@ class Unfold:
             parts.append(Part.makeCompound(edges))
         obj.Shape = Part.makeCompound(parts)
         obj.PanelIds = [f.id for f in flat]
-        obj.FoldAngles = [float(f.fold_angle) for f in flat]
+        obj.FoldAngles = [float(getattr(f, "fold_angle", 0.0)) for f in flat]
+        obj.MaxStrain = float(max((getattr(f, "strain_max", 0.0) for f in flat), default=0.0))
         obj.FoldedPanels = sum(1 for f in flat if f.folds)
-        obj.MaxFoldAngle = float(max((f.fold_angle for f in flat), default=0.0))
+        obj.MaxFoldAngle = float(max(obj.FoldAngles, default=0.0))
         obj.SheetCount = layout.sheet_count if layout else 0
         obj.Utilization = float(layout.utilization) if layout else 0.0

@@ -171,3 +171,18 @@ def test_export_unfold_object(doc, tmp_path):
         tessella.export_unfold(u, str(tmp_path / "u.pdf"))
     with pytest.raises(ValueError, match="Unfold"):
         tessella.export_unfold(p, path)
+
+
+def test_unfold_curved_panels(doc):
+    d, p = doc
+    u = tessella.make_unfold(p, curved_panels=True, subdivisions=4)
+    assert u.isValid() and u.CurvedPanels and u.MaxStrain > 0
+    assert len(u.Shape.childShapes()) == p.PanelCount and u.FoldedPanels == 0
+    # the flattened outline of a curved panel is at least as long as its chords
+    faces = panels_child(p).Shape.childShapes()
+    for flat, face in zip(u.Shape.childShapes(), faces):
+        wire = [s for s in flat.childShapes() if s.ShapeType == "Wire"][0]
+        chords = sum(e.Length for e in boundary_edges(face))
+        assert wire.Length >= chords * (1 - u.MaxStrain) - 1e-6
+    with pytest.raises(ValueError, match="subdivisions"):
+        tessella.make_unfold(p, curved_panels=True, subdivisions=0)
