@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "tessella/errors.h"
@@ -35,6 +36,9 @@ FlatPatch flatten_patch(const SurfaceFace& face, const std::vector<Vec2>& corner
   const int n = static_cast<int>(corner_uv.size());
   if (n < 3) throw InvalidGeometry("a panel needs at least three corners");
   const int m = params.subdivisions;
+  if (static_cast<double>(n - 2) * m * m > 4e6)
+    throw LimitExceeded("flatten: " + std::to_string(n) + " corners x subdivisions " +
+                        std::to_string(m) + "^2 exceed 4 million triangles; lower subdivisions");
   // Work counter-clockwise in (u,v); remember to reverse at the end.
   const bool ccw = signed_area2(corner_uv) >= 0;
   std::vector<Vec2> uv = corner_uv;

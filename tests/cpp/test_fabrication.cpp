@@ -172,4 +172,9 @@ TEST(Flatten, PlanarPatchWithStretchedParametersIsExact) {
   FlattenParams bad;
   bad.subdivisions = 0;
   EXPECT_THROW(flatten_patch(face, {{0, 0}, {1, 0}, {1, 1}}, bad), InvalidParameter);
+  std::vector<Vec2> many;  // 1000 corners x 64^2 pieces: refused, not attempted
+  for (int k = 0; k < 1000; ++k)
+    many.emplace_back(0.5 + 0.4 * std::cos(2 * kPi * k / 1000),
+                      0.5 + 0.4 * std::sin(2 * kPi * k / 1000));
+  EXPECT_THROW(flatten_patch(face, many, FlattenParams{64}), LimitExceeded);
 }
