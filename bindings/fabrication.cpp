@@ -48,6 +48,7 @@ void bind_fabrication(py::module_& m) {
       .def_readonly("folds", &FlatPanel::folds)
       .def_readonly("max_fold_deg", &FlatPanel::max_fold_deg)
       .def_readonly("triangles", &FlatPanel::triangles)
+      .def_readonly("self_intersecting", &FlatPanel::self_intersecting)
       .def_property_readonly("u_direction", [](const FlatPanel& f) {
         return py::make_tuple(f.u_direction.x(), f.u_direction.y());
       });

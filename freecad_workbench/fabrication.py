@@ -33,6 +33,7 @@ class FlatPanel:
     max_fold: float = 0.0  # largest |dihedral| over all diagonals, also under the tolerance
     u_direction: tuple = (1.0, 0.0)  # the surface's u direction on the flat panel (orientation mark)
     triangles: list = field(default_factory=list)  # corner triples the panel was unfolded by
+    self_intersecting: bool = False  # outline crosses itself: flatten as a curved patch instead
 
     @property
     def area(self):
@@ -76,6 +77,7 @@ def unfold(result, fold_tolerance=0.01):
             max_fold=float(f.max_fold_deg),
             u_direction=tuple(f.u_direction),
             triangles=[tuple(t) for t in f.triangles],
+            self_intersecting=bool(f.self_intersecting),
         )
         if folds:
             a, b, angle = max(folds, key=lambda t: (abs(t[2]), -t[0], -t[1]))

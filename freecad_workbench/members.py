@@ -283,6 +283,7 @@ def buildability(result, flat=None, layout=None, length_tol=1.0, angle_tol=0.5):
         s["panel_types"] = panel_types(flat, length_tol, angle_tol)[1]
         s["flat_area"] = float(sum(f.area for f in flat))
         s["folded_panels"] = sum(1 for f in flat if f.folds)
+        s["self_intersecting_outlines"] = sum(1 for f in flat if getattr(f, "self_intersecting", False))
         s["max_fold_angle"] = float(max((f.fold_angle for f in flat), default=0.0))
     if layout is not None:
         s["sheets"] = layout.sheet_count

@@ -76,6 +76,33 @@ bool rotate_to_edge(Tri& t, int a, int b) {
   return false;
 }
 
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+// True if two non-adjacent edges of the closed polygon cross or touch.
+bool crosses_itself(const std::vector<Vec2>& p) {
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &a = p[i], &b = p[(i + 1) % n];
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+      const Vec2 &c = p[j], &d = p[(j + 1) % n];
+      if (std::max(a.x(), b.x()) < std::min(c.x(), d.x()) ||
+          std::max(c.x(), d.x()) < std::min(a.x(), b.x()) ||
+          std::max(a.y(), b.y()) < std::min(c.y(), d.y()) ||
+          std::max(c.y(), d.y()) < std::min(a.y(), b.y()))
+        continue;
+      const double o1 = orient(a, b, c), o2 = orient(a, b, d);
+      const double o3 = orient(c, d, a), o4 = orient(c, d, b);
+      if (((o1 > 0) != (o2 > 0) || o1 == 0 || o2 == 0) &&
+          ((o3 > 0) != (o4 > 0) || o3 == 0 || o4 == 0))
+        return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 double fold_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -160,6 +187,7 @@ FlatPanel unfold_panel(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv
     const Vec2 d = flat[i] - origin;
     out.outline[i] = Vec2(d.dot(e), -e.y() * d.x() + e.x() * d.y());
   }
+  out.self_intersecting = n > 3 && crosses_itself(out.outline);
   std::sort(out.folds.begin(), out.folds.end(),
             [](const Fold& x, const Fold& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
 

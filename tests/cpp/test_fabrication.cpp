@@ -178,3 +178,30 @@ TEST(Flatten, PlanarPatchWithStretchedParametersIsExact) {
                       0.5 + 0.4 * std::sin(2 * kPi * k / 1000));
   EXPECT_THROW(flatten_patch(face, many, FlattenParams{64}), LimitExceeded);
 }
+
+TEST(Unfold, FlagsAnOutlineThatCrossesItself) {
+  // A pentagon whose corner angles at the apex of its triangulation (every
+  // triangulation of a pentagon is a fan) add up to more than 360 degrees in 3D
+  // (a cone with excess angle): laid flat edge by edge it must overlap.
+  std::vector<Vec2> uv;
+  for (int k = 0; k < 5; ++k) uv.emplace_back(std::cos(2 * kPi * k / 5), std::sin(2 * kPi * k / 5));
+  std::vector<Vec3> planar;
+  for (const Vec2& p : uv) planar.emplace_back(500 * p.x(), 500 * p.y(), 0);
+  const FlatPanel flat = unfold_panel(planar, uv);
+  EXPECT_FALSE(flat.self_intersecting);
+  ASSERT_EQ(flat.triangles.size(), 3u);
+  int apex = -1;
+  for (int v = 0; v < 5; ++v) {
+    int in = 0;
+    for (const auto& t : flat.triangles) in += (t[0] == v || t[1] == v || t[2] == v);
+    if (in == 3) apex = v;
+  }
+  ASSERT_GE(apex, 0);
+  std::vector<Vec3> xyz(5);
+  xyz[apex] = Vec3(0, 0, 0);
+  for (int k = 0; k < 4; ++k) {
+    const double t = k * 150.0 * kPi / 180;
+    xyz[(apex + 1 + k) % 5] = Vec3(1000 * std::cos(t), 1000 * std::sin(t), 100.0 * k);
+  }
+  EXPECT_TRUE(unfold_panel(xyz, uv).self_intersecting);
+}

@@ -35,6 +35,9 @@ struct FlatPanel {
   std::vector<Fold> folds;  // empty for a flat panel
   // The triangles (corner indices, the panel's orientation) it was unfolded by.
   std::vector<std::array<int, 3>> triangles;
+  // The outline crosses itself (a strongly bent n-gon unfolded edge by edge):
+  // not cuttable as drawn; flatten it as a curved patch instead.
+  bool self_intersecting = false;
   // Largest |fold angle| among all diagonals, also those under the tolerance.
   double max_fold_deg = 0.0;
   // Unit direction, in the flat frame, of the surface's u parameter across the
