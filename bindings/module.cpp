@@ -18,6 +18,7 @@ namespace py = pybind11;
 using namespace tessella;
 
 void bind_boundary_driven(py::module_& m);
+void bind_fabrication(py::module_& m);
 
 namespace {
 
@@ -61,6 +62,7 @@ auto with_progress(const py::object& progress, F f) {
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
+  bind_fabrication(m);
 
   // tessella's Cancelled (a RuntimeError, so FreeCAD's recompute reports it
   // like any failed feature).

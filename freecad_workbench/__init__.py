@@ -38,3 +38,72 @@ def make_curve_network(*args, **kwargs):
     from .make import make_curve_network as _make
 
     return _make(*args, **kwargs)
+
+
+from .fabrication import FlatPanel, FlatPatch, NestLayout, flatten, nest, unfold  # noqa: F401,E402
+
+
+def export_dxf(*args, **kwargs):
+    """Write flat panels (optionally nested) to a DXF file (see freecad_workbench.export.dxf)."""
+    from .export.dxf import export_dxf as _export
+
+    return _export(*args, **kwargs)
+
+
+def export_svg(*args, **kwargs):
+    """Write flat panels (optionally nested) to an SVG file (see freecad_workbench.export.svg)."""
+    from .export.svg import export_svg as _export
+
+    return _export(*args, **kwargs)
+
+from .members import (  # noqa: F401,E402
+    buildability,
+    cut_list,
+    freegrid_planarity,
+    node_frames,
+    node_types,
+    panel_types,
+    rod_data,
+)
+
+
+def make_unfold(*args, **kwargs):
+    """Create a parametric Unfold object of a Panelization (see freecad_workbench.make_fabrication)."""
+    from .make_fabrication import make_unfold as _make
+
+    return _make(*args, **kwargs)
+
+
+def rod_solids(*args, **kwargs):
+    """Rods as solids with a profile (see freecad_workbench.solids; needs FreeCAD)."""
+    from .solids import rod_solids as _f
+
+    return _f(*args, **kwargs)
+
+
+def hub_solids(*args, **kwargs):
+    """Simple cylindrical hubs along the node axes (see freecad_workbench.solids)."""
+    from .solids import hub_solids as _f
+
+    return _f(*args, **kwargs)
+
+
+def make_schedules(*args, **kwargs):
+    """Panel, rod and node schedules as Spreadsheet objects (see freecad_workbench.spreadsheets)."""
+    from .spreadsheets import make_schedules as _f
+
+    return _f(*args, **kwargs)
+
+
+def panel_solids(*args, **kwargs):
+    """Panels with a thickness, offset along the node normals (see freecad_workbench.solids)."""
+    from .solids import panel_solids as _f
+
+    return _f(*args, **kwargs)
+
+
+def export_unfold(*args, **kwargs):
+    """Write an Unfold object's panels to DXF or SVG (see freecad_workbench.make_fabrication)."""
+    from .make_fabrication import export_unfold as _f
+
+    return _f(*args, **kwargs)

@@ -418,8 +418,8 @@ class PanelizationPart(_StateMixin):
             add_property(obj, "App::PropertyIntegerList", "Irregular", "Data",
                          "1 where a panel is irregular, else 0", attr=ro)
             add_property(obj, "App::PropertyLength", "TypeTolerance", "Types",
-                         "Panels whose corner distances agree within this are one type",
-                         default=1.0)
+                         "Flat panels whose edges agree within this (and corner and fold "
+                         "angles within 0.5 deg) are one type", default=1.0)
             add_property(obj, "App::PropertyIntegerList", "PanelType", "Data",
                          "Type index per panel (congruent panels share one)", attr=ro)
             add_property(obj, "App::PropertyInteger", "TypeCount", "Data",
@@ -462,11 +462,12 @@ class PanelizationPart(_StateMixin):
             obj.Planarity = [float(x) for x in res.metrics["panel_planarity"]]
             obj.Area = [float(x) for x in res.metrics["panel_area"]]
             obj.Irregular = [int(x) for x in res.irregular]
-            from ..panel_types import panel_types
+            from ..fabrication import unfold
+            from ..members import panel_types
 
-            kinds = panel_types(res, max(value_of(obj.TypeTolerance), 1e-6))
+            kinds, count = panel_types(unfold(res), length_tol=max(value_of(obj.TypeTolerance), 1e-6))
             obj.PanelType = [int(x) for x in kinds]
-            obj.TypeCount = int(kinds.max()) + 1 if len(kinds) else 0
+            obj.TypeCount = int(count)
         elif role == "Rods":
             obj.RodIds = list(res.rod_ids)
             obj.RodLengths = [float(x) for x in res.metrics["rod_length"]]

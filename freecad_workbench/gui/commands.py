@@ -117,3 +117,7 @@ from . import analysis_commands  # noqa: E402  (registers its commands)
 
 #: Command names, in toolbar order (used by InitGui.py).
 COMMANDS = ["Tessella_Panelize"] + analysis_commands.COMMANDS
+
+from . import fabrication_commands  # noqa: E402  (registers Tessella_Unfold)
+
+COMMANDS += fabrication_commands.COMMANDS

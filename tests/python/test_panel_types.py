@@ -1,48 +1,50 @@
-"""Panel types against cases whose answer is known without the code."""
-import types
-
-import numpy as np
+"""Panel types on the Panels object: congruent flat panels share a type
+(turned allowed, mirror images differ), checked on cases known by hand."""
+import FreeCAD
 import Part
 import pytest
 
 import freecad_workbench as tessella
-from freecad_workbench.panel_types import panel_types
+from freecad_workbench.features.panelization import children_of
 
 
-def fake(vertices, panels):
-    return types.SimpleNamespace(vertices=np.asarray(vertices, float), panels=panels)
+def panels_of(shape, **params):
+    doc = FreeCAD.newDocument("Types")
+    src = doc.addObject("Part::Feature", "Src")
+    src.Shape = shape
+    doc.recompute()
+    p = tessella.make_panelization((src, "Face1"), **params)
+    return doc, p, children_of(p)[0]
 
 
-def test_rotated_mirrored_and_relabelled_quads_are_one_type():
-    square = [(0, 0, 0), (1000, 0, 0), (1000, 1000, 0), (0, 1000, 0)]
-    kite = [(0, 0, 0), (1000, 0, 0), (1200, 900, 0), (0, 1000, 0)]
-    mirrored_kite = [(-x, y, z) for x, y, z in kite]
-    c, s = np.cos(0.7), np.sin(0.7)
-    moved_kite = [(c * x - s * y + 5000, s * x + c * y, 300.0) for x, y, z in kite]
-    verts = square + kite + mirrored_kite + moved_kite
-    panels = [(0, 1, 2, 3), (4, 5, 6, 7), (11, 10, 9, 8), (13, 14, 15, 12), (14, 15, 12, 13)]
-    t = panel_types(fake(verts, panels))
-    assert t.tolist() == [0, 1, 1, 1, 1]
+def test_cylinder_panels_are_one_type():
+    doc, p, panels = panels_of(Part.makeCylinder(5000, 4000), u_count=24, v_count=4)
+    try:
+        assert panels.TypeCount == 1 and set(panels.PanelType) == {0}
+    finally:
+        FreeCAD.closeDocument(doc.Name)
 
 
-def test_a_2_mm_difference_is_another_type_at_1_mm():
-    a = [(0, 0, 0), (1000, 0, 0), (1000, 1000, 0), (0, 1000, 0)]
-    b = [(0, 0, 0), (1002, 0, 0), (1002, 1000, 0), (0, 1000, 0)]
-    t = panel_types(fake(a + b, [(0, 1, 2, 3), (4, 5, 6, 7)]), tolerance=1.0)
-    assert t.tolist() == [0, 1]
-    assert panel_types(fake(a + b, [(0, 1, 2, 3), (4, 5, 6, 7)]), tolerance=50.0).tolist() == [0, 0]
+def test_sphere_has_one_type_per_latitude_pair():
+    # 6 rows: the panels of a row are congruent, and row k matches row 5-k
+    # (turned upside down): 3 types.
+    doc, p, panels = panels_of(Part.makeSphere(3000), u_count=12, v_count=6)
+    try:
+        assert panels.TypeCount == 3
+        rows = [panels.PanelType[12 * r:12 * (r + 1)] for r in range(6)]
+        assert all(len(set(row)) == 1 for row in rows)
+        assert rows[0] == rows[5] and rows[1] == rows[4] and rows[2] == rows[3]
+    finally:
+        FreeCAD.closeDocument(doc.Name)
 
 
-def test_cylinder_rings_give_one_type_per_ring():
-    # All panels of a cylinder iso grid are congruent rectangles: one type.
-    r = tessella.panelize(Part.makeCylinder(5000, 4000).Faces[0], u_count=24, v_count=4)
-    assert set(panel_types(r, 0.01).tolist()) == {0}
-    # A sphere's panels differ by latitude: one type per ring (the two
-    # hemispheres mirror each other), so rows/2 types.
-    s = tessella.panelize(Part.makeSphere(3000).Faces[0], u_count=12, v_count=6)
-    assert len(set(panel_types(s, 0.01).tolist())) == 3
-
-
-def test_bad_tolerance():
-    with pytest.raises(ValueError, match="tolerance"):
-        panel_types(fake([], []), tolerance=0)
+def test_tolerance_groups_near_equal_panels():
+    # An equal_size grid on a plate: every panel the same within 1 mm.
+    doc, p, panels = panels_of(Part.makePlane(3000, 2000), method="equal_size_grid", size=500.0)
+    try:
+        assert panels.TypeCount == 1
+        panels.TypeTolerance = 0.001
+        doc.recompute()
+        assert panels.TypeCount == 1  # exact squares are still one type
+    finally:
+        FreeCAD.closeDocument(doc.Name)

@@ -1,0 +1,166 @@
+"""App proxy of the Unfold feature: the flat panels of a Panelization in the XY plane.
+
+    Unfold (Part::FeaturePython, proxy `Unfold`)
+        Base -> Panelization
+        FoldTolerance (deg); CurvedPanels, Subdivisions; Nest, SheetWidth, SheetHeight, Margin, Spacing,
+        Rotations, Kerf (mm)
+        read-only: PanelIds, FoldAngles, FoldedPanels, MaxFoldAngle, MaxStrain, SheetCount,
+        Utilization
+
+Shape: a compound with one sub-compound per panel (panel order) holding the
+closed outline wire (the cutter path when Kerf > 0) and its fold lines; laid out
+on sheets (side by side along x) when Nest is true, else in rows.
+
+FROZEN: the module path `freecad_workbench.features.unfold` and the class name
+`Unfold` are stored in every saved .FCStd.
+"""
+
+import FreeCAD
+
+from .panelization import add_property, is_panelization, value_of
+
+SCHEMA_VERSION = 1
+_READONLY_OUTPUT = 1 | 8
+
+
+class Unfold:
+    def __init__(self, obj, base=None):
+        self._restore(None)
+        self.setup_properties(obj)
+        if base is not None:
+            obj.Base = base
+        obj.Proxy = self
+
+    # persistence (FreeCAD 0.20 on Python 3.11 needs both protocols)
+    def _restore(self, state):
+        self.schema = (state or {}).get("schema", SCHEMA_VERSION)
+
+    def dumps(self):
+        return {"schema": SCHEMA_VERSION}
+
+    def loads(self, state):
+        self._restore(state)
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self._restore(state)
+
+    def setup_properties(self, obj):
+        add_property(obj, "App::PropertyLink", "Base", "Unfold", "The Panelization to unfold")
+        add_property(obj, "App::PropertyAngle", "FoldTolerance", "Unfold",
+                     "Folds under this angle count as flat", default=0.01)
+        add_property(obj, "App::PropertyBool", "CurvedPanels", "Unfold",
+                     "Keep panels as curved patches of the surface and flatten them (LSCM)",
+                     default=False)
+        add_property(obj, "App::PropertyInteger", "Subdivisions", "Unfold",
+                     "Curved panels: mesh pieces per triangle edge", default=8)
+        add_property(obj, "App::PropertyBool", "Nest", "Nesting",
+                     "Lay the panels out on stock sheets", default=False)
+        add_property(obj, "App::PropertyLength", "SheetWidth", "Nesting", "Sheet width",
+                     default=2500.0)
+        add_property(obj, "App::PropertyLength", "SheetHeight", "Nesting", "Sheet height",
+                     default=1250.0)
+        add_property(obj, "App::PropertyLength", "Margin", "Nesting",
+                     "Free border on every side of a sheet", default=10.0)
+        add_property(obj, "App::PropertyLength", "Spacing", "Nesting",
+                     "Least gap between two parts", default=6.0)
+        add_property(obj, "App::PropertyInteger", "Rotations", "Nesting",
+                     "Allowed rotations: multiples of 360/Rotations degrees", default=4)
+        add_property(obj, "App::PropertyLength", "Kerf", "Nesting",
+                     "Cut width: outlines are grown by Kerf/2 for the cutter", default=0.0)
+        ro = _READONLY_OUTPUT
+        add_property(obj, "App::PropertyStringList", "PanelIds", "Result",
+                     "Panel IDs, one per sub-shape", attr=ro)
+        add_property(obj, "App::PropertyFloatList", "FoldAngles", "Result",
+                     "Fold angle per panel (deg, 0 = flat)", attr=ro)
+        add_property(obj, "App::PropertyInteger", "FoldedPanels", "Result",
+                     "Panels with at least one fold", attr=ro)
+        add_property(obj, "App::PropertyFloat", "MaxFoldAngle", "Result",
+                     "Largest fold angle (deg)", attr=ro)
+        add_property(obj, "App::PropertyFloat", "MaxStrain", "Result",
+                     "Curved panels: largest flattening strain |flat/3D length - 1|", attr=ro)
+        add_property(obj, "App::PropertyInteger", "SheetCount", "Result",
+                     "Sheets used (0 without nesting)", attr=ro)
+        add_property(obj, "App::PropertyFloat", "Utilization", "Result",
+                     "Panel area / sheet area over all sheets", attr=ro)
+
+    def onDocumentRestored(self, obj):
+        self.setup_properties(obj)
+        if FreeCAD.GuiUp and getattr(obj.ViewObject, "Proxy", None) is None:
+            try:
+                from ..gui.unfold_view import ViewProviderUnfold
+
+                ViewProviderUnfold(obj.ViewObject)
+            except Exception as exc:
+                FreeCAD.Console.PrintWarning(f"Tessella: no view provider for {obj.Label}: {exc}\n")
+
+    def options(self, obj):
+        return {
+            "fold_tolerance": value_of(obj.FoldTolerance),
+            "curved": bool(obj.CurvedPanels),
+            "subdivisions": int(obj.Subdivisions),
+            "nest": bool(obj.Nest),
+            "sheet_width": value_of(obj.SheetWidth),
+            "sheet_height": value_of(obj.SheetHeight),
+            "margin": value_of(obj.Margin),
+            "spacing": value_of(obj.Spacing),
+            "rotations": int(obj.Rotations),
+            "kerf": value_of(obj.Kerf),
+        }
+
+    def compute(self, obj):
+        """(result, flat, layout or None) for the current Base and options."""
+        from .. import fabrication
+
+        base = obj.Base
+        if base is None or not is_panelization(base):
+            raise ValueError("Base must link to a Panelization object")
+        res = base.Proxy.result(base).result
+        o = self.options(obj)
+        if o["curved"]:
+            face_arg, _label = base.Proxy.source_face(base)
+            flat = fabrication.flatten(res, face_arg, subdivisions=o["subdivisions"])
+        else:
+            flat = fabrication.unfold(res, fold_tolerance=o["fold_tolerance"])
+        layout = None
+        if o["nest"]:
+            layout = fabrication.nest(flat, sheet_width=o["sheet_width"],
+                                      sheet_height=o["sheet_height"], margin=o["margin"],
+                                      spacing=o["spacing"], rotations=o["rotations"],
+                                      kerf=o["kerf"])
+        else:
+            fabrication.cut_outline(flat[0] if flat else [[0, 0], [1, 0], [0, 1]], o["kerf"])
+        return res, flat, layout
+
+    def execute(self, obj):
+        import Part
+
+        from .. import fabrication
+        from ..export import _arrange
+
+        try:
+            res, flat, layout = self.compute(obj)
+        except Exception as exc:
+            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {exc}\n")
+            raise
+        kerf = value_of(obj.Kerf)
+        placements, _ = _arrange.arrange(flat, layout)
+        parts = []
+        for f, pl in zip(flat, placements):
+            cut = _arrange.transform(fabrication.cut_outline(f, kerf), *pl)
+            pts = [FreeCAD.Vector(float(x), float(y), 0.0) for x, y in cut]
+            edges = [Part.makePolygon(pts + [pts[0]])]
+            for a, b, _angle in f.folds:
+                pa, pb = _arrange.transform([f.outline[a], f.outline[b]], *pl)
+                edges.append(Part.LineSegment(FreeCAD.Vector(*pa, 0), FreeCAD.Vector(*pb, 0)).toShape())
+            parts.append(Part.makeCompound(edges))
+        obj.Shape = Part.makeCompound(parts)
+        obj.PanelIds = [f.id for f in flat]
+        obj.FoldAngles = [float(getattr(f, "fold_angle", 0.0)) for f in flat]
+        obj.MaxStrain = float(max((getattr(f, "strain_max", 0.0) for f in flat), default=0.0))
+        obj.FoldedPanels = sum(1 for f in flat if f.folds)
+        obj.MaxFoldAngle = float(max(obj.FoldAngles, default=0.0))
+        obj.SheetCount = layout.sheet_count if layout else 0
+        obj.Utilization = float(layout.utilization) if layout else 0.0

@@ -1,0 +1,94 @@
+"""make_unfold: the parametric Unfold object of a Panelization (console and command).
+
+    u = tessella.make_unfold(panelization, fold_tolerance=0.01, nest=True,
+                             sheet_width=2500, sheet_height=1250, margin=10, spacing=6,
+                             rotations=4, kerf=0.0)
+"""
+
+import FreeCAD
+
+_OPTIONS = {
+    "fold_tolerance": "FoldTolerance",
+    "curved_panels": "CurvedPanels",
+    "subdivisions": "Subdivisions",
+    "nest": "Nest",
+    "sheet_width": "SheetWidth",
+    "sheet_height": "SheetHeight",
+    "margin": "Margin",
+    "spacing": "Spacing",
+    "rotations": "Rotations",
+    "kerf": "Kerf",
+}
+
+
+def make_unfold(panelization, doc=None, **options):
+    """Create an Unfold object for `panelization` in one transaction ("Unfold").
+
+    Options are checked by unfolding (and nesting) once before anything is
+    created: a bad value raises ValueError and leaves the document untouched.
+    """
+    from . import fabrication
+    from .features import panelization as pfeat
+    from .features import unfold as feat
+
+    if not pfeat.is_panelization(panelization):
+        raise ValueError("make_unfold needs a Panelization object (select one, or pass it)")
+    unknown = sorted(set(options) - set(_OPTIONS))
+    if unknown:
+        raise ValueError(f"unknown option(s) {unknown}; accepted: {sorted(_OPTIONS)}")
+    doc = doc or panelization.Document
+    res = panelization.Proxy.result(panelization).result
+    if options.get("curved_panels"):
+        face_arg, _label = panelization.Proxy.source_face(panelization)
+        flat = fabrication.flatten(res, face_arg, subdivisions=options.get("subdivisions", 8))
+    else:
+        flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance", 0.01))
+    kerf = options.get("kerf", 0.0)
+    if options.get("nest"):
+        nest_opts = {k: options[k] for k in ("sheet_width", "sheet_height", "margin", "spacing",
+                                             "rotations") if k in options}
+        fabrication.nest(flat, kerf=kerf, **nest_opts)
+    else:
+        fabrication.cut_outline([[0, 0], [1, 0], [0, 1]], kerf)
+
+    doc.openTransaction("Unfold")
+    name = None
+    try:
+        obj = doc.addObject("Part::FeaturePython", "Unfold")
+        name = obj.Name
+        feat.Unfold(obj, panelization)
+        for key, value in options.items():
+            setattr(obj, _OPTIONS[key], value)
+        if FreeCAD.GuiUp:
+            from .gui.unfold_view import ViewProviderUnfold
+
+            ViewProviderUnfold(obj.ViewObject)
+            obj.ViewObject.LineColor = (0.8, 0.1, 0.1)
+        doc.recompute()
+        if not obj.isValid() or "Touched" in obj.State:
+            raise RuntimeError(f"the Unfold did not recompute: {', '.join(obj.State)}")
+    except BaseException:
+        doc.abortTransaction()
+        if name and doc.getObject(name) is not None:
+            doc.removeObject(name)
+        raise
+    doc.commitTransaction()
+    return obj
+
+
+def export_unfold(unfold_obj, path):
+    """Write an Unfold object's flat panels (as laid out: nested or in rows) to a
+    DXF or SVG file, chosen by the extension. Returns the writer's summary."""
+    from .export.dxf import export_dxf
+    from .export.svg import export_svg
+    from .features.unfold import Unfold
+
+    if not isinstance(getattr(unfold_obj, "Proxy", None), Unfold):
+        raise ValueError("export_unfold needs an Unfold object (select one, or pass it)")
+    ext = str(path).lower().rsplit(".", 1)[-1]
+    if ext not in ("dxf", "svg"):
+        raise ValueError(f"the file must end in .dxf or .svg, got {path!r}")
+    _res, flat, layout = unfold_obj.Proxy.compute(unfold_obj)
+    kerf = layout.kerf if layout else float(getattr(unfold_obj.Kerf, "Value", unfold_obj.Kerf))
+    writer = export_dxf if ext == "dxf" else export_svg
+    return writer(flat, path, layout=layout, kerf=kerf)

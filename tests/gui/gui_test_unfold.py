@@ -1,0 +1,234 @@
+"""GUI test of Tessella_Unfold (run like gui_test_panelize.py, see tests/gui/README).
+
+No selection -> a message naming the Panelization, nothing created; a selected
+Panelization (or its Panels child) -> one Unfold per run, one undo step, its view
+provider and icon, the echoed Python call; save and reopen restores the view provider.
+"""
+
+import json
+import os
+import sys
+import tempfile
+import traceback
+
+import FreeCAD
+import FreeCADGui as Gui
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = (os.environ.get("TESSELLA_ROOT") or os.environ.get("TESSELLA_REPO")
+        or os.path.dirname(os.path.dirname(HERE)))
+RESULT = os.environ.get("TESSELLA_GUI_RESULT") or os.path.join(
+    tempfile.gettempdir(), "tessella_gui_unfold_result.json")
+
+results = {"passed": 0, "failed": 0, "failures": [], "checks": [], "registration": None}
+
+
+def check(name, condition, detail=""):
+    results["checks"].append(name)
+    if condition:
+        results["passed"] += 1
+    else:
+        results["failed"] += 1
+        results["failures"].append(f"{name}: {detail}" if detail else name)
+    return bool(condition)
+
+
+def process_events():
+    from PySide import QtGui
+
+    QtGui.QApplication.processEvents()
+
+
+class DialogCatcher:
+    """Closes modal message boxes while a command runs and remembers their text."""
+
+    def __init__(self):
+        from PySide import QtCore
+
+        self.texts = []
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(50)
+        self.timer.timeout.connect(self._close)
+
+    def _close(self):
+        from PySide import QtGui
+
+        w = QtGui.QApplication.activeModalWidget()
+        if w is not None and isinstance(w, QtGui.QMessageBox):
+            self.texts.append(w.text())
+            w.done(0)
+
+    def __enter__(self):
+        self.texts.clear()
+        self.timer.start()
+        return self
+
+    def __exit__(self, *exc):
+        process_events()
+        self.timer.stop()
+        return False
+
+
+def ensure_workbench():
+    if "TessellaWorkbench" in Gui.listWorkbenches():
+        results["registration"] = "Mod folder"
+        return
+    if REPO not in sys.path:
+        sys.path.insert(0, REPO)
+    with open(os.path.join(REPO, "InitGui.py"), encoding="utf-8") as f:
+        source = f.read()
+    exec(compile(source, os.path.join(REPO, "InitGui.py"), "exec"),
+         {"__builtins__": __builtins__}, {})
+    results["registration"] = "manual (InitGui.py executed by the test)"
+
+
+def unfolds(doc):
+    from freecad_workbench.features.unfold import Unfold
+
+    return [o for o in doc.Objects if isinstance(getattr(o, "Proxy", None), Unfold)]
+
+
+def test_unfold_command():
+    import Part
+
+    ensure_workbench()
+    Gui.activateWorkbench("TessellaWorkbench")
+    process_events()
+    items = Gui.activeWorkbench().getToolbarItems().get("Tessella", [])
+    check("toolbar holds Tessella_Unfold", "Tessella_Unfold" in items, str(items))
+
+    import freecad_workbench as tessella
+    from freecad_workbench.features.panelization import children_of
+
+    doc = FreeCAD.newDocument("TessellaGuiUnfold")
+    try:
+        surf = doc.addObject("Part::Feature", "Surface")
+        surf.Shape = Part.makeCylinder(3000, 4000).Faces[0]
+        doc.recompute()
+        p = tessella.make_panelization((surf, "Face1"), method="iso_grid", u_count=12, v_count=4)
+        doc.clearUndos()
+        before = sorted(o.Name for o in doc.Objects)
+
+        Gui.Selection.clearSelection()
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Unfold")
+        check("no selection: nothing created", sorted(o.Name for o in doc.Objects) == before)
+        check("no selection: no undo step", doc.UndoCount == 0, str(doc.UndoNames))
+        check("no selection: the user is told to select a Panelization",
+              any("Panelization" in t for t in dc.texts), str(dc.texts))
+
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Unfold")
+        check("a face selected: nothing created", sorted(o.Name for o in doc.Objects) == before)
+
+        echoed = []
+        original = Gui.doCommand
+
+        def recording_do_command(line):
+            echoed.append(line)
+            return original(line)
+
+        Gui.doCommand = recording_do_command
+        try:
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(doc.Name, p.Name)
+            with DialogCatcher() as dc:
+                Gui.runCommand("Tessella_Unfold")
+        finally:
+            Gui.doCommand = original
+        process_events()
+        us = unfolds(doc)
+        if check("Panelization selected: one Unfold", len(us) == 1, str(dc.texts)):
+            u = us[0]
+            check("Unfold valid", u.isValid() and len(u.Shape.childShapes()) == p.PanelCount,
+                  str(u.State))
+            check("one undo step named Unfold", doc.UndoNames == ["Unfold"], str(doc.UndoNames))
+            check("echoed make_unfold", any("tessella.make_unfold(" in e for e in echoed),
+                  str(echoed))
+            vp = u.ViewObject.Proxy
+            check("view provider", type(vp).__name__ == "ViewProviderUnfold", type(vp).__name__)
+            icon = vp.getIcon() if vp else ""
+            check("icon file exists", bool(icon) and os.path.isfile(icon), repr(icon))
+        # Export: no Unfold selected -> message; selected -> a DXF that reads back
+        from freecad_workbench.gui import fabrication_commands as fc
+
+        Gui.Selection.clearSelection()
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_ExportFlat")
+        check("export without an Unfold selected: told to select one",
+              any("Unfold" in t for t in dc.texts), str(dc.texts))
+        out = os.path.join(tempfile.mkdtemp(prefix="tessella_gui_"), "flat.dxf")
+        original_ask = fc.ask_path
+        fc.ask_path = lambda obj: out
+        try:
+            Gui.Selection.addSelection(doc.Name, us[0].Name)
+            with DialogCatcher() as dc:
+                Gui.runCommand("Tessella_ExportFlat")
+        finally:
+            fc.ask_path = original_ask
+        if check("export wrote the DXF", os.path.isfile(out), str(dc.texts)):
+            import ezdxf
+
+            names = sorted(i.dxf.name for i in ezdxf.readfile(out).modelspace().query("INSERT"))
+            check("DXF holds one block per panel", names == sorted(us[0].PanelIds), str(names[:5]))
+        Gui.Selection.clearSelection()
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Schedules")
+        check("schedules without a selection: told to select a Panelization",
+              any("Panelization" in t for t in dc.texts), str(dc.texts))
+        undo_before = doc.UndoCount
+        Gui.Selection.addSelection(doc.Name, p.Name)
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Schedules")
+        sheets = [o for o in doc.Objects if o.TypeId == "Spreadsheet::Sheet"]
+        check("schedules: three spreadsheets", len(sheets) == 3, str(dc.texts))
+        check("schedules: one undo step", doc.UndoCount == undo_before + 1
+              and doc.UndoNames[0] == "Schedules", str(doc.UndoNames))
+        if sheets:
+            check("schedules: panel rows", sheets[0].get(f"A{p.PanelCount + 1}")
+                  == f"P-{p.PanelCount:04d}", str(sheets[0].get("A2")))
+        doc.undo()
+        check("schedules: undo removes them",
+              not [o for o in doc.Objects if o.TypeId == "Spreadsheet::Sheet"])
+        panels = [c for c in children_of(p) if c.Role == "Panels"][0]
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, panels.Name)
+        with DialogCatcher():
+            Gui.runCommand("Tessella_Unfold")
+        check("Panels child selected: a second Unfold", len(unfolds(doc)) == 2)
+        doc.undo()
+        check("undo removes it", len(unfolds(doc)) == 1)
+
+        path = os.path.join(tempfile.mkdtemp(prefix="tessella_gui_"), "unfold.FCStd")
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+        process_events()
+        us = unfolds(doc)
+        if check("reopened: Unfold found", len(us) == 1):
+            check("reopened: view provider restored",
+                  type(us[0].ViewObject.Proxy).__name__ == "ViewProviderUnfold")
+    finally:
+        Gui.Selection.clearSelection()
+        for name in list(FreeCAD.listDocuments()):
+            FreeCAD.closeDocument(name)
+
+
+def main():
+    try:
+        test_unfold_command()
+    except Exception:
+        check("test_unfold_command raised", False, traceback.format_exc())
+    with open(RESULT, "w", encoding="utf-8") as f:
+        json.dump(results, f, indent=1)
+    FreeCAD.Console.PrintMessage(
+        f"Tessella GUI unfold test: {results['passed']} passed, {results['failed']} failed\n")
+
+
+try:
+    main()
+finally:
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0 if results["failed"] == 0 else 1)
