@@ -40,6 +40,9 @@ auto nogil(F f) {
 
 }  // namespace
 
+// Areas bound in their own files (bindings/<area>.cpp).
+void bind_guide_lines(py::module_& m);
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
 
@@ -129,7 +132,8 @@ PYBIND11_MODULE(_core, m) {
             return a;
           })
       .def_readonly("merged_slivers", &PanelMesh::merged_slivers)
-      .def_readonly("nominal_area", &PanelMesh::nominal_area);
+      .def_readonly("nominal_area", &PanelMesh::nominal_area)
+      .def_readonly("regular_corners", &PanelMesh::regular_corners);
 
   py::class_<PanelMetrics>(m, "PanelMetrics")
       .def_property_readonly("deviation", [](const PanelMetrics& x) { return values(x.deviation); })
@@ -183,4 +187,6 @@ PYBIND11_MODULE(_core, m) {
         [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
   m.def("nodes_to_brep",
         [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
+
+  bind_guide_lines(m);
 }
