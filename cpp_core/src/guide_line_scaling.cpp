@@ -147,12 +147,10 @@ bool nearest_boundary_point(const Boundary& bd, const Vec3& d, const Vec3& t, do
   return std::isfinite(best);
 }
 
-// Local Newton projection (seed 004 section 4) without the global fallback: the
-// start is always the matching point of the previous curve.
+// Newton projection (seed 004 section 4) from the matching point of the
+// previous curve (OCCT's global search only when Newton fails).
 Projection project_near(const SurfaceFace& face, const Vec3& p, const Vec2& start) {
-  ProjectionParams pp;
-  pp.global_fallback = false;
-  return face.project(p, start, pp);
+  return face.project(p, start);
 }
 
 struct Context {
@@ -171,7 +169,10 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
   Vec2 new_uv[2];
   for (int e = 0; e < 2; ++e) {
     const std::size_t i = e == 0 ? 0 : last;
-    const Vec3 tau = (e == 0 ? c.xyz[1] - c.xyz[0] : c.xyz[last] - c.xyz[last - 1]).normalized();
+    // End tangent over ~one rod length (robust to a kink in the last sample).
+    const std::size_t m = std::clamp<std::size_t>(
+        static_cast<std::size_t>(cx.l1 / std::max(polyline_length(c.xyz) / last, cx.tol)), 1, last / 4 + 1);
+    const Vec3 tau = (e == 0 ? c.xyz[m] - c.xyz[0] : c.xyz[last] - c.xyz[last - m]).normalized();
     const Vec3 n = face.normal(c.uv[i][0], c.uv[i][1]);
     Vec3 d = n.cross(tau);
     if (d.norm() < 1e-12) return false;
@@ -212,8 +213,19 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
   }
   // Step 6: the curve lives in (u,v) and is evaluated on the surface.
   next = resample(face, moved, cx.samples);
-  // No progress (the curve fell back onto the previous one): covered.
-  if ((next.xyz[last / 2] - c.xyz[last / 2]).norm() < 0.3 * cx.advance) return false;
+  // No progress across the curve (it fell back onto the previous one, or slid
+  // along the boundary): covered.
+  {
+    // Median over the curve: one point stuck (e.g. over a hole) does not stop it.
+    std::vector<double> progress;
+    for (std::size_t k = 1; k < last; ++k) {
+      const Vec3 tau = (c.xyz[k + 1] - c.xyz[k - 1]).normalized();
+      const Vec3 across = side * face.normal(c.uv[k][0], c.uv[k][1]).cross(tau);
+      progress.push_back((next.xyz[k] - c.xyz[k]).dot(across));
+    }
+    std::nth_element(progress.begin(), progress.begin() + progress.size() / 2, progress.end());
+    if (progress[progress.size() / 2] < 0.3 * cx.advance) return false;
+  }
   double inside = 0.0;
   for (const SurfaceCurve& r : inside_runs(face, next)) inside += polyline_length(r.xyz);
   return inside >= 0.5 * cx.l1;

@@ -298,7 +298,7 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
     }
   }
   Projection result;
-  if (converged || !params.global_fallback) {
+  if (converged) {
     result.uv = {u, v};
     result.point = point(u, v);
     result.distance = (result.point - p).norm();

@@ -34,10 +34,6 @@ struct ProjectionParams {
   double distance_tolerance = 1e-9;        // eps1 of seed 004 eq. 18, relative to model size
   double orthogonality_tolerance = 1e-10;  // eps2 of seed 004 eq. 18 (cosine)
   int max_iterations = 30;
-  // When Newton does not converge: ask OCCT's global Extrema (slow, ~10-50 ms
-  // on a dense B-spline) or keep Newton's last iterate, clamped to the bounds
-  // (for callers that project many points near a known start).
-  bool global_fallback = true;
 };
 
 struct Projection {
