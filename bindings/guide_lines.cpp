@@ -1,10 +1,11 @@
 // Bindings of the guide-line methods (seed 004): conversions only.
+#include "tessella/guide_lines.h"
+
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "tessella/guide_lines.h"
 #include "tessella/surface_face.h"
 
 namespace py = pybind11;
@@ -28,7 +29,8 @@ py::array_t<double> points2(const std::vector<Vec2>& v) {
   return a;
 }
 
-std::vector<Vec3> to_points(const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
+std::vector<Vec3> to_points(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
   if (a.ndim() != 2 || a.shape(1) != 3)
     throw py::value_error("guides: a guide polyline must be an (N, 3) array of points");
   auto r = a.unchecked<2>();
@@ -68,7 +70,8 @@ void bind_guide_lines(py::module_& m) {
       r = guide_line_scaling_curves(f, p);
     }
     py::list curves;
-    for (const SurfaceCurve& c : r.curves) curves.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+    for (const SurfaceCurve& c : r.curves)
+      curves.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
     return py::make_tuple(std::move(r.mesh), curves);
   });
   m.def(

@@ -52,6 +52,8 @@ def edge_polyline(edge, points=GUIDE_POINTS):
             edge = shape.getElement(sub)
         except Exception as exc:
             raise ValueError(f"guides: {getattr(obj, 'Label', obj)} has no {sub}") from exc
+    if not isinstance(edge, Part.Shape) and hasattr(edge, "Shape"):  # a document object
+        edge = edge.Shape
     if not isinstance(edge, Part.Shape) or edge.isNull():
         raise ValueError(f"guides: expected Part.Edge objects, got {type(edge).__name__}")
     if edge.ShapeType != "Edge":

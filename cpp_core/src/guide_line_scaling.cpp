@@ -171,7 +171,8 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
     const std::size_t i = e == 0 ? 0 : last;
     // End tangent over ~one rod length (robust to a kink in the last sample).
     const std::size_t m = std::clamp<std::size_t>(
-        static_cast<std::size_t>(cx.l1 / std::max(polyline_length(c.xyz) / last, cx.tol)), 1, last / 4 + 1);
+        static_cast<std::size_t>(cx.l1 / std::max(polyline_length(c.xyz) / last, cx.tol)), 1,
+        last / 4 + 1);
     const Vec3 tau = (e == 0 ? c.xyz[m] - c.xyz[0] : c.xyz[last] - c.xyz[last - m]).normalized();
     const Vec3 n = face.normal(c.uv[i][0], c.uv[i][1]);
     Vec3 d = n.cross(tau);
@@ -197,7 +198,8 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
   Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
   const Vec3 axis = a.cross(b);
   if (axis.norm() > 1e-12 * a.norm() * b.norm())
-    rot = Eigen::AngleAxisd(std::atan2(axis.norm(), a.dot(b)), axis.normalized()).toRotationMatrix();
+    rot =
+        Eigen::AngleAxisd(std::atan2(axis.norm(), a.dot(b)), axis.normalized()).toRotationMatrix();
   SurfaceCurve moved;
   for (std::size_t i = 0; i <= last; ++i) {
     const Vec3 y = new_end[1] + rot * ((c.xyz[i] - pn) * scale);
@@ -261,12 +263,13 @@ SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide) {
   }
   std::vector<SurfaceCurve> runs = inside_runs(face, projected);
   if (runs.empty()) throw InvalidParameter("guides: the guide curve does not cross the face");
-  SurfaceCurve best = *std::max_element(
-      runs.begin(), runs.end(), [](const SurfaceCurve& a, const SurfaceCurve& b) {
+  SurfaceCurve best =
+      *std::max_element(runs.begin(), runs.end(), [](const SurfaceCurve& a, const SurfaceCurve& b) {
         return polyline_length(a.xyz) < polyline_length(b.xyz);
       });
   if (polyline_length(best.xyz) < 0.5 * cx.l1)
-    throw InvalidParameter("guides: the part of the guide curve on the face is shorter than rod_length / 2");
+    throw InvalidParameter(
+        "guides: the part of the guide curve on the face is shorter than rod_length / 2");
   // Ends that stop inside the face are extended to the boundary.
   const std::size_t n = best.uv.size();
   best.uv.front() = extend_to_boundary(face, best.uv[0], best.uv[1]);
@@ -298,19 +301,24 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
     if (!p.allFinite()) throw InvalidParameter("guides: the guide curve has a non-finite point");
 
   const double size = face.model_size();
-  Context cx{face, {}, params.rod_length,
+  Context cx{face,
+             {},
+             params.rod_length,
              params.advance > 0 ? params.advance : params.rod_length * std::sqrt(3.0) / 2.0,
-             1e-9 * size, 0};
+             1e-9 * size,
+             0};
   require_in_range("advance (mm)", cx.advance, 1e-3, 1e9);
   if (size / cx.advance > params.max_curves)
-    throw LimitExceeded("guide_line_scaling: the face needs more than max_curves curves at this advance");
+    throw LimitExceeded(
+        "guide_line_scaling: the face needs more than max_curves curves at this advance");
   const double guide_len = polyline_length(params.guide);
   const double est_len = std::max(guide_len, size);
   cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * est_len / cx.l1) + 1.0, 33.0, 4001.0));
   const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
   for (const TrimLoop& loop : face.trim_loops(deflection))
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
-  if (cx.boundary.xyz.size() < 3) throw InvalidGeometry("guide_line_scaling: the face has no outer boundary");
+  if (cx.boundary.xyz.size() < 3)
+    throw InvalidGeometry("guide_line_scaling: the face has no outer boundary");
 
   const double tol_guide = params.guide_tolerance > 0 ? params.guide_tolerance : 0.05 * size;
   cx.tol = tol_guide;
@@ -409,7 +417,8 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   remove_unused_vertices(mesh);
   build_rods(mesh);
   if (mesh.panels.empty())
-    throw InvalidParameter("guide_line_scaling: no panels (rod_length / advance too large for the face?)");
+    throw InvalidParameter(
+        "guide_line_scaling: no panels (rod_length / advance too large for the face?)");
   return result;
 }
 

@@ -2,8 +2,8 @@
 // closed form.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 
 #include "tessella/errors.h"
 #include "tessella/guide_lines.h"
@@ -30,7 +30,8 @@ std::vector<double> chords(const std::vector<Vec3>& pts, const std::vector<doubl
 }
 
 SurfaceFace rectangle(double w, double h) {
-  return SurfaceFace::from_brep_string(brep(BRepBuilderAPI_MakeFace(gp_Pln(), rect_wire(0, 0, w, h, false)).Face()));
+  return SurfaceFace::from_brep_string(
+      brep(BRepBuilderAPI_MakeFace(gp_Pln(), rect_wire(0, 0, w, h, false)).Face()));
 }
 
 double triangle_area(const PanelMesh& m, const std::vector<int>& p) {
@@ -45,7 +46,8 @@ TEST(GuideLineProjection, CylinderFootPointInClosedForm) {
     for (double rho : {1000.0, 5000.0}) {
       const Vec3 p(rho * std::cos(phi), rho * std::sin(phi), 1234.0);
       const Projection pr = f.project(p, Vec2(phi + 0.2, 1000.0));
-      EXPECT_NEAR((pr.point - Vec3(r * std::cos(phi), r * std::sin(phi), 1234.0)).norm(), 0.0, 1e-6);
+      EXPECT_NEAR((pr.point - Vec3(r * std::cos(phi), r * std::sin(phi), 1234.0)).norm(), 0.0,
+                  1e-6);
       EXPECT_NEAR(pr.distance, std::abs(rho - r), 1e-6);
     }
   }
@@ -108,8 +110,8 @@ TEST(RightAngleRule, FollowsFigure14OnARowWithOnePointAhead) {
   std::vector<Vec3> p, q{Vec3(2.4, 1, 0), Vec3(6, 1, 0)};
   for (int i = 0; i < 6; ++i) p.emplace_back(i, 0, 0);
   const auto t = connect_rows_right_angle(p, q);
-  const std::vector<std::array<int, 3>> expected{
-      {0, 1, 6}, {1, 2, 6}, {2, 3, 6}, {3, 7, 6}, {3, 4, 7}, {4, 5, 7}};
+  const std::vector<std::array<int, 3>> expected{{0, 1, 6}, {1, 2, 6}, {2, 3, 6},
+                                                 {3, 7, 6}, {3, 4, 7}, {4, 5, 7}};
   EXPECT_EQ(t, expected);
 }
 
@@ -148,7 +150,8 @@ TEST(GuideLineScaling, FlatRectangleIsCoveredByParallelCurvesAndEqualRods) {
     xs.push_back(c.xyz.front().x());
   }
   std::sort(xs.begin(), xs.end());
-  for (std::size_t k = 0; k < xs.size(); ++k) EXPECT_NEAR(xs[k], std::min(10000.0, 866.0 * k), 1e-4);
+  for (std::size_t k = 0; k < xs.size(); ++k)
+    EXPECT_NEAR(xs[k], std::min(10000.0, 866.0 * k), 1e-4);
   const PanelMesh& m = r.mesh;
   double area = 0;
   for (const auto& panel : m.panels) {

@@ -56,7 +56,7 @@ struct GuideLineScalingParams {
   // Largest allowed distance of a guide point from the surface (mm);
   // 0 = 5% of the model size.
   double guide_tolerance = 0.0;
-  int max_curves = 2000;     // refuse to advance more curves than this
+  int max_curves = 2000;         // refuse to advance more curves than this
   double trim_deflection = 0.0;  // chord deflection of the trim polylines; 0 = automatic
   int max_panels = 200000;
 };
