@@ -1,13 +1,14 @@
 #include <gtest/gtest.h>
 
-#include <BRepBuilderAPI_MakeEdge.hxx>
-#include <BRepBuilderAPI_MakeWire.hxx>
 #include <cmath>
-#include <gp_Circ.hxx>
 
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 #include "test_faces.h"
+
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <gp_Circ.hxx>
 
 using namespace tessella;
 using namespace tessella::test;
