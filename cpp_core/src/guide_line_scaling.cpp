@@ -226,7 +226,7 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
       progress.push_back((next.xyz[k] - c.xyz[k]).dot(across));
     }
     std::nth_element(progress.begin(), progress.begin() + progress.size() / 2, progress.end());
-    if (progress[progress.size() / 2] < 0.3 * cx.advance) return false;
+    if (progress[progress.size() / 2] < 0.2 * cx.advance) return false;
   }
   double inside = 0.0;
   for (const SurfaceCurve& r : inside_runs(face, next)) inside += polyline_length(r.xyz);
