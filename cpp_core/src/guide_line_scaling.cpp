@@ -228,8 +228,11 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
     std::nth_element(progress.begin(), progress.begin() + progress.size() / 2, progress.end());
     if (progress[progress.size() / 2] < 0.2 * cx.advance) return false;
   }
+  // Enough of it on the face (sampled: the exact pieces come at the division).
   double inside = 0.0;
-  for (const SurfaceCurve& r : inside_runs(face, next)) inside += polyline_length(r.xyz);
+  for (std::size_t i = 2; i <= last; i += 2)
+    if (face.is_inside(next.uv[i - 1][0], next.uv[i - 1][1]))
+      inside += (next.xyz[i] - next.xyz[i - 2]).norm();
   return inside >= 0.5 * cx.l1;
 }
 
