@@ -25,6 +25,7 @@ EXPECTED = {
     "cylinder_part": ("Part::GeomCylinder", 1),
     "plane": ("Part::GeomPlane", 2),
     "full_cylinder": ("Part::GeomCylinder", 1),
+    "british_museum_roof": ("Part::GeomBSplineSurface", 2),  # examples/make_british_museum.py
 }
 METHODS = ("iso_grid", "equal_size_grid")
 TARGET_PANELS = 60  # coarse: keeps the whole file well under the time budget
