@@ -58,6 +58,41 @@ void bind_guide_lines(py::module_& m) {
       .def_readwrite("trim_deflection", &GuideLineScalingParams::trim_deflection)
       .def_readwrite("max_panels", &GuideLineScalingParams::max_panels);
 
+  py::class_<TwoGuideLinesParams>(m, "TwoGuideLinesParams")
+      .def(py::init<>())
+      .def_property(
+          "guides",
+          [](const TwoGuideLinesParams& p) {
+            return py::make_tuple(points3(p.guide_a), points3(p.guide_b));
+          },
+          [](TwoGuideLinesParams& p, const std::vector<py::array_t<double, py::array::c_style |
+                                                                           py::array::forcecast>>& g) {
+            if (g.size() != 2) throw py::value_error("guides must hold exactly 2 polylines");
+            p.guide_a = to_points(g[0]);
+            p.guide_b = to_points(g[1]);
+          })
+      .def_readwrite("rod_length", &TwoGuideLinesParams::rod_length)
+      .def_readwrite("triangulate", &TwoGuideLinesParams::triangulate)
+      .def_readwrite("corner_angle", &TwoGuideLinesParams::corner_angle)
+      .def_readwrite("guide_tolerance", &TwoGuideLinesParams::guide_tolerance)
+      .def_readwrite("max_curves", &TwoGuideLinesParams::max_curves)
+      .def_readwrite("trim_deflection", &TwoGuideLinesParams::trim_deflection)
+      .def_readwrite("max_panels", &TwoGuideLinesParams::max_panels);
+  m.def("two_guide_lines", [](const SurfaceFace& f, const TwoGuideLinesParams& p) {
+    py::gil_scoped_release release;
+    return two_guide_lines(f, p);
+  });
+  m.def("two_guide_lines_curves", [](const SurfaceFace& f, const TwoGuideLinesParams& p) {
+    TwoGuideLinesResult r;
+    {
+      py::gil_scoped_release release;
+      r = two_guide_lines_curves(f, p);
+    }
+    py::list a, b;
+    for (const SurfaceCurve& c : r.curves_a) a.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+    for (const SurfaceCurve& c : r.curves_b) b.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+    return py::make_tuple(std::move(r.mesh), a, b);
+  });
   m.def("guide_line_scaling", [](const SurfaceFace& f, const GuideLineScalingParams& p) {
     py::gil_scoped_release release;
     return guide_line_scaling(f, p);

@@ -110,6 +110,14 @@ METHODS = {
         lambda surface, p: core.guide_line_scaling(surface, p),
         converters={"guides": _guides(1)},
     ),
+    "two_guide_lines": MethodSpec(
+        {"rod_length": float, "triangulate": bool, "corner_angle": float,
+         "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
+         "max_panels": int},
+        lambda: core.TwoGuideLinesParams(),
+        lambda surface, p: core.two_guide_lines(surface, p),
+        converters={"guides": _guides(2)},
+    ),
 }
 
 PANEL_ID_FORMAT = "P-{:04d}"

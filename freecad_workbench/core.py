@@ -18,6 +18,7 @@ from ._core import (  # noqa: E402,F401
     MetricsParams,
     PanelMesh,
     SurfaceFace,
+    TwoGuideLinesParams,
     divide_by_chords,
     equal_size_grid,
     guide_line_scaling,
@@ -30,4 +31,6 @@ from ._core import (  # noqa: E402,F401
     panels_to_brep,
     rods_to_brep,
     summarize,
+    two_guide_lines,
+    two_guide_lines_curves,
 )

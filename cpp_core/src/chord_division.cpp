@@ -40,17 +40,6 @@ double next_at_chord(const std::vector<Vec3>& pts, double t0, double chord) {
   return -1.0;
 }
 
-// Lays chords of length `chord` from the start, at most max_count of them.
-std::vector<double> lay_chords(const std::vector<Vec3>& pts, double chord, int max_count) {
-  std::vector<double> nodes{0.0};
-  while (static_cast<int>(nodes.size()) - 1 < max_count) {
-    const double t = next_at_chord(pts, nodes.back(), chord);
-    if (t < 0.0) break;
-    nodes.push_back(t);
-  }
-  return nodes;
-}
-
 // Chord length with which exactly n equal chords end at the polyline's end
 // (bisection), and the nodes; the last node is set to the end.
 double equal_chords(const std::vector<Vec3>& pts, int n, double guess, std::vector<double>& nodes) {
@@ -74,6 +63,16 @@ double equal_chords(const std::vector<Vec3>& pts, int n, double guess, std::vect
 }
 
 }  // namespace
+
+std::vector<double> lay_chords(const std::vector<Vec3>& pts, double chord, int max_count) {
+  std::vector<double> nodes{0.0};
+  while (static_cast<int>(nodes.size()) - 1 < max_count) {
+    const double t = next_at_chord(pts, nodes.back(), chord);
+    if (t < 0.0) break;
+    nodes.push_back(t);
+  }
+  return nodes;
+}
 
 std::vector<double> divide_by_chords(const std::vector<Vec3>& points,
                                      const ChordDivisionParams& params) {

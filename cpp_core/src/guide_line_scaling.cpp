@@ -10,15 +10,12 @@
 #include "tessella/errors.h"
 #include "tessella/guide_lines.h"
 #include "tessella/surface_face.h"
+#include "guide_curves.h"
 
 namespace tessella {
 
-namespace {
+namespace guide_detail {
 
-struct Boundary {
-  std::vector<Vec3> xyz;
-  std::vector<Vec2> uv;
-};
 
 double polyline_length(const std::vector<Vec3>& pts) {
   double len = 0.0;
@@ -150,15 +147,75 @@ bool nearest_boundary_point(const Boundary& bd, const Vec3& d, const Vec3& t, do
 // Newton projection (seed 004 section 4) from the matching point of the
 // previous curve (OCCT's global search only when Newton fails).
 Projection project_near(const SurfaceFace& face, const Vec3& p, const Vec2& start) {
-  return face.project(p, start);
+  // Seed 004 section 4 with the Gauss-Newton matrix (J = [Su Sv]^T [Su Sv]) and
+  // the steps clamped to the face's (u,v) box, so a point beyond the border
+  // lands on the border instead of sending SurfaceFace::project to OCCT's
+  // global search (~50 ms each). Curve points always start from the matching
+  // point of the previous curve, so the start is close.
+  const UvBounds b = face.bounds();
+  Vec2 uv = start;
+  auto clamp_uv = [&](Vec2 x) {
+    if (!face.u_periodic()) x[0] = std::clamp(x[0], b.u_min, b.u_max);
+    if (!face.v_periodic()) x[1] = std::clamp(x[1], b.v_min, b.v_max);
+    return x;
+  };
+  uv = clamp_uv(uv);
+  const double eps = 1e-9 * face.model_size();
+  for (int it = 0; it < 30; ++it) {
+    const SurfacePoint sp = face.derivatives(uv[0], uv[1]);
+    const Vec3 r = sp.point - p;
+    Eigen::Matrix2d j;
+    j << sp.du.dot(sp.du), sp.du.dot(sp.dv), sp.du.dot(sp.dv), sp.dv.dot(sp.dv);
+    const Vec2 g(sp.du.dot(r), sp.dv.dot(r));
+    if (!(std::abs(j.determinant()) > 1e-300)) break;
+    const Vec2 next = clamp_uv(uv - j.inverse() * g);
+    const double step = (sp.du * (next[0] - uv[0]) + sp.dv * (next[1] - uv[1])).norm();
+    uv = next;
+    if (step <= eps) break;
+  }
+  Projection pr;
+  pr.uv = uv;
+  pr.point = face.point(uv[0], uv[1]);
+  pr.distance = (pr.point - p).norm();
+  return pr;
 }
 
-struct Context {
-  const SurfaceFace& face;
-  Boundary boundary;
-  double l1 = 0, advance = 0, tol = 0;
-  int samples = 0;
-};
+// Steps 4-6 of seed 004 section 5.1: the curve c scaled, translated and rotated
+// so that its ends land on end0 / end1 (eq. 21-24), projected point by point
+// (Newton from the matching point of c) and resampled.
+SurfaceCurve map_curve(const Context& cx, const SurfaceCurve& c, const Vec3& end0, const Vec2& uv0,
+                       const Vec3& end1, const Vec2& uv1) {
+  const SurfaceFace& face = cx.face;
+  const std::size_t last = c.xyz.size() - 1;
+  const Vec3 new_end[2] = {end0, end1};
+  const Vec2 new_uv[2] = {uv0, uv1};
+  const Vec3 p0 = c.xyz.front(), pn = c.xyz.back();
+  const double l1 = std::max((p0 - pn).norm(), cx.tol), l2 = (new_end[0] - new_end[1]).norm();
+  // Scale about Pn and translate Pn to Pn'' (eq. 21-22), then rotate about Pn''
+  // so that P0 lands on P0'' (eq. 23-24).
+  const double scale = l2 / l1;
+  const Vec3 a = (p0 - pn) * scale, b = new_end[0] - new_end[1];
+  Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
+  const Vec3 axis = a.cross(b);
+  if (axis.norm() > 1e-12 * a.norm() * b.norm())
+    rot =
+        Eigen::AngleAxisd(std::atan2(axis.norm(), a.dot(b)), axis.normalized()).toRotationMatrix();
+  SurfaceCurve moved;
+  for (std::size_t i = 0; i <= last; ++i) {
+    const Vec3 y = new_end[1] + rot * ((c.xyz[i] - pn) * scale);
+    Vec2 uv;
+    if (i == 0)
+      uv = new_uv[0];
+    else if (i == last)
+      uv = new_uv[1];
+    else
+      uv = project_near(face, y, c.uv[i]).uv;  // step 5: Newton projection
+    moved.uv.push_back(uv);
+    moved.xyz.push_back(face.point(uv[0], uv[1]));
+  }
+  // Step 6: the curve lives in (u,v) and is evaluated on the surface.
+  return resample(face, moved, cx.samples);
+}
 
 // One GSM step (seed 004 section 5.1 steps 3-6): the next curve on the side
 // `side` (+1 / -1 along N x tangent), or false when the face is covered.
@@ -191,30 +248,7 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
     return false;
   const double l1 = (p0 - pn).norm(), l2 = (new_end[0] - new_end[1]).norm();
   if (l1 < cx.tol || l2 < 0.5 * cx.l1) return false;
-  // Scale about Pn and translate Pn to Pn'' (eq. 21-22), then rotate about Pn''
-  // so that P0 lands on P0'' (eq. 23-24).
-  const double scale = l2 / l1;
-  const Vec3 a = (p0 - pn) * scale, b = new_end[0] - new_end[1];
-  Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
-  const Vec3 axis = a.cross(b);
-  if (axis.norm() > 1e-12 * a.norm() * b.norm())
-    rot =
-        Eigen::AngleAxisd(std::atan2(axis.norm(), a.dot(b)), axis.normalized()).toRotationMatrix();
-  SurfaceCurve moved;
-  for (std::size_t i = 0; i <= last; ++i) {
-    const Vec3 y = new_end[1] + rot * ((c.xyz[i] - pn) * scale);
-    Vec2 uv;
-    if (i == 0)
-      uv = new_uv[0];
-    else if (i == last)
-      uv = new_uv[1];
-    else
-      uv = project_near(face, y, c.uv[i]).uv;  // step 5: Newton projection
-    moved.uv.push_back(uv);
-    moved.xyz.push_back(face.point(uv[0], uv[1]));
-  }
-  // Step 6: the curve lives in (u,v) and is evaluated on the surface.
-  next = resample(face, moved, cx.samples);
+  next = map_curve(cx, c, new_end[0], new_uv[0], new_end[1], new_uv[1]);
   // No progress across the curve (it fell back onto the previous one, or slid
   // along the boundary): covered.
   {
@@ -281,6 +315,11 @@ SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide) {
   best.xyz.back() = face.point(best.uv.back()[0], best.uv.back()[1]);
   return resample(face, best, cx.samples);
 }
+
+}  // namespace guide_detail
+
+namespace {
+using namespace guide_detail;
 
 struct Row {
   std::vector<int> ids;   // mesh vertex ids

@@ -34,6 +34,9 @@ struct ChordDivisionParams {
 };
 std::vector<double> divide_by_chords(const std::vector<Vec3>& points,
                                      const ChordDivisionParams& params);
+// Chords of exactly `chord` laid from the start (at most max_count), as
+// polyline parameters; the first is 0, the rest of the curve is left over.
+std::vector<double> lay_chords(const std::vector<Vec3>& points, double chord, int max_count);
 // Point of the polyline at parameter t (linear on each segment).
 Vec3 polyline_point(const std::vector<Vec3>& points, double t);
 
@@ -67,6 +70,31 @@ struct GuideLineResult {
   PanelMesh mesh;
   std::vector<SurfaceCurve> curves;
 };
+
+// The Two Guide Lines with Two End Vertices Method (seed 004 section 6): the
+// outer boundary is split at corners into boundary curves; from each end of a
+// guide the boundary curve is divided into chords of rod_length (both ways;
+// past a corner, or past the half-way point to the other end, along the
+// tangent: the paper's boundary extension where a vertex has no twin); the
+// guide is moved through the k-th vertex pairs (steps 4-6 of section 5.1);
+// the nodes are the intersections of the two families in (u,v); quads (or two
+// triangles each with `triangulate`) where four neighbouring nodes exist.
+struct TwoGuideLinesParams {
+  std::vector<Vec3> guide_a, guide_b;
+  double rod_length = 0.0;     // chord of the boundary vertices (mm)
+  bool triangulate = false;    // one diagonal per quad
+  double corner_angle = 30.0;  // deg: a sharper turn of the outline splits boundary curves
+  double guide_tolerance = 0.0;  // as for GSM; 0 = 5% of the model size
+  int max_curves = 2000;
+  double trim_deflection = 0.0;
+  int max_panels = 200000;
+};
+struct TwoGuideLinesResult {
+  PanelMesh mesh;
+  std::vector<SurfaceCurve> curves_a, curves_b;
+};
+TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face, const TwoGuideLinesParams& params);
+PanelMesh two_guide_lines(const SurfaceFace& face, const TwoGuideLinesParams& params);
 
 GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
                                           const GuideLineScalingParams& params);
