@@ -23,6 +23,7 @@ _PARAM_TO_PROPERTY = {
     "samples": "Samples",
     "rod_length": "RodLength",
     "advance": "Advance",
+    "triangulate": "Triangulate",
 }
 
 

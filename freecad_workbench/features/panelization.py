@@ -168,13 +168,15 @@ class Panelization(_StateMixin):
                      "iso_grid: panels across v; with UCount, replaces Size "
                      "(0 = use Size)", default=0)
         add_property(obj, "App::PropertyLinkSubList", "Guides", "Input",
-                     "Guide curves (edges) of guide_line_scaling: [(object, 'EdgeN'), ...]; "
+                     "Guide curves (edges): one for guide_line_scaling, two for two_guide_lines; "
                      "an edit of a guide recomputes the grid")
         add_property(obj, "App::PropertyLength", "RodLength", "Guide lines",
                      "guide_line_scaling: target rod length L1 along the curves", default=0.0)
         add_property(obj, "App::PropertyLength", "Advance", "Guide lines",
                      "guide_line_scaling: step L between curves (0 = RodLength x sqrt(3)/2)",
                      default=0.0)
+        add_property(obj, "App::PropertyBool", "Triangulate", "Guide lines",
+                     "two_guide_lines: split every quad along one diagonal", default=False)
         if "Method" in obj.PropertiesList:  # an older document: offer the new methods
             methods = list(api.METHODS)
             if list(obj.getEnumerationsOfProperty("Method")) != methods:
@@ -218,10 +220,11 @@ class Panelization(_StateMixin):
         for name in ("UCount", "VCount"):
             if name in obj.PropertiesList:
                 obj.setEditorMode(name, hide)
-        guides = 0 if obj.Method == "guide_line_scaling" else 2
-        for name in ("RodLength", "Advance"):
+        for name, methods in (("RodLength", ("guide_line_scaling", "two_guide_lines")),
+                              ("Advance", ("guide_line_scaling",)),
+                              ("Triangulate", ("two_guide_lines",))):
             if name in obj.PropertiesList:
-                obj.setEditorMode(name, guides)
+                obj.setEditorMode(name, 0 if obj.Method in methods else 2)
 
     def onChanged(self, obj, prop):
         if prop == "Method":
@@ -252,10 +255,12 @@ class Panelization(_StateMixin):
     def parameters(self, obj):
         """(method, keyword parameters for api.panelize) from the properties."""
         method = obj.Method
-        if method == "guide_line_scaling":
+        if method in ("guide_line_scaling", "two_guide_lines"):
             params = {"rod_length": value_of(obj.RodLength), "guides": self.guide_edges(obj)}
-            if value_of(obj.Advance) > 0:
+            if method == "guide_line_scaling" and value_of(obj.Advance) > 0:
                 params["advance"] = value_of(obj.Advance)
+            if method == "two_guide_lines":
+                params["triangulate"] = bool(obj.Triangulate)
             params["min_angle"] = value_of(obj.MinAngle)
             params["max_panels"] = int(obj.MaxPanels)
             if value_of(obj.TrimDeflection) > 0:
@@ -292,7 +297,7 @@ class Panelization(_StateMixin):
                     raise ValueError(f"{obj.Label}: guide {owner.Label}.{sub} is not an edge")
                 edges.append(shape.getElement(sub))
         if not edges:
-            raise ValueError(f"{obj.Label}: guide_line_scaling needs a guide edge (set Guides)")
+            raise ValueError(f"{obj.Label}: {obj.Method} needs guide edges (set Guides)")
         return edges
 
     def _signature(self, obj):

@@ -186,3 +186,44 @@ TEST(GuideLineScaling, RejectsBadInput) {
   p.guide = {Vec3(0, 0, 0)};
   EXPECT_THROW(guide_line_scaling(f, p), InvalidParameter);
 }
+
+TEST(TwoGuideLines, FlatRectangleGivesTheSquareGridAndItsDiagonals) {
+  // 10 m x 6 m plate, guides = the left and the bottom edge, rods of 1000 mm:
+  // the boundary vertices are every 1000 mm, the curves are the lines x = i and
+  // y = j (m), and their intersections the 11 x 7 nodes of 10 x 6 square quads.
+  const SurfaceFace f = rectangle(10000, 6000);
+  TwoGuideLinesParams p;
+  p.guide_a = {Vec3(0, 0, 0), Vec3(0, 6000, 0)};
+  p.guide_b = {Vec3(0, 0, 0), Vec3(10000, 0, 0)};
+  p.rod_length = 1000;
+  const TwoGuideLinesResult r = two_guide_lines_curves(f, p);
+  EXPECT_EQ(r.curves_a.size(), 11u);
+  EXPECT_EQ(r.curves_b.size(), 7u);
+  const PanelMesh& m = r.mesh;
+  EXPECT_EQ(m.panels.size(), 60u);
+  EXPECT_EQ(m.xyz.size(), 77u);
+  for (const Vec3& x : m.xyz) {
+    EXPECT_NEAR(x.x() / 1000 - std::round(x.x() / 1000), 0.0, 1e-7);
+    EXPECT_NEAR(x.y() / 1000 - std::round(x.y() / 1000), 0.0, 1e-7);
+  }
+  for (const auto& rod : m.rods) EXPECT_NEAR((m.xyz[rod[0]] - m.xyz[rod[1]]).norm(), 1000.0, 1e-4);
+  p.triangulate = true;
+  const PanelMesh t = two_guide_lines(f, p);
+  EXPECT_EQ(t.panels.size(), 120u);
+  EXPECT_EQ(t.rods.size(), m.rods.size() + 60u);  // one diagonal per quad
+  for (const auto& panel : t.panels) EXPECT_EQ(panel.size(), 3u);
+}
+
+TEST(TwoGuideLines, RejectsBadInput) {
+  const SurfaceFace f = rectangle(10000, 6000);
+  TwoGuideLinesParams p;
+  p.guide_a = {Vec3(0, 0, 0), Vec3(0, 6000, 0)};
+  p.guide_b = {Vec3(0, 0, 0), Vec3(10000, 0, 0)};
+  p.rod_length = 0;
+  EXPECT_THROW(two_guide_lines(f, p), InvalidParameter);
+  p.rod_length = 1000;
+  p.guide_b = {Vec3(0, 0, 90000), Vec3(10000, 0, 90000)};
+  EXPECT_THROW(two_guide_lines(f, p), InvalidParameter);
+  p.guide_b = {};
+  EXPECT_THROW(two_guide_lines(f, p), InvalidParameter);
+}

@@ -131,3 +131,48 @@ def test_guide_edge_is_a_link_and_an_edit_recomputes(freeform_face):
         assert len(doc.Objects) == n
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def _guide_across(face, y):
+    """The plan line y = const projected vertically onto the face, longest piece."""
+    bb = face.BoundBox
+    line = Part.LineSegment(FreeCAD.Vector(bb.XMin - 10, y, bb.ZMax + 1000),
+                            FreeCAD.Vector(bb.XMax + 10, y, bb.ZMax + 1000)).toShape()
+    edges = sorted(face.makeParallelProjection(line, FreeCAD.Vector(0, 0, -1)).Edges,
+                   key=lambda e: e.Length)
+    return edges[-1]
+
+
+@pytest.fixture(scope="module")
+def two(freeform_face):
+    guides = [_guide_on(freeform_face, 2000.0), _guide_across(freeform_face, 2600.0)]
+    quads = tessella.panelize(freeform_face, method="two_guide_lines", guides=guides,
+                              rod_length=ROD)
+    tris = tessella.panelize(freeform_face, method="two_guide_lines", guides=guides,
+                             rod_length=ROD, triangulate=True)
+    return freeform_face, quads, tris
+
+
+def test_two_guide_lines_quads_lie_on_the_face(two):
+    face, quads, tris = two
+    size = face.BoundBox.DiagonalLength
+    assert len(quads.panels) > 30 and all(len(p) == 4 for p in quads.panels)
+    worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*v)))[0] for v in quads.vertices)
+    assert worst < 1e-6 * size
+    v = quads.vertices
+    centroids = np.array([v[list(p)].mean(axis=0) for p in quads.panels])
+    far = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*c)))[0] for c in centroids)
+    assert far < 0.05 * ROD  # no quad bridges a hole or leaves the outline
+    # Each quad node has 4 rods inside the grid; the median rod is near L1.
+    lengths = quads.metrics["rod_length"]
+    assert abs(np.median(lengths) - ROD) < 0.2 * ROD
+    # Triangulated: the same nodes, two triangles per quad, one more rod per quad.
+    assert len(tris.panels) == 2 * len(quads.panels)
+    assert len(tris.rods) == len(quads.rods) + len(quads.panels)
+    assert np.allclose(tris.vertices, quads.vertices)
+
+
+def test_two_guide_lines_needs_two_guides(freeform_face):
+    with pytest.raises(ValueError, match="exactly 2"):
+        tessella.panelize(freeform_face, method="two_guide_lines",
+                          guides=[_guide_on(freeform_face, 2000.0)], rod_length=ROD)
