@@ -65,8 +65,8 @@ void bind_guide_lines(py::module_& m) {
           [](const TwoGuideLinesParams& p) {
             return py::make_tuple(points3(p.guide_a), points3(p.guide_b));
           },
-          [](TwoGuideLinesParams& p, const std::vector<py::array_t<double, py::array::c_style |
-                                                                           py::array::forcecast>>& g) {
+          [](TwoGuideLinesParams& p,
+             const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& g) {
             if (g.size() != 2) throw py::value_error("guides must hold exactly 2 polylines");
             p.guide_a = to_points(g[0]);
             p.guide_b = to_points(g[1]);
@@ -89,8 +89,10 @@ void bind_guide_lines(py::module_& m) {
       r = two_guide_lines_curves(f, p);
     }
     py::list a, b;
-    for (const SurfaceCurve& c : r.curves_a) a.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
-    for (const SurfaceCurve& c : r.curves_b) b.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+    for (const SurfaceCurve& c : r.curves_a)
+      a.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+    for (const SurfaceCurve& c : r.curves_b)
+      b.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
     return py::make_tuple(std::move(r.mesh), a, b);
   });
   m.def("guide_line_scaling", [](const SurfaceFace& f, const GuideLineScalingParams& p) {

@@ -7,15 +7,14 @@
 #include <limits>
 #include <sstream>
 
+#include "guide_curves.h"
 #include "tessella/errors.h"
 #include "tessella/guide_lines.h"
 #include "tessella/surface_face.h"
-#include "guide_curves.h"
 
 namespace tessella {
 
 namespace guide_detail {
-
 
 double polyline_length(const std::vector<Vec3>& pts) {
   double len = 0.0;

@@ -31,7 +31,8 @@ struct Loop {
   Loop(const Boundary& bd, double corner_deg) : b(bd) {
     const std::size_t n = b.xyz.size();
     cum.assign(n + 1, 0.0);
-    for (std::size_t i = 0; i < n; ++i) cum[i + 1] = cum[i] + (b.xyz[(i + 1) % n] - b.xyz[i]).norm();
+    for (std::size_t i = 0; i < n; ++i)
+      cum[i + 1] = cum[i] + (b.xyz[(i + 1) % n] - b.xyz[i]).norm();
     corner.assign(n, false);
     const double limit = std::cos(corner_deg * kPi / 180.0);
     for (std::size_t i = 0; i < n; ++i) {
@@ -46,16 +47,15 @@ struct Loop {
     const std::size_t n = size();
     return b.xyz[p.seg] + p.f * (b.xyz[(p.seg + 1) % n] - b.xyz[p.seg]);
   }
-  double s(const LoopPos& p) const {
-    return cum[p.seg] + p.f * (cum[p.seg + 1] - cum[p.seg]);
-  }
+  double s(const LoopPos& p) const { return cum[p.seg] + p.f * (cum[p.seg + 1] - cum[p.seg]); }
   LoopPos locate(const Vec3& x) const {
     const std::size_t n = size();
     LoopPos best;
     double dist = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 a = b.xyz[i], d = b.xyz[(i + 1) % n] - a;
-      const double f = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double f =
+          d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
       const double e = (a + f * d - x).norm();
       if (e < dist) dist = e, best = {i, f};
     }
@@ -175,10 +175,10 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
   }
   const double size = face.model_size();
   if (size / params.rod_length > params.max_curves)
-    throw LimitExceeded("two_guide_lines: the face needs more than max_curves curves at this rod_length");
+    throw LimitExceeded(
+        "two_guide_lines: the face needs more than max_curves curves at this rod_length");
   Context cx{face, {}, params.rod_length, params.rod_length, 1e-9 * size, 0};
-  cx.samples =
-      static_cast<int>(std::clamp(std::ceil(4.0 * size / cx.l1) + 1.0, 33.0, 4001.0));
+  cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * size / cx.l1) + 1.0, 33.0, 4001.0));
   const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
   for (const TrimLoop& loop : face.trim_loops(deflection))
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
@@ -215,7 +215,8 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
       const auto hi = cell(std::max(a.x(), b.x()), std::max(a.y(), b.y()));
       for (int x = lo[0]; x <= hi[0]; ++x)
         for (int y = lo[1]; y <= hi[1]; ++y)
-          buckets[static_cast<std::size_t>(x) * g + y].push_back({static_cast<int>(j), static_cast<int>(s)});
+          buckets[static_cast<std::size_t>(x) * g + y].push_back(
+              {static_cast<int>(j), static_cast<int>(s)});
     }
   const std::size_t na = fa.size(), nb = fb.size();
   std::vector<int> node(na * nb, -1);
@@ -231,7 +232,8 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
             int& id = node[i * nb + js[0]];
             if (id != -1) continue;  // first crossing along curve a
             Vec2 p;
-            if (!segment_intersection(a, b, fb[js[0]].uv[js[1]], fb[js[0]].uv[js[1] + 1], p)) continue;
+            if (!segment_intersection(a, b, fb[js[0]].uv[js[1]], fb[js[0]].uv[js[1] + 1], p))
+              continue;
             if (!face.is_inside(p.x(), p.y())) continue;
             id = static_cast<int>(mesh.uv.size());
             mesh.uv.push_back(p);

@@ -81,9 +81,9 @@ struct GuideLineResult {
 // triangles each with `triangulate`) where four neighbouring nodes exist.
 struct TwoGuideLinesParams {
   std::vector<Vec3> guide_a, guide_b;
-  double rod_length = 0.0;     // chord of the boundary vertices (mm)
-  bool triangulate = false;    // one diagonal per quad
-  double corner_angle = 30.0;  // deg: a sharper turn of the outline splits boundary curves
+  double rod_length = 0.0;       // chord of the boundary vertices (mm)
+  bool triangulate = false;      // one diagonal per quad
+  double corner_angle = 30.0;    // deg: a sharper turn of the outline splits boundary curves
   double guide_tolerance = 0.0;  // as for GSM; 0 = 5% of the model size
   int max_curves = 2000;
   double trim_deflection = 0.0;
@@ -93,7 +93,8 @@ struct TwoGuideLinesResult {
   PanelMesh mesh;
   std::vector<SurfaceCurve> curves_a, curves_b;
 };
-TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face, const TwoGuideLinesParams& params);
+TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
+                                           const TwoGuideLinesParams& params);
 PanelMesh two_guide_lines(const SurfaceFace& face, const TwoGuideLinesParams& params);
 
 GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
