@@ -176,3 +176,24 @@ def test_two_guide_lines_needs_two_guides(freeform_face):
     with pytest.raises(ValueError, match="exactly 2"):
         tessella.panelize(freeform_face, method="two_guide_lines",
                           guides=[_guide_on(freeform_face, 2000.0)], rod_length=ROD)
+
+
+def test_two_guide_lines_document_object(freeform_face):
+    doc = FreeCAD.newDocument("TessellaTwoGuideTest")
+    try:
+        surf = doc.addObject("Part::Feature", "Roof")
+        surf.Shape = freeform_face
+        ga = doc.addObject("Part::Feature", "GuideA")
+        ga.Shape = _guide_on(freeform_face, 2000.0)
+        gb = doc.addObject("Part::Feature", "GuideB")
+        gb.Shape = _guide_across(freeform_face, 2600.0)
+        p = tessella.make_panelization((surf, "Face1"), method="two_guide_lines",
+                                       guides=[(ga, "Edge1"), (gb, "Edge1")], rod_length=ROD)
+        assert [g[0] for g in p.Guides] == [ga, gb]
+        quads = p.PanelCount
+        assert quads > 30 and p.QuadShare == 1.0
+        p.Triangulate = True
+        doc.recompute()
+        assert p.PanelCount == 2 * quads
+    finally:
+        FreeCAD.closeDocument(doc.Name)
