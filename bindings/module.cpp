@@ -60,6 +60,9 @@ auto with_progress(const py::object& progress, F f) {
 
 }  // namespace
 
+// Areas bound in their own files (bindings/<area>.cpp).
+void bind_guide_lines(py::module_& m);
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
   bind_fabrication(m);
@@ -166,7 +169,8 @@ PYBIND11_MODULE(_core, m) {
                                                              idx.data());
                              })
       .def_readonly("merged_slivers", &PanelMesh::merged_slivers)
-      .def_readonly("nominal_area", &PanelMesh::nominal_area);
+      .def_readonly("nominal_area", &PanelMesh::nominal_area)
+      .def_readonly("regular_corners", &PanelMesh::regular_corners);
 
   py::class_<PanelMetrics>(m, "PanelMetrics")
       .def_property_readonly("deviation", [](const PanelMetrics& x) { return values(x.deviation); })
@@ -233,4 +237,5 @@ PYBIND11_MODULE(_core, m) {
   m.def("nodes_to_brep",
         [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
   bind_boundary_driven(m);
+  bind_guide_lines(m);
 }

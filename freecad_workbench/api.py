@@ -25,13 +25,71 @@ COMMON_PARAMS = tuple(CLIP_PARAMS) + ("min_angle", "samples")
 class MethodSpec:
     """How one method plugs in: its own keyword parameters (name -> type), the
     factory of its core params struct, and the core function (face, params) -> PanelMesh.
-    A struct with a `clip` member gets the CLIP_PARAMS."""
+    A struct with a `clip` member gets the CLIP_PARAMS. `converters` holds the
+    non-numeric keyword parameters: name -> function(params_struct, value) that
+    checks the value and stores it (e.g. guide edges discretized into polylines)."""
 
     params: dict
     make_params: object
     run: object
     #: run accepts progress=callable(fraction, stage) -> bool (False cancels)
     reports_progress: bool = False
+    converters: dict = field(default_factory=dict)
+
+
+#: Points per guide edge handed to the core (which resamples and projects them).
+GUIDE_POINTS = 512
+
+
+def edge_polyline(edge, points=GUIDE_POINTS):
+    """(N,3) float64 points along a Part.Edge (or a one-edge shape / wire), in mm."""
+    import Part  # FreeCAD's; imported late so `import FreeCAD` comes first
+
+    if isinstance(edge, (tuple, list)) and len(edge) == 2 and isinstance(edge[1], str):
+        obj, sub = edge
+        shape = getattr(obj, "Shape", None)
+        if shape is None or shape.isNull():
+            raise ValueError(f"guides: {getattr(obj, 'Label', obj)!r} has no shape")
+        try:
+            edge = shape.getElement(sub)
+        except Exception as exc:
+            raise ValueError(f"guides: {getattr(obj, 'Label', obj)} has no {sub}") from exc
+    if not isinstance(edge, Part.Shape) and hasattr(edge, "Shape"):  # a document object
+        edge = edge.Shape
+    if not isinstance(edge, Part.Shape) or edge.isNull():
+        raise ValueError(f"guides: expected Part.Edge objects, got {type(edge).__name__}")
+    if edge.ShapeType != "Edge":
+        wires = edge.Wires if edge.ShapeType != "Wire" else [edge]
+        if len(wires) == 1:
+            edge = wires[0]
+        elif len(edge.Edges) == 1:
+            edge = edge.Edges[0]
+        else:
+            raise ValueError("guides: each guide must be one edge or one wire")
+    if edge.Length <= 0:
+        raise ValueError("guides: a guide edge has no length")
+    pts = edge.discretize(Number=int(points))
+    return np.array([[p.x, p.y, p.z] for p in pts], dtype=np.float64)
+
+
+def _guides(count):
+    """Converter of `guides`: exactly `count` edges -> polylines on the params struct."""
+
+    def convert(p, value):
+        if not isinstance(value, (list, tuple)):
+            value = [value]
+        # A selection pair (obj, "EdgeN") is one guide, not two.
+        if len(value) == 2 and isinstance(value[1], str):
+            value = [tuple(value)]
+        if len(value) != count:
+            raise ValueError(f"guides must hold exactly {count} edge(s), got {len(value)}")
+        polylines = [edge_polyline(e) for e in value]
+        if count == 1:
+            p.guide = polylines[0]
+        else:
+            p.guides = polylines
+
+    return convert
 
 
 #: How a parameter is shown (task panel): label and unit ("mm", "deg", "" for a
@@ -47,6 +105,9 @@ PARAM_INFO = {
     "skew_ratio": ("Skew ratio (min/max angle)", ""),
     "smoothing_iterations": ("Smoothing iterations", None),
     "quadrangulate": ("Quadrangulate", bool),
+    "rod_length": ("Rod length", "mm"),
+    "advance": ("Advance (0: rod length)", "mm"),
+    "triangulate": ("Triangulate", bool),
 }
 
 #: The methods, by name. A new method adds one entry here.
@@ -80,6 +141,22 @@ METHODS = {
         },
         lambda: core.BoundaryDrivenParams(),
         lambda surface, p: core.boundary_driven(surface, p),
+    ),
+    "guide_line_scaling": MethodSpec(
+        {"rod_length": float, "advance": float, "merge_fraction": float,
+         "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
+         "max_panels": int},
+        lambda: core.GuideLineScalingParams(),
+        lambda surface, p: core.guide_line_scaling(surface, p),
+        converters={"guides": _guides(1)},
+    ),
+    "two_guide_lines": MethodSpec(
+        {"rod_length": float, "triangulate": bool, "corner_angle": float,
+         "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
+         "max_panels": int},
+        lambda: core.TwoGuideLinesParams(),
+        lambda surface, p: core.two_guide_lines(surface, p),
+        converters={"guides": _guides(2)},
     ),
 }
 
@@ -186,7 +263,7 @@ def face_to_shape(face):
 def _check_kwargs(method, params):
     if method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
-    allowed = set(METHODS[method].params) | set(COMMON_PARAMS)
+    allowed = set(METHODS[method].params) | set(METHODS[method].converters) | set(COMMON_PARAMS)
     unknown = sorted(set(params) - allowed)
     if unknown:
         raise ValueError(
@@ -211,6 +288,9 @@ def _method_params(method, params):
     for name, kind in spec.params.items():
         if name in params:
             _set(p, name, params[name], kind)
+    for name, convert in spec.converters.items():
+        if name in params:
+            convert(p, params[name])
     if hasattr(p, "clip"):
         clip = core.GridClipParams()
         for name, kind in CLIP_PARAMS.items():

@@ -26,7 +26,32 @@ _PARAM_TO_PROPERTY = {
     "smoothing_iterations": "SmoothingIterations",
     "quadrangulate": "Quadrangulate",
     "source_loops": "SourceLoops",
+    "rod_length": "RodLength",
+    "advance": "Advance",
+    "triangulate": "Triangulate",
 }
+
+
+def _guide_links(guides):
+    """[(object, 'EdgeN'), ...] for a Guides link list; guides must be document
+    edges (a loose Part.Edge cannot be linked, so it could not recompute)."""
+    if not isinstance(guides, (list, tuple)):
+        guides = [guides]
+    if len(guides) == 2 and isinstance(guides[1], str):
+        guides = [tuple(guides)]
+    links = []
+    for g in guides:
+        if isinstance(g, (tuple, list)) and len(g) == 2 and isinstance(g[0], FreeCAD.DocumentObject):
+            subs = [g[1]] if isinstance(g[1], str) else list(g[1])
+            links.extend((g[0], sub) for sub in subs)
+        elif isinstance(g, FreeCAD.DocumentObject):
+            links.append((g, ""))
+        else:
+            raise ValueError(
+                "guides: make_panelization links its guides, so pass (object, 'EdgeN') pairs "
+                f"or document objects, not {type(g).__name__}"
+            )
+    return links
 
 _VIEW_STYLE = {
     "Panels": {"ShapeColor": (0.80, 0.68, 0.42), "LineColor": (0.35, 0.30, 0.20), "LineWidth": 1.0},
@@ -89,6 +114,7 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
             f"the source {obj.Label!r} is in document {obj.Document.Name!r}, "
             f"not in {doc.Name!r}"
         )
+    guide_links = _guide_links(params["guides"]) if "guides" in params else None
     # Validate everything (method, parameter names and ranges, the face) by
     # computing the result once; the new object starts from it (no second run).
     try:
@@ -97,7 +123,7 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         close = getattr(progress, "close", None)
         if close is not None:
             close()
-    unmapped = sorted(set(params) - set(_PARAM_TO_PROPERTY))
+    unmapped = sorted(set(params) - set(_PARAM_TO_PROPERTY) - {"guides"})
     if unmapped:  # the api accepts a parameter the feature has no property for
         raise ValueError(f"parameter(s) {unmapped} cannot be stored on a Panelization yet")
 
@@ -110,7 +136,10 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         parent.Source = (obj, [sub])
         parent.Method = method
         for key, value in params.items():
-            setattr(parent, _PARAM_TO_PROPERTY[key], value)
+            if key != "guides":
+                setattr(parent, _PARAM_TO_PROPERTY[key], value)
+        if guide_links is not None:
+            parent.Guides = [(o, [s]) if s else (o, []) for o, s in guide_links]
         if FreeCAD.GuiUp:
             from .gui import preferences
 

@@ -141,7 +141,8 @@ std::vector<bool> irregular_panels(const PanelMesh& mesh, const PanelMetrics& me
   require_in_range("min_area_fraction", params.min_area_fraction, 0.0, 1.0);
   std::vector<bool> flags(mesh.panels.size());
   for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
-    flags[k] = mesh.panels[k].size() != 4 || metrics.min_angle[k] < params.min_angle_deg ||
+    flags[k] = static_cast<int>(mesh.panels[k].size()) != mesh.regular_corners ||
+               metrics.min_angle[k] < params.min_angle_deg ||
                metrics.area[k] < params.min_area_fraction * mesh.nominal_area;
   }
   return flags;

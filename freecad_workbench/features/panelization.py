@@ -198,6 +198,23 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyInteger", "VCount", "Panelization",
                      "iso_grid: panels across v; with UCount, replaces Size "
                      "(0 = use Size)", default=0)
+        add_property(obj, "App::PropertyLinkSubList", "Guides", "Input",
+                     "Guide curves (edges): one for guide_line_scaling, two for two_guide_lines; "
+                     "an edit of a guide recomputes the grid")
+        add_property(obj, "App::PropertyLength", "RodLength", "Guide lines",
+                     "guide_line_scaling: target rod length L1 along the curves", default=0.0)
+        add_property(obj, "App::PropertyLength", "Advance", "Guide lines",
+                     "guide_line_scaling: step L between curves (0 = RodLength x sqrt(3)/2)",
+                     default=0.0)
+        add_property(obj, "App::PropertyBool", "Triangulate", "Guide lines",
+                     "two_guide_lines: split every quad along one diagonal", default=False)
+        if "Method" in obj.PropertiesList:  # an older document: offer the new methods
+            methods = list(api.METHODS)
+            if list(obj.getEnumerationsOfProperty("Method")) != methods:
+                current = obj.Method
+                obj.Method = methods
+                if current in methods:
+                    obj.Method = current
         add_property(obj, "App::PropertyFloat", "SliverFraction", "Panelization",
                      "Boundary panels smaller than this fraction of a full panel are merged "
                      "into a neighbour (also the area limit of an irregular panel)",
@@ -258,6 +275,11 @@ class Panelization(_StateMixin):
         for name in BD_PROPERTIES:
             if name in obj.PropertiesList:
                 obj.setEditorMode(name, hide)
+        for name, methods in (("RodLength", ("guide_line_scaling", "two_guide_lines")),
+                              ("Advance", ("guide_line_scaling",)),
+                              ("Triangulate", ("two_guide_lines",))):
+            if name in obj.PropertiesList:
+                obj.setEditorMode(name, 0 if obj.Method in methods else 2)
 
     def onChanged(self, obj, prop):
         if prop == "Method":
@@ -288,6 +310,19 @@ class Panelization(_StateMixin):
     def parameters(self, obj):
         """(method, keyword parameters for api.panelize) from the properties."""
         method = obj.Method
+        if method in ("guide_line_scaling", "two_guide_lines"):
+            params = {"rod_length": value_of(obj.RodLength), "guides": self.guide_edges(obj)}
+            if method == "guide_line_scaling" and value_of(obj.Advance) > 0:
+                params["advance"] = value_of(obj.Advance)
+            if method == "two_guide_lines":
+                params["triangulate"] = bool(obj.Triangulate)
+            params["min_angle"] = value_of(obj.MinAngle)
+            params["max_panels"] = int(obj.MaxPanels)
+            if value_of(obj.TrimDeflection) > 0:
+                params["trim_deflection"] = value_of(obj.TrimDeflection)
+            if obj.Samples:
+                params["samples"] = int(obj.Samples)
+            return method, params
         if method == "iso_grid" and (obj.UCount or obj.VCount):
             # Counts replace the size (the core takes one or the other).
             params = {"u_count": int(obj.UCount), "v_count": int(obj.VCount)}
@@ -309,13 +344,37 @@ class Panelization(_StateMixin):
             params["samples"] = int(obj.Samples)
         return method, params
 
+    def guide_edges(self, obj):
+        """The linked guide edges (Part.Edge / Part.Wire shapes, in link order)."""
+        edges = []
+        for owner, subs in obj.Guides or []:
+            shape = getattr(owner, "Shape", None)
+            if shape is None or shape.isNull():
+                raise ValueError(f"{obj.Label}: guide {owner.Label!r} has no shape")
+            subs = [x for x in (subs or []) if x]
+            if not subs:
+                edges.append(shape)
+            for sub in subs:
+                if not sub.startswith("Edge"):
+                    raise ValueError(f"{obj.Label}: guide {owner.Label}.{sub} is not an edge")
+                edges.append(shape.getElement(sub))
+        if not edges:
+            raise ValueError(f"{obj.Label}: {obj.Method} needs guide edges (set Guides)")
+        return edges
+
     def _signature(self, obj):
         api = _api()
         face_arg, _ = self.source_face(obj)
         brep = api.face_to_brep(face_arg)
         method, params = self.parameters(obj)
         digest = hashlib.sha1(brep.encode("utf-8", "surrogateescape")).hexdigest()
-        key = json.dumps([method, sorted(params.items()), digest])
+        plain = {k: v for k, v in params.items() if k != "guides"}
+        if "guides" in params:  # shapes: keyed by their geometry
+            plain["guides"] = [
+                hashlib.sha1(e.exportBrepToString().encode("utf-8", "surrogateescape")).hexdigest()
+                for e in params["guides"]
+            ]
+        key = json.dumps([method, sorted(plain.items()), digest])
         return key, face_arg, method, params
 
     def result(self, obj):

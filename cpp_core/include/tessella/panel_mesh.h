@@ -33,6 +33,7 @@ struct PanelMesh {
   // What the method reports about its own run.
   int merged_slivers = 0;     // slivers merged into a neighbour
   double nominal_area = 0.0;  // area of a full panel (mm^2), for irregularity
+  int regular_corners = 4;    // corners of a regular panel (3 in a triangular layout)
 
   std::size_t vertex_count() const { return xyz.size(); }
 };

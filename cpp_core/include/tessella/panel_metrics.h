@@ -38,7 +38,8 @@ struct IrregularParams {
   double min_angle_deg = 30.0;      // a corner under this makes a panel irregular
   double min_area_fraction = 0.25;  // of mesh.nominal_area
 };
-// Irregular panel: not a quad, or a corner angle under the limit, or an area under
+// Irregular panel: not of the layout's regular_corners (a quad, or a triangle in a
+// triangular layout), or a corner angle under the limit, or an area under
 // the fraction of the nominal area. Returns one flag per panel.
 std::vector<bool> irregular_panels(const PanelMesh& mesh, const PanelMetrics& metrics,
                                    const IrregularParams& params = {});

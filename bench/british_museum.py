@@ -1,0 +1,184 @@
+"""British Museum Great Court roof benchmark for the guide-line methods (seed 004, section 7).
+
+    PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/british_museum.py
+
+Runs the Guide Line Scaling Method on examples/british_museum_roof.brep (the
+whole face, drum as a hole) with the west edge and then the south edge of the
+court as the guide line, and 2G2VM with both edges as the two guide lines;
+prints the rod-length mean and variance next to the paper's Table 3, the node
+and member counts next to the built roof, the share of irregular cells and the
+time per guide-line set next to the paper's 78-120 s, and writes a table and a
+plan-view PNG of the grid into out/bench/.
+"""
+
+import argparse
+import os
+import sys
+import time
+
+import FreeCAD  # noqa: F401  (before Part)
+import Part
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, ROOT)
+
+import freecad_workbench as tessella  # noqa: E402
+from freecad_workbench import core  # noqa: E402
+
+ROOF = os.path.join(ROOT, "examples", "british_museum_roof.brep")
+
+#: Seed 004 Table 3 (rod lengths, mm and mm^2) and the built roof (reference file).
+PAPER = [
+    ("Original mesh (triangular)", 2047.0, 207150.0),
+    ("GSM (triangular), paper", 2032.0, 120136.0),
+    ("2G2VM (quadrangular), paper", 2126.0, 464820.0),
+]
+BUILT_NODES, BUILT_MEMBERS = 1566, 4878
+PAPER_SECONDS = (78.0, 120.0)
+
+
+def load_roof():
+    shape = Part.Shape()
+    shape.importBrep(ROOF)
+    return shape.Faces[0]
+
+
+def edge_at(face, x=None, y=None):
+    """The straight court edge at x = const or y = const."""
+    for e in face.Edges:
+        bb = e.BoundBox
+        if x is not None and abs(bb.XMin - x) < 1 and abs(bb.XMax - x) < 1:
+            return e
+        if y is not None and abs(bb.YMin - y) < 1 and abs(bb.YMax - y) < 1:
+            return e
+    raise RuntimeError("court edge not found")
+
+
+def plot(face, res, curves, path, title):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection
+
+    fig, ax = plt.subplots(figsize=(7.5, 9.5))
+    v = res.vertices / 1000.0
+    segs = v[res.rods][:, :, :2]
+    ax.add_collection(LineCollection(segs, colors="#223355", linewidths=0.5))
+    bad = [i for i, flag in enumerate(res.irregular) if flag]
+    for i in bad:
+        poly = v[list(res.panels[i])][:, :2]
+        ax.fill(poly[:, 0], poly[:, 1], color="#e07a5f", alpha=0.6, lw=0)
+    for e in face.Edges:
+        pts = np.array([[p.x, p.y] for p in e.discretize(100)]) / 1000.0
+        ax.plot(pts[:, 0], pts[:, 1], color="k", lw=1.2)
+    ax.set_aspect("equal")
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+def run_gsm(face, guide_edge, rod_length, advance):
+    t = time.perf_counter()
+    res = tessella.panelize(face, method="guide_line_scaling", guides=[guide_edge],
+                            rod_length=rod_length, advance=advance)
+    seconds = time.perf_counter() - t
+    # The curves alone (the "guide-line set" the paper times).
+    sf = core.SurfaceFace.from_brep_string(face.exportBrepToString())
+    p = core.GuideLineScalingParams()
+    p.guide = tessella.api.edge_polyline(guide_edge)
+    p.rod_length, p.advance = rod_length, advance
+    t = time.perf_counter()
+    _, curves = core.guide_line_scaling_curves(sf, p)
+    core_seconds = time.perf_counter() - t
+    return res, curves, seconds, core_seconds
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rod-length", type=float, default=2000.0)
+    ap.add_argument("--advance", type=float, default=0.0, help="0 = rod_length * sqrt(3)/2")
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "bench"))
+    args = ap.parse_args(argv)
+    os.makedirs(args.out, exist_ok=True)
+    face = load_roof()
+    print(f"British Museum roof: {face.Area / 1e6:,.1f} m2 (published glazing ~6,100 m2)")
+    rows = []
+    bb = face.BoundBox
+    pngs = []
+    for label, key, where in (("west edge", "west", dict(x=bb.XMin)), ("south edge", "south", dict(y=bb.YMin))):
+        guide = edge_at(face, **where)
+        res, curves, seconds, core_seconds = run_gsm(face, guide, args.rod_length, args.advance)
+        rl = res.metrics["rod_length"]
+        s = res.summary
+        v = res.vertices
+        tri = np.array(res.panels)
+        covered = 0.5 * np.linalg.norm(np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]]),
+                                       axis=1).sum() / face.Area
+        rows.append((f"GSM, Tessella, guide = {label}", rl.mean(), rl.var(), s["node_count"], s["rod_count"],
+                     s["irregular_count"] / max(1, s["panel_count"]), core_seconds, seconds, len(curves),
+                     covered))
+        png = os.path.join(args.out, f"british_museum_gsm_{key}.png")
+        plot(face, res, curves, png,
+             f"GSM on the British Museum roof: guide = {label}, L1 = {args.rod_length:.0f} mm\n"
+             f"{s['node_count']} nodes, {s['rod_count']} rods, rod length {rl.mean():.0f} mm "
+             f"(variance {rl.var():,.0f} mm2); irregular cells shaded")
+        pngs.append(png)
+
+    # 2G2VM: the west edge and the south edge as the two guide lines.
+    guides = [edge_at(face, x=bb.XMin), edge_at(face, y=bb.YMin)]
+    t = time.perf_counter()
+    res = tessella.panelize(face, method="two_guide_lines", guides=guides, rod_length=args.rod_length)
+    seconds = time.perf_counter() - t
+    sf = core.SurfaceFace.from_brep_string(face.exportBrepToString())
+    p = core.TwoGuideLinesParams()
+    p.guides = [tessella.api.edge_polyline(g) for g in guides]
+    p.rod_length = args.rod_length
+    t = time.perf_counter()
+    _, curves_a, curves_b = core.two_guide_lines_curves(sf, p)
+    core_seconds = time.perf_counter() - t
+    rl = res.metrics["rod_length"]
+    s = res.summary
+    v = res.vertices
+    covered = sum(0.5 * np.linalg.norm(np.cross(v[q[2]] - v[q[0]], v[q[3]] - v[q[1]])) for q in res.panels) / face.Area
+    rows.append(("2G2VM (quads), Tessella, west + south", rl.mean(), rl.var(), s["node_count"], s["rod_count"],
+                 s["irregular_count"] / max(1, s["panel_count"]), core_seconds, seconds,
+                 len(curves_a) + len(curves_b), covered))
+    png = os.path.join(args.out, "british_museum_2g2vm.png")
+    plot(face, res, None, png,
+         f"2G2VM on the British Museum roof: guides = west and south edges, L1 = {args.rod_length:.0f} mm\n"
+         f"{s['node_count']} nodes, {s['rod_count']} rods, rod length {rl.mean():.0f} mm "
+         f"(variance {rl.var():,.0f} mm2); irregular cells shaded")
+    pngs.append(png)
+
+    lines = []
+    lines.append(f"{'grid':40s} {'mean (mm)':>10s} {'var (mm2)':>11s} {'nodes':>6s} {'members':>8s} "
+                 f"{'irregular':>9s} {'curves (s)':>10s} {'total (s)':>9s}")
+    for name, mean, var in PAPER:
+        extra = f"{BUILT_NODES:6d} {BUILT_MEMBERS:8d}" if name.startswith("Original") else f"{'-':>6s} {'-':>8s}"
+        t = f"{'78-120':>10s}" if "paper" in name else f"{'-':>10s}"
+        lines.append(f"{name:40s} {mean:10.0f} {var:11,.0f} {extra} {'-':>9s} {t} {'-':>9s}")
+    for name, mean, var, nodes, members, irr, cs, ts, nc, cov in rows:
+        lines.append(f"{name:40s} {mean:10.0f} {var:11,.0f} {nodes:6d} {members:8d} {100 * irr:8.1f}% "
+                     f"{cs:10.3f} {ts:9.3f}")
+    for name, mean, var, nodes, members, irr, cs, ts, nc, cov in rows:
+        lines.append(f"{name}: {nc} curves, panels cover {100 * cov:.1f}% of the face")
+    lines.append(f"paper: {PAPER_SECONDS[0]:.0f}-{PAPER_SECONDS[1]:.0f} s per guide-line set "
+                 "(Tables 1-2, Chen Shan); 'curves (s)' = our guide-line set (core), "
+                 "'total (s)' = panelize() with metrics")
+    text = "\n".join(lines)
+    print(text)
+    with open(os.path.join(args.out, "british_museum.txt"), "w") as f:
+        f.write(text + "\n")
+    for png in pngs:
+        print(f"wrote {png}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

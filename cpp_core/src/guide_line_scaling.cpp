@@ -1,0 +1,470 @@
+// The Guide Line Scaling Method (seed 004 section 5): advance a guide curve over
+// the face by scaling / translating / rotating it between new end points on the
+// boundary and projecting it back, divide the curves into equal chords and
+// connect neighbouring curves into triangles.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "guide_curves.h"
+#include "tessella/errors.h"
+#include "tessella/guide_lines.h"
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+namespace guide_detail {
+
+double polyline_length(const std::vector<Vec3>& pts) {
+  double len = 0.0;
+  for (std::size_t i = 1; i < pts.size(); ++i) len += (pts[i] - pts[i - 1]).norm();
+  return len;
+}
+
+// The curve resampled to `count` points equally spaced in 3D arc length
+// (interpolated linearly in (u,v), evaluated on the surface).
+SurfaceCurve resample(const SurfaceFace& face, const SurfaceCurve& c, int count) {
+  std::vector<double> s(c.xyz.size(), 0.0);
+  for (std::size_t i = 1; i < c.xyz.size(); ++i) s[i] = s[i - 1] + (c.xyz[i] - c.xyz[i - 1]).norm();
+  SurfaceCurve out;
+  const double total = s.back();
+  std::size_t seg = 0;
+  for (int i = 0; i < count; ++i) {
+    const double target = total * i / (count - 1);
+    while (seg + 2 < s.size() && s[seg + 1] < target) ++seg;
+    const double span = s[seg + 1] - s[seg];
+    const double f = span > 0.0 ? std::clamp((target - s[seg]) / span, 0.0, 1.0) : 0.0;
+    Vec2 uv = c.uv[seg] + f * (c.uv[seg + 1] - c.uv[seg]);
+    if (i == 0) uv = c.uv.front();
+    if (i == count - 1) uv = c.uv.back();
+    out.uv.push_back(uv);
+    out.xyz.push_back(face.point(uv[0], uv[1]));
+  }
+  return out;
+}
+
+// Boundary crossing between an inside and an outside (u,v) point (bisection).
+Vec2 bisect_boundary(const SurfaceFace& face, Vec2 in, Vec2 out) {
+  for (int it = 0; it < 36; ++it) {
+    const Vec2 mid = 0.5 * (in + out);
+    if (face.is_inside(mid[0], mid[1]))
+      in = mid;
+    else
+      out = mid;
+  }
+  return in;
+}
+
+// The pieces of the curve inside the trimmed face, cut at the boundary.
+std::vector<SurfaceCurve> inside_runs(const SurfaceFace& face, const SurfaceCurve& c) {
+  std::vector<SurfaceCurve> runs;
+  SurfaceCurve cur;
+  bool prev_in = false;
+  for (std::size_t i = 0; i < c.uv.size(); ++i) {
+    const bool in = face.is_inside(c.uv[i][0], c.uv[i][1]);
+    if (i > 0 && in != prev_in) {
+      const Vec2 b = in ? bisect_boundary(face, c.uv[i], c.uv[i - 1])
+                        : bisect_boundary(face, c.uv[i - 1], c.uv[i]);
+      cur.uv.push_back(b);
+      cur.xyz.push_back(face.point(b[0], b[1]));
+      if (!in) {
+        runs.push_back(std::move(cur));
+        cur = SurfaceCurve();
+      }
+    }
+    if (in) {
+      cur.uv.push_back(c.uv[i]);
+      cur.xyz.push_back(c.xyz[i]);
+    }
+    prev_in = in;
+  }
+  if (!cur.uv.empty()) runs.push_back(std::move(cur));
+  runs.erase(std::remove_if(runs.begin(), runs.end(),
+                            [](const SurfaceCurve& r) { return r.uv.size() < 2; }),
+             runs.end());
+  return runs;
+}
+
+bool inside_bounds(const UvBounds& b, const Vec2& uv) {
+  return uv[0] >= b.u_min && uv[0] <= b.u_max && uv[1] >= b.v_min && uv[1] <= b.v_max;
+}
+
+// Extends the curve end (index 0 or last) along its (u,v) tangent up to the
+// boundary (doubling steps, then bisection).
+Vec2 extend_to_boundary(const SurfaceFace& face, const Vec2& end, const Vec2& before) {
+  const Vec2 dir = end - before;
+  if (dir.norm() <= 0.0) return end;
+  const UvBounds b = face.bounds();
+  Vec2 in = end;
+  double h = 1.0;
+  for (int it = 0; it < 60; ++it, h *= 2.0) {
+    const Vec2 x = end + h * dir;
+    if (!inside_bounds(b, x) || !face.is_inside(x[0], x[1])) return bisect_boundary(face, in, x);
+    in = x;
+  }
+  return in;
+}
+
+// Boundary point closest to the straight line through d along t (seed 004
+// Fig. 10), preferring points near d: minimizes dist(X, line) + w |X - d| over
+// the loop's segments (convex on each segment: golden-section search).
+bool nearest_boundary_point(const Boundary& bd, const Vec3& d, const Vec3& t, double w, Vec3& out,
+                            Vec2& out_uv) {
+  const Vec3 tn = t.normalized();
+  auto score = [&](const Vec3& x) { return (x - d).cross(tn).norm() + w * (x - d).norm(); };
+  double best = std::numeric_limits<double>::infinity();
+  const std::size_t n = bd.xyz.size();
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 a = bd.xyz[i], b = bd.xyz[(i + 1) % n];
+    double lo = 0.0, hi = 1.0;
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double f1 = score(a + x1 * (b - a)), f2 = score(a + x2 * (b - a));
+    for (int it = 0; it < 40; ++it) {
+      if (f1 < f2) {
+        hi = x2, x2 = x1, f2 = f1;
+        x1 = hi - g * (hi - lo);
+        f1 = score(a + x1 * (b - a));
+      } else {
+        lo = x1, x1 = x2, f1 = f2;
+        x2 = lo + g * (hi - lo);
+        f2 = score(a + x2 * (b - a));
+      }
+    }
+    const double tau = 0.5 * (lo + hi);
+    const double f = score(a + tau * (b - a));
+    if (f < best) {
+      best = f;
+      out = a + tau * (b - a);
+      out_uv = bd.uv[i] + tau * (bd.uv[(i + 1) % n] - bd.uv[i]);
+    }
+  }
+  return std::isfinite(best);
+}
+
+// Newton projection (seed 004 section 4) from the matching point of the
+// previous curve (OCCT's global search only when Newton fails).
+Projection project_near(const SurfaceFace& face, const Vec3& p, const Vec2& start) {
+  // Seed 004 section 4 with the Gauss-Newton matrix (J = [Su Sv]^T [Su Sv]) and
+  // the steps clamped to the face's (u,v) box, so a point beyond the border
+  // lands on the border instead of sending SurfaceFace::project to OCCT's
+  // global search (~50 ms each). Curve points always start from the matching
+  // point of the previous curve, so the start is close.
+  const UvBounds b = face.bounds();
+  Vec2 uv = start;
+  auto clamp_uv = [&](Vec2 x) {
+    if (!face.u_periodic()) x[0] = std::clamp(x[0], b.u_min, b.u_max);
+    if (!face.v_periodic()) x[1] = std::clamp(x[1], b.v_min, b.v_max);
+    return x;
+  };
+  uv = clamp_uv(uv);
+  const double eps = 1e-9 * face.model_size();
+  for (int it = 0; it < 30; ++it) {
+    const SurfacePoint sp = face.derivatives(uv[0], uv[1]);
+    const Vec3 r = sp.point - p;
+    Eigen::Matrix2d j;
+    j << sp.du.dot(sp.du), sp.du.dot(sp.dv), sp.du.dot(sp.dv), sp.dv.dot(sp.dv);
+    const Vec2 g(sp.du.dot(r), sp.dv.dot(r));
+    if (!(std::abs(j.determinant()) > 1e-300)) break;
+    const Vec2 next = clamp_uv(uv - j.inverse() * g);
+    const double step = (sp.du * (next[0] - uv[0]) + sp.dv * (next[1] - uv[1])).norm();
+    uv = next;
+    if (step <= eps) break;
+  }
+  Projection pr;
+  pr.uv = uv;
+  pr.point = face.point(uv[0], uv[1]);
+  pr.distance = (pr.point - p).norm();
+  return pr;
+}
+
+// Steps 4-6 of seed 004 section 5.1: the curve c scaled, translated and rotated
+// so that its ends land on end0 / end1 (eq. 21-24), projected point by point
+// (Newton from the matching point of c) and resampled.
+SurfaceCurve map_curve(const Context& cx, const SurfaceCurve& c, const Vec3& end0, const Vec2& uv0,
+                       const Vec3& end1, const Vec2& uv1) {
+  const SurfaceFace& face = cx.face;
+  const std::size_t last = c.xyz.size() - 1;
+  const Vec3 new_end[2] = {end0, end1};
+  const Vec2 new_uv[2] = {uv0, uv1};
+  const Vec3 p0 = c.xyz.front(), pn = c.xyz.back();
+  const double l1 = std::max((p0 - pn).norm(), cx.tol), l2 = (new_end[0] - new_end[1]).norm();
+  // Scale about Pn and translate Pn to Pn'' (eq. 21-22), then rotate about Pn''
+  // so that P0 lands on P0'' (eq. 23-24).
+  const double scale = l2 / l1;
+  const Vec3 a = (p0 - pn) * scale, b = new_end[0] - new_end[1];
+  Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
+  const Vec3 axis = a.cross(b);
+  if (axis.norm() > 1e-12 * a.norm() * b.norm())
+    rot =
+        Eigen::AngleAxisd(std::atan2(axis.norm(), a.dot(b)), axis.normalized()).toRotationMatrix();
+  SurfaceCurve moved;
+  for (std::size_t i = 0; i <= last; ++i) {
+    const Vec3 y = new_end[1] + rot * ((c.xyz[i] - pn) * scale);
+    Vec2 uv;
+    if (i == 0)
+      uv = new_uv[0];
+    else if (i == last)
+      uv = new_uv[1];
+    else
+      uv = project_near(face, y, c.uv[i]).uv;  // step 5: Newton projection
+    moved.uv.push_back(uv);
+    moved.xyz.push_back(face.point(uv[0], uv[1]));
+  }
+  // Step 6: the curve lives in (u,v) and is evaluated on the surface.
+  return resample(face, moved, cx.samples);
+}
+
+// One GSM step (seed 004 section 5.1 steps 3-6): the next curve on the side
+// `side` (+1 / -1 along N x tangent), or false when the face is covered.
+bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, SurfaceCurve& next) {
+  const SurfaceFace& face = cx.face;
+  const std::size_t last = c.xyz.size() - 1;
+  Vec3 new_end[2];
+  Vec2 new_uv[2];
+  for (int e = 0; e < 2; ++e) {
+    const std::size_t i = e == 0 ? 0 : last;
+    // End tangent over ~one rod length (robust to a kink in the last sample).
+    const std::size_t m = std::clamp<std::size_t>(
+        static_cast<std::size_t>(cx.l1 / std::max(polyline_length(c.xyz) / last, cx.tol)), 1,
+        last / 4 + 1);
+    const Vec3 tau = (e == 0 ? c.xyz[m] - c.xyz[0] : c.xyz[last] - c.xyz[last - m]).normalized();
+    const Vec3 n = face.normal(c.uv[i][0], c.uv[i][1]);
+    Vec3 d = n.cross(tau);
+    if (d.norm() < 1e-12) return false;
+    d = side * d.normalized();  // eq. 19
+    const Projection dp = project_near(face, c.xyz[i] + cx.advance * d, c.uv[i]);
+    const Vec3 n2 = face.normal(dp.uv[0], dp.uv[1]);
+    const Vec3 t = d.cross(n2);  // eq. 20
+    if (t.norm() < 1e-12) return false;
+    if (!nearest_boundary_point(cx.boundary, dp.point, t, 0.05, new_end[e], new_uv[e]))
+      return false;
+  }
+  const Vec3 p0 = c.xyz.front(), pn = c.xyz.back();
+  // Stalled (both ends stayed): the face is covered on this side.
+  if ((new_end[0] - p0).norm() < 0.05 * cx.advance && (new_end[1] - pn).norm() < 0.05 * cx.advance)
+    return false;
+  const double l1 = (p0 - pn).norm(), l2 = (new_end[0] - new_end[1]).norm();
+  if (l1 < cx.tol || l2 < 0.5 * cx.l1) return false;
+  next = map_curve(cx, c, new_end[0], new_uv[0], new_end[1], new_uv[1]);
+  // No progress across the curve (it fell back onto the previous one, or slid
+  // along the boundary): covered.
+  {
+    // Median over the curve: one point stuck (e.g. over a hole) does not stop it.
+    std::vector<double> progress;
+    for (std::size_t k = 1; k < last; ++k) {
+      const Vec3 tau = (c.xyz[k + 1] - c.xyz[k - 1]).normalized();
+      const Vec3 across = side * face.normal(c.uv[k][0], c.uv[k][1]).cross(tau);
+      progress.push_back((next.xyz[k] - c.xyz[k]).dot(across));
+    }
+    std::nth_element(progress.begin(), progress.begin() + progress.size() / 2, progress.end());
+    if (progress[progress.size() / 2] < 0.2 * cx.advance) return false;
+  }
+  // Enough of it on the face (sampled: the exact pieces come at the division).
+  double inside = 0.0;
+  for (std::size_t i = 2; i <= last; i += 2)
+    if (face.is_inside(next.uv[i - 1][0], next.uv[i - 1][1]))
+      inside += (next.xyz[i] - next.xyz[i - 2]).norm();
+  return inside >= 0.5 * cx.l1;
+}
+
+SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide) {
+  const SurfaceFace& face = cx.face;
+  // Resample the guide polyline evenly, then project it (seed 004 section 4).
+  std::vector<double> s(guide.size(), 0.0);
+  for (std::size_t i = 1; i < guide.size(); ++i) s[i] = s[i - 1] + (guide[i] - guide[i - 1]).norm();
+  if (s.back() <= cx.tol) throw InvalidParameter("guides: the guide curve has no length");
+  SurfaceCurve projected;
+  std::size_t seg = 0;
+  Vec2 start(0, 0);
+  for (int i = 0; i < cx.samples; ++i) {
+    const double target = s.back() * i / (cx.samples - 1);
+    while (seg + 2 < s.size() && s[seg + 1] < target) ++seg;
+    const double span = s[seg + 1] - s[seg];
+    const double f = span > 0.0 ? std::clamp((target - s[seg]) / span, 0.0, 1.0) : 0.0;
+    const Vec3 p = guide[seg] + f * (guide[seg + 1] - guide[seg]);
+    const Projection pr = i == 0 ? face.project(p) : face.project(p, start);
+    const double limit = cx.tol;
+    if (pr.distance > limit) {
+      std::ostringstream msg;
+      msg << "guides: the guide curve passes " << pr.distance
+          << " mm from the face; it must lie within guide_tolerance = " << limit
+          << " mm of the face";
+      throw InvalidParameter(msg.str());
+    }
+    start = pr.uv;
+    projected.uv.push_back(pr.uv);
+    projected.xyz.push_back(pr.point);
+  }
+  std::vector<SurfaceCurve> runs = inside_runs(face, projected);
+  if (runs.empty()) throw InvalidParameter("guides: the guide curve does not cross the face");
+  SurfaceCurve best =
+      *std::max_element(runs.begin(), runs.end(), [](const SurfaceCurve& a, const SurfaceCurve& b) {
+        return polyline_length(a.xyz) < polyline_length(b.xyz);
+      });
+  if (polyline_length(best.xyz) < 0.5 * cx.l1)
+    throw InvalidParameter(
+        "guides: the part of the guide curve on the face is shorter than rod_length / 2");
+  // Ends that stop inside the face are extended to the boundary.
+  const std::size_t n = best.uv.size();
+  best.uv.front() = extend_to_boundary(face, best.uv[0], best.uv[1]);
+  best.uv.back() = extend_to_boundary(face, best.uv[n - 1], best.uv[n - 2]);
+  best.xyz.front() = face.point(best.uv.front()[0], best.uv.front()[1]);
+  best.xyz.back() = face.point(best.uv.back()[0], best.uv.back()[1]);
+  return resample(face, best, cx.samples);
+}
+
+}  // namespace guide_detail
+
+namespace {
+using namespace guide_detail;
+
+struct Row {
+  std::vector<int> ids;   // mesh vertex ids
+  std::vector<int> runs;  // which inside run of the curve each node is on
+};
+
+}  // namespace
+
+GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
+                                          const GuideLineScalingParams& params) {
+  require_in_range("rod_length (mm)", params.rod_length, 1e-3, 1e9);
+  require_in_range("advance (mm)", params.advance, 0.0, 1e9);
+  require_in_range("merge_fraction", params.merge_fraction, 0.0, 0.999);
+  require_in_range("guide_tolerance (mm)", params.guide_tolerance, 0.0, 1e12);
+  require_in_range("max_curves", params.max_curves, 1, 1e6);
+  require_in_range("max_panels", params.max_panels, 1, 1e9);
+  require_in_range("trim_deflection (mm)", params.trim_deflection, 0.0, 1e9);
+  if (params.guide.size() < 2)
+    throw InvalidParameter("guides: a guide curve needs at least two points");
+  for (const Vec3& p : params.guide)
+    if (!p.allFinite()) throw InvalidParameter("guides: the guide curve has a non-finite point");
+
+  const double size = face.model_size();
+  Context cx{face,
+             {},
+             params.rod_length,
+             params.advance > 0 ? params.advance : params.rod_length * std::sqrt(3.0) / 2.0,
+             1e-9 * size,
+             0};
+  require_in_range("advance (mm)", cx.advance, 1e-3, 1e9);
+  if (size / cx.advance > params.max_curves)
+    throw LimitExceeded(
+        "guide_line_scaling: the face needs more than max_curves curves at this advance");
+  const double guide_len = polyline_length(params.guide);
+  const double est_len = std::max(guide_len, size);
+  cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * est_len / cx.l1) + 1.0, 33.0, 4001.0));
+  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
+  for (const TrimLoop& loop : face.trim_loops(deflection))
+    if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
+  if (cx.boundary.xyz.size() < 3)
+    throw InvalidGeometry("guide_line_scaling: the face has no outer boundary");
+
+  const double tol_guide = params.guide_tolerance > 0 ? params.guide_tolerance : 0.05 * size;
+  cx.tol = tol_guide;
+  SurfaceCurve c0 = initial_curve(cx, params.guide);
+  cx.tol = 1e-9 * size;
+
+  // Advance to both sides (a guide on the boundary stalls at once on one side).
+  GuideLineResult result;
+  std::vector<SurfaceCurve> sides[2];
+  for (int k = 0; k < 2; ++k) {
+    const double side = k == 0 ? 1.0 : -1.0;
+    SurfaceCurve cur = c0, next;
+    while (advance_curve(cx, cur, side, next)) {
+      sides[k].push_back(next);
+      if (static_cast<int>(sides[0].size() + sides[1].size()) + 1 > params.max_curves)
+        throw LimitExceeded("guide_line_scaling: more than max_curves curves; increase advance");
+      cur = std::move(next);
+    }
+  }
+  for (auto it = sides[1].rbegin(); it != sides[1].rend(); ++it) result.curves.push_back(*it);
+  result.curves.push_back(c0);
+  for (const SurfaceCurve& c : sides[0]) result.curves.push_back(c);
+
+  // Step 7: divide every curve (each piece inside the face) into equal chords.
+  PanelMesh& mesh = result.mesh;
+  std::vector<Row> rows;
+  ChordDivisionParams cp;
+  cp.chord = cx.l1;
+  cp.merge_fraction = params.merge_fraction;
+  for (const SurfaceCurve& c : result.curves) {
+    Row row;
+    int run_id = 0;
+    for (const SurfaceCurve& run : inside_runs(face, c)) {
+      const double len = polyline_length(run.xyz);
+      if (len < 1e-6 * size) continue;
+      std::vector<Vec2> uvs;
+      if (len < params.merge_fraction * cx.l1) {
+        uvs = {run.uv.front(), run.uv.back()};
+      } else {
+        for (double t : divide_by_chords(run.xyz, cp)) {
+          const std::size_t s = std::min(static_cast<std::size_t>(t), run.uv.size() - 2);
+          const double f = t - static_cast<double>(s);
+          uvs.push_back(run.uv[s] + f * (run.uv[s + 1] - run.uv[s]));
+        }
+      }
+      for (const Vec2& uv : uvs) {
+        row.ids.push_back(static_cast<int>(mesh.uv.size()));
+        row.runs.push_back(run_id);
+        mesh.uv.push_back(uv);
+        mesh.xyz.push_back(face.point(uv[0], uv[1]));
+      }
+      ++run_id;
+    }
+    if (!row.ids.empty()) rows.push_back(std::move(row));
+  }
+
+  // Step 8: triangles between neighbouring curves (90-degree rule); drop the
+  // ones that bridge a hole or leave the face.
+  const double max_edge = 3.0 * std::max(cx.l1, cx.advance);
+  for (std::size_t r = 0; r + 1 < rows.size(); ++r) {
+    const Row& a = rows[r];
+    const Row& b = rows[r + 1];
+    std::vector<Vec3> p, q;
+    for (int id : a.ids) p.push_back(mesh.xyz[id]);
+    for (int id : b.ids) q.push_back(mesh.xyz[id]);
+    const int n = static_cast<int>(p.size());
+    for (const auto& t : connect_rows_right_angle(p, q)) {
+      int ids[3], row_of[3], run_of[3];
+      for (int k = 0; k < 3; ++k) {
+        const bool in_p = t[k] < n;
+        ids[k] = in_p ? a.ids[t[k]] : b.ids[t[k] - n];
+        row_of[k] = in_p ? 0 : 1;
+        run_of[k] = in_p ? a.runs[t[k]] : b.runs[t[k] - n];
+      }
+      bool ok = true;
+      for (int k = 0; k < 3; ++k) {
+        const int l = (k + 1) % 3;
+        if (row_of[k] == row_of[l] && run_of[k] != run_of[l]) ok = false;
+        if ((mesh.xyz[ids[k]] - mesh.xyz[ids[l]]).norm() > max_edge) ok = false;
+      }
+      if (!ok) continue;
+      const Vec2 cuv = (mesh.uv[ids[0]] + mesh.uv[ids[1]] + mesh.uv[ids[2]]) / 3.0;
+      if (!face.is_inside(cuv[0], cuv[1])) continue;
+      const Vec3 e1 = mesh.xyz[ids[1]] - mesh.xyz[ids[0]], e2 = mesh.xyz[ids[2]] - mesh.xyz[ids[0]];
+      const Vec3 nrm = e1.cross(e2);
+      if (nrm.norm() < 1e-9 * cx.l1 * cx.l1) continue;
+      if (nrm.dot(face.normal(cuv[0], cuv[1])) < 0) std::swap(ids[1], ids[2]);
+      mesh.panels.push_back({ids[0], ids[1], ids[2]});
+      if (static_cast<int>(mesh.panels.size()) > params.max_panels)
+        throw LimitExceeded("guide_line_scaling: more panels than max_panels");
+    }
+  }
+  mesh.nominal_area = 0.5 * cx.l1 * cx.advance;
+  mesh.regular_corners = 3;
+  weld_coincident_vertices(mesh, 1e-6 * size);
+  remove_unused_vertices(mesh);
+  build_rods(mesh);
+  if (mesh.panels.empty())
+    throw InvalidParameter(
+        "guide_line_scaling: no panels (rod_length / advance too large for the face?)");
+  return result;
+}
+
+PanelMesh guide_line_scaling(const SurfaceFace& face, const GuideLineScalingParams& params) {
+  return guide_line_scaling_curves(face, params).mesh;
+}
+
+}  // namespace tessella

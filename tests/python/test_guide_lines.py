@@ -1,0 +1,199 @@
+"""Guide-line grids (seed 004, GSM) through the console API and the document,
+checked independently of the core with FreeCAD (distToShape, face area)."""
+
+import os
+import sys
+
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+for _p in ("/usr/lib/freecad-python3/lib", REPO):
+    if _p not in sys.path:
+        sys.path.append(_p)
+
+import FreeCAD  # noqa: E402  (before Part)
+import Part  # noqa: E402
+import numpy as np  # noqa: E402
+
+import freecad_workbench as tessella  # noqa: E402
+from freecad_workbench.features import panelization as feat  # noqa: E402
+
+ROD = 1000.0
+
+
+def _guide_on(face, x):
+    """The plan line x = const projected vertically onto the face (a FreeCAD edge
+    on the surface, cut by the trim), the longest piece."""
+    bb = face.BoundBox
+    line = Part.LineSegment(FreeCAD.Vector(x, bb.YMin - 10, bb.ZMax + 1000),
+                            FreeCAD.Vector(x, bb.YMax + 10, bb.ZMax + 1000)).toShape()
+    projected = face.makeParallelProjection(line, FreeCAD.Vector(0, 0, -1))
+    edges = sorted(projected.Edges, key=lambda e: e.Length)
+    assert edges, "projection of the guide is empty"
+    return edges[-1]
+
+
+@pytest.fixture(scope="module")
+def gsm(freeform_face):
+    guide = _guide_on(freeform_face, 2000.0)
+    res = tessella.panelize(freeform_face, method="guide_line_scaling", guides=[guide],
+                            rod_length=ROD, advance=ROD * 0.866)
+    return freeform_face, guide, res
+
+
+def test_nodes_lie_on_the_trimmed_face(gsm):
+    face, _, res = gsm
+    size = face.BoundBox.DiagonalLength
+    worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*v)))[0] for v in res.vertices)
+    assert worst < 1e-6 * size
+
+
+def test_triangles_stay_on_the_face_and_cover_most_of_it(gsm):
+    face, _, res = gsm
+    assert all(len(p) == 3 for p in res.panels)
+    v = res.vertices
+    tri = np.array(res.panels)
+    centroids = v[tri].mean(axis=1)
+    # Flat triangles of ~1 m on this surface sag by a few mm at most; a triangle
+    # bridging a hole or leaving the outline would be metres away.
+    far = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*c)))[0] for c in centroids)
+    assert far < 0.05 * ROD
+    area = 0.5 * np.linalg.norm(np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]]), axis=1)
+    assert np.all(area > 0)
+    covered = area.sum() / face.Area
+    assert 0.8 < covered < 1.01, covered
+
+
+def test_rods_are_near_the_rod_length(gsm):
+    _, _, res = gsm
+    v = res.vertices
+    lengths = np.linalg.norm(v[res.rods[:, 0]] - v[res.rods[:, 1]], axis=1)
+    assert abs(np.median(lengths) - ROD) < 0.1 * ROD
+    assert abs(lengths.mean() - ROD) < 0.15 * ROD
+    # The metric the API reports is the same thing, measured by the core.
+    assert np.allclose(np.sort(res.metrics["rod_length"]), np.sort(lengths), rtol=1e-9)
+
+
+def test_triangles_are_counter_clockwise_about_the_face_normal(gsm):
+    face, _, res = gsm
+    v = res.vertices
+    for p in res.panels[::7]:
+        a, b, c = (v[i] for i in p)
+        n = np.cross(b - a, c - a)
+        u, w = face.Surface.parameter(FreeCAD.Vector(*((a + b + c) / 3)))
+        fn = face.normalAt(u, w)
+        assert np.dot(n, [fn.x, fn.y, fn.z]) > 0
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"rod_length": 0.0}, "rod_length"),
+    ({"rod_length": ROD, "advance": -1.0}, "advance"),
+    ({"rod_length": ROD, "guides": "far"}, "from the face"),
+    ({"rod_length": ROD, "guides": "two"}, "exactly 1"),
+    ({"rod_length": ROD, "guides": [42]}, "guides"),
+])
+def test_bad_input_raises_value_error(freeform_face, kwargs, match):
+    guide = _guide_on(freeform_face, 2000.0)
+    kwargs = dict(kwargs)
+    g = kwargs.pop("guides", [guide])
+    if g == "far":
+        g = [guide.translated(FreeCAD.Vector(0, 0, 1e5))]
+    elif g == "two":
+        g = [guide, guide]
+    with pytest.raises(ValueError, match=match):
+        tessella.panelize(freeform_face, method="guide_line_scaling", guides=g, **kwargs)
+
+
+def test_guide_edge_is_a_link_and_an_edit_recomputes(freeform_face):
+    doc = FreeCAD.newDocument("TessellaGuideTest")
+    try:
+        surf = doc.addObject("Part::Feature", "Roof")
+        surf.Shape = freeform_face
+        guide = doc.addObject("Part::Feature", "Guide")
+        guide.Shape = _guide_on(freeform_face, 2000.0)
+        p = tessella.make_panelization((surf, "Face1"), method="guide_line_scaling",
+                                       guides=[(guide, "Edge1")], rod_length=ROD)
+        assert p.Method == "guide_line_scaling"
+        assert p.Guides[0][0] == guide
+        nodes = [k for k in feat.children_of(p) if k.Role == "Nodes"][0]
+        before = p.NodeCount, nodes.Shape.BoundBox
+        assert p.NodeCount > 50 and p.PanelCount > 50
+        # Edit the guide: a line further into the face; the grid must follow.
+        guide.Shape = _guide_on(freeform_face, 7600.0)
+        doc.recompute()
+        assert p.NodeCount > 0
+        assert (p.NodeCount, nodes.Shape.BoundBox) != before
+        # A loose Part.Edge cannot be linked: clear message, nothing created.
+        n = len(doc.Objects)
+        with pytest.raises(ValueError, match="EdgeN"):
+            tessella.make_panelization((surf, "Face1"), method="guide_line_scaling",
+                                       guides=[guide.Shape], rod_length=ROD)
+        assert len(doc.Objects) == n
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def _guide_across(face, y):
+    """The plan line y = const projected vertically onto the face, longest piece."""
+    bb = face.BoundBox
+    line = Part.LineSegment(FreeCAD.Vector(bb.XMin - 10, y, bb.ZMax + 1000),
+                            FreeCAD.Vector(bb.XMax + 10, y, bb.ZMax + 1000)).toShape()
+    edges = sorted(face.makeParallelProjection(line, FreeCAD.Vector(0, 0, -1)).Edges,
+                   key=lambda e: e.Length)
+    return edges[-1]
+
+
+@pytest.fixture(scope="module")
+def two(freeform_face):
+    guides = [_guide_on(freeform_face, 2000.0), _guide_across(freeform_face, 2600.0)]
+    quads = tessella.panelize(freeform_face, method="two_guide_lines", guides=guides,
+                              rod_length=ROD)
+    tris = tessella.panelize(freeform_face, method="two_guide_lines", guides=guides,
+                             rod_length=ROD, triangulate=True)
+    return freeform_face, quads, tris
+
+
+def test_two_guide_lines_quads_lie_on_the_face(two):
+    face, quads, tris = two
+    size = face.BoundBox.DiagonalLength
+    assert len(quads.panels) > 30 and all(len(p) == 4 for p in quads.panels)
+    worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*v)))[0] for v in quads.vertices)
+    assert worst < 1e-6 * size
+    v = quads.vertices
+    centroids = np.array([v[list(p)].mean(axis=0) for p in quads.panels])
+    far = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*c)))[0] for c in centroids)
+    assert far < 0.05 * ROD  # no quad bridges a hole or leaves the outline
+    # Each quad node has 4 rods inside the grid; the median rod is near L1.
+    lengths = quads.metrics["rod_length"]
+    assert abs(np.median(lengths) - ROD) < 0.2 * ROD
+    # Triangulated: the same nodes, two triangles per quad, one more rod per quad.
+    assert len(tris.panels) == 2 * len(quads.panels)
+    assert len(tris.rods) == len(quads.rods) + len(quads.panels)
+    assert np.allclose(tris.vertices, quads.vertices)
+
+
+def test_two_guide_lines_needs_two_guides(freeform_face):
+    with pytest.raises(ValueError, match="exactly 2"):
+        tessella.panelize(freeform_face, method="two_guide_lines",
+                          guides=[_guide_on(freeform_face, 2000.0)], rod_length=ROD)
+
+
+def test_two_guide_lines_document_object(freeform_face):
+    doc = FreeCAD.newDocument("TessellaTwoGuideTest")
+    try:
+        surf = doc.addObject("Part::Feature", "Roof")
+        surf.Shape = freeform_face
+        ga = doc.addObject("Part::Feature", "GuideA")
+        ga.Shape = _guide_on(freeform_face, 2000.0)
+        gb = doc.addObject("Part::Feature", "GuideB")
+        gb.Shape = _guide_across(freeform_face, 2600.0)
+        p = tessella.make_panelization((surf, "Face1"), method="two_guide_lines",
+                                       guides=[(ga, "Edge1"), (gb, "Edge1")], rod_length=ROD)
+        assert [g[0] for g in p.Guides] == [ga, gb]
+        quads = p.PanelCount
+        assert quads > 30 and p.QuadShare == 1.0
+        p.Triangulate = True
+        doc.recompute()
+        assert p.PanelCount == 2 * quads
+    finally:
+        FreeCAD.closeDocument(doc.Name)
