@@ -197,6 +197,11 @@ class PanelizeResult:
         """One ID per node (self.nodes order)."""
         return [NODE_ID_FORMAT.format(i + 1) for i in range(len(self.nodes))]
 
+    @property
+    def node_id_by_vertex(self):
+        """{vertex index: node ID} for the vertices that are nodes (rod ends)."""
+        return {int(v): NODE_ID_FORMAT.format(k + 1) for k, v in enumerate(self.nodes)}
+
     def panels_brep(self, planar_tolerance=None):
         """BRep string of a compound with one sub-shape per panel (panel order)."""
         if planar_tolerance is None:

@@ -129,7 +129,7 @@ def node_frames(result):
         incident[b].append((k, a))
     rod_ids, node_ids = result.rod_ids, result.node_ids
     out = []
-    for n in range(len(xyz)):
+    for node, n in enumerate(np.asarray(result.nodes, dtype=np.int64)):
         z = nrm[n]
         entries = []
         x = None
@@ -148,7 +148,7 @@ def node_frames(result):
             el = math.degrees(math.asin(float(np.clip(np.dot(d, z), -1, 1))))
             rods_here.append({"rod": rod_ids[k], "azimuth": az, "elevation": el})
         rods_here.sort(key=lambda e: e["azimuth"])
-        out.append({"id": node_ids[n], "point": xyz[n], "axis": z, "x": x, "y": y,
+        out.append({"id": node_ids[node], "point": xyz[n], "axis": z, "x": x, "y": y,
                     "rods": rods_here})
     return out
 
@@ -275,7 +275,7 @@ def buildability(result, flat=None, layout=None, length_tol=1.0, angle_tol=0.5):
         "rod_types": len(cut_list(result, length_tol, angle_tol)),
         "rod_length_similarity": 1.0 + float(np.std(lengths) / np.mean(lengths)) if len(lengths) else 1.0,
         "total_rod_length": float(np.sum(lengths)),
-        "node_count": len(result.vertices),
+        "node_count": len(result.nodes),
         "node_types": len(ntypes),
         "panel_area_3d": float(np.sum(result.metrics["panel_area"])),
     }

@@ -66,8 +66,9 @@ def hub_solids(result, radius=80.0, height=200.0):
 
     if not (radius > 0 and height > 0):
         raise ValueError("radius and height (mm) must be > 0")
-    xyz = np.asarray(result.vertices, dtype=float)
-    nrm = np.asarray(result.normals, dtype=float)
+    nodes = np.asarray(result.nodes, dtype=np.int64)  # one hub per node (rod end)
+    xyz = np.asarray(result.vertices, dtype=float)[nodes]
+    nrm = np.asarray(result.normals, dtype=float)[nodes]
     hubs = []
     for p, n in zip(xyz, nrm):
         n = n / np.linalg.norm(n)

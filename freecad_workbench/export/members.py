@@ -52,12 +52,12 @@ def write_rod_data(result, path, length_tol=1.0, angle_tol=0.5):
     for t in m.cut_list(result, length_tol, angle_tol):
         for rid in t["rods"]:
             types[rid] = t["type"]
-    node_ids = list(result.node_ids)  # a property that builds the list on every access
+    node_id = result.node_id_by_vertex  # a property that builds the map: read it once
     with _open(path) as f:
         w = csv.writer(f)
         w.writerow(ROD_DATA_COLUMNS)
         for k, rid in enumerate(rd["id"]):
-            w.writerow([rid, node_ids[rd["node_a"][k]], node_ids[rd["node_b"][k]],
+            w.writerow([rid, node_id[int(rd["node_a"][k])], node_id[int(rd["node_b"][k])],
                         repr(float(rd["length"][k])), repr(float(rd["cut_angle_a"][k])),
                         repr(float(rd["cut_angle_b"][k])), repr(float(rd["twist"][k])), types[rid]])
     return len(rd["id"])
@@ -80,13 +80,14 @@ def write_node_schedule(result, path, angle_tol=0.5):
 
 def structural_model(result):
     rd = m.rod_data(result)
-    node_ids = list(result.node_ids)
+    node_id = result.node_id_by_vertex
+    nodes = np.asarray(result.nodes, dtype=np.int64)
     return {
         "units": {"length": "mm"},
         "nodes": [{"id": nid, "xyz": [float(v) for v in p], "normal": [float(v) for v in n]}
-                  for nid, p, n in zip(result.node_ids, np.asarray(result.vertices),
-                                       np.asarray(result.normals))],
-        "elements": [{"id": rid, "nodes": [node_ids[a], node_ids[b]],
+                  for nid, p, n in zip(result.node_ids, np.asarray(result.vertices)[nodes],
+                                       np.asarray(result.normals)[nodes])],
+        "elements": [{"id": rid, "nodes": [node_id[int(a)], node_id[int(b)]],
                       "length": float(length)}
                      for rid, a, b, length in zip(rd["id"], rd["node_a"], rd["node_b"], rd["length"])],
     }
@@ -117,13 +118,19 @@ def write_abaqus_inp(result, path, profile=("pipe", 60.0, 4.0), young=210000.0, 
         raise ValueError(f"profile {kind!r} needs {need} positive dimension(s) (mm), got {dims}")
     if kind == "pipe" and dims[1] >= dims[0]:
         raise ValueError("pipe thickness must be less than its radius")
-    xyz = np.asarray(result.vertices, dtype=float)
-    nrm = np.asarray(result.normals, dtype=float)
-    rods = np.asarray(result.rods, dtype=np.int64).reshape(-1, 2)
-    n_nodes = len(xyz)
+    # Abaqus node k+1 is result.nodes[k] (rod ends only; outline points are not
+    # structural).
+    nodes = np.asarray(result.nodes, dtype=np.int64)
+    number = {int(v): k + 1 for k, v in enumerate(nodes)}
+    xyz_all = np.asarray(result.vertices, dtype=float)
+    nrm_all = np.asarray(result.normals, dtype=float)
+    rods_v = np.asarray(result.rods, dtype=np.int64).reshape(-1, 2)
+    xyz, nrm = xyz_all, nrm_all
+    n_nodes = len(nodes)
     lines = ["*HEADING", "Tessella grid shell: nodes and B31 beams (mm, N, MPa)", "*NODE"]
-    for i, p in enumerate(xyz):
+    for i, p in enumerate(xyz_all[nodes]):
         lines.append(f"{i + 1}, {p[0]!r}, {p[1]!r}, {p[2]!r}")
+    rods = rods_v
     lines.append("*NODE, NSET=ORIENTATION")
     for k, (a, b) in enumerate(rods):
         n = nrm[a] + nrm[b]
@@ -133,7 +140,7 @@ def write_abaqus_inp(result, path, profile=("pipe", 60.0, 4.0), young=210000.0, 
         lines.append(f"{n_nodes + k + 1}, {p[0]!r}, {p[1]!r}, {p[2]!r}")
     lines.append("*ELEMENT, TYPE=B31, ELSET=RODS")
     for k, (a, b) in enumerate(rods):
-        lines.append(f"{k + 1}, {a + 1}, {b + 1}, {n_nodes + k + 1}")
+        lines.append(f"{k + 1}, {number[int(a)]}, {number[int(b)]}, {n_nodes + k + 1}")
     section = {"pipe": "PIPE", "rect": "RECT", "circ": "CIRC"}[kind]
     lines.append(f"*BEAM SECTION, ELSET=RODS, MATERIAL=MAT1, SECTION={section}")
     lines.append(", ".join(repr(v) for v in dims))

@@ -102,14 +102,12 @@ def write_rod_schedule(result, path):
     rods = np.asarray(result.rods, dtype=np.int64).reshape(-1, 2)
     length = _metric(result, "rod_length", len(rods))
     ids = result.rod_ids
-    node_ids = result.node_ids
-    node_of_vertex = {int(v): k for k, v in enumerate(result.nodes)}  # rods end at nodes
+    node_id = result.node_id_by_vertex  # rods end at nodes
     with _open(path) as f:
         w = csv.writer(f)
         w.writerow(ROD_COLUMNS)
         for k, (a, b) in enumerate(rods):
-            w.writerow((ids[k], node_ids[node_of_vertex[int(a)]], node_ids[node_of_vertex[int(b)]],
-                        _num(length[k])))
+            w.writerow((ids[k], node_id[int(a)], node_id[int(b)], _num(length[k])))
     return len(rods)
 
 

@@ -80,6 +80,7 @@ def fake_result():
         panel_ids=[f"P-{i + 1:04d}" for i in range(n)],
         rod_ids=[f"R-{i + 1:04d}" for i in range(e)],
         node_ids=[f"N-{i + 1:04d}" for i in range(len(vertices))],
+        node_id_by_vertex={i: f"N-{i + 1:04d}" for i in range(len(vertices))},
     )
     return r
 
