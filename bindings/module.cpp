@@ -16,6 +16,8 @@
 namespace py = pybind11;
 using namespace tessella;
 
+void bind_agents(py::module_& m);
+
 namespace {
 
 template <int N>
@@ -183,4 +185,6 @@ PYBIND11_MODULE(_core, m) {
         [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
   m.def("nodes_to_brep",
         [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
+
+  bind_agents(m);
 }

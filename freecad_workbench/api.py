@@ -9,6 +9,7 @@
 All lengths are in mm.
 """
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -44,6 +45,37 @@ METHODS = {
         lambda: core.EqualSizeGridParams(),
         lambda surface, p: core.equal_size_grid(surface, p),
     ),
+    # Seed 000 (docs/walking_agent.md): adaptive quads with a hard deviation bound.
+    "walking_agent": MethodSpec(
+        {
+            "max_deviation": float,
+            "max_size": float,
+            "diagonal_deviation": float,
+            "sample_step": float,
+            "start": str,
+            "max_refinements": int,
+        },
+        lambda: core.WalkingAgentParams(),
+        lambda surface, p: core.walking_agent(surface, p),
+    ),
+    # Its rivals from the thesis' comparison (section 5).
+    "gradient_descent": MethodSpec(
+        {"max_deviation": float, "sample_step": float, "max_step": float, "start": str},
+        lambda: core.GradientDescentParams(),
+        lambda surface, p: core.gradient_descent(surface, p),
+    ),
+    "relaxed_grid": MethodSpec(
+        {
+            "u_count": int,
+            "v_count": int,
+            "max_iterations": int,
+            "tolerance": float,
+            "weight": float,
+            "max_panels": int,
+        },
+        lambda: core.RelaxedGridParams(),
+        lambda surface, p: core.relaxed_grid(surface, p),
+    ),
 }
 
 PANEL_ID_FORMAT = "P-{:04d}"
@@ -65,6 +97,9 @@ class PanelizeResult:
     metrics: dict  # name -> numpy array (see METRIC_NAMES)
     irregular: np.ndarray  # (P,) bool
     summary: dict = field(default_factory=dict)
+    #: (F,2) int64 vertex pairs: diagonals along which a method folded a quad
+    #: into two flat triangles (walking_agent's hard bound); see metrics["fold_angle"].
+    folds: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     _mesh: object = field(default=None, repr=False)
 
     @property
@@ -102,6 +137,7 @@ METRIC_NAMES = (
     "panel_max_angle",
     "rod_length",
     "node_valence",
+    "fold_angle",  # one per fold (see PanelizeResult.folds), degrees
 )
 
 
@@ -171,6 +207,32 @@ def _method_params(method, params):
     return p
 
 
+def _fold_angles(vertices, panels, folds):
+    """Fold angle (degrees, 0 = flat) at each fold: the angle between the normals
+    of the two triangles that share the fold diagonal."""
+    if len(folds) == 0:
+        return np.zeros(0)
+    by_edge = {}
+    for k, p in enumerate(panels):
+        if len(p) != 3:
+            continue
+        for a, b in ((p[0], p[1]), (p[1], p[2]), (p[2], p[0])):
+            by_edge.setdefault((min(a, b), max(a, b)), []).append(k)
+    angles = []
+    for a, b in folds:
+        tris = by_edge.get((int(a), int(b)), [])
+        if len(tris) != 2:
+            angles.append(float("nan"))
+            continue
+        n = []
+        for k in tris:
+            p = vertices[list(panels[k])]
+            c = np.cross(p[1] - p[0], p[2] - p[0])
+            n.append(c / np.linalg.norm(c))
+        angles.append(float(np.degrees(np.arccos(np.clip(np.dot(n[0], n[1]), -1.0, 1.0)))))
+    return np.asarray(angles)
+
+
 def panelize(face, method="iso_grid", **params):
     """Panelize one face. See the module docstring and README for parameters.
 
@@ -180,7 +242,13 @@ def panelize(face, method="iso_grid", **params):
     _check_kwargs(method, params)
     brep = face_to_brep(face)
     surface = core.SurfaceFace.from_brep_string(brep)
-    mesh = METHODS[method].run(surface, _method_params(method, params))
+    method_params = _method_params(method, params)
+    core.reset_surface_evaluations(surface)
+    started = time.perf_counter()
+    mesh = METHODS[method].run(surface, method_params)
+    core_seconds = time.perf_counter() - started
+    evaluations = int(core.surface_evaluations(surface))
+    folds = np.asarray(core.mesh_folds(mesh), dtype=np.int64).reshape(-1, 2)
 
     mp = core.MetricsParams()
     if "samples" in params:
@@ -194,7 +262,9 @@ def panelize(face, method="iso_grid", **params):
     irregular = np.asarray(core.irregular_panels(mesh, m, ip), dtype=bool)
     nodes = core.node_data(surface, mesh)
 
+    verts = np.asarray(mesh.xyz)
     metrics = {
+        "fold_angle": _fold_angles(verts, mesh.panels, folds),
         "panel_deviation": np.asarray(m.deviation),
         "panel_planarity": np.asarray(m.planarity),
         "panel_area": np.asarray(m.area),
@@ -213,6 +283,11 @@ def panelize(face, method="iso_grid", **params):
         "nominal_area": float(mesh.nominal_area),
         "face_area": float(surface.area()),
         "model_size": float(surface.model_size()),
+        "fold_count": int(len(folds)),
+        # Cost of the method call alone (no metrics): surface evaluations
+        # (points, derivatives, projection steps) and wall time in seconds.
+        "surface_evaluations": evaluations,
+        "core_seconds": core_seconds,
     }
     for name in ("panel_deviation", "panel_planarity", "panel_area", "rod_length"):
         summary[name] = core.summarize(metrics[name])
@@ -227,5 +302,6 @@ def panelize(face, method="iso_grid", **params):
         metrics=metrics,
         irregular=irregular,
         summary=summary,
+        folds=folds,
         _mesh=mesh,
     )
