@@ -21,6 +21,16 @@ _PARAM_TO_PROPERTY = {
     "max_panels": "MaxPanels",
     "trim_deflection": "TrimDeflection",
     "samples": "Samples",
+    # walking_agent, gradient_descent, relaxed_grid (docs/walking_agent.md)
+    "max_deviation": "DeviationBound",
+    "max_size": "MaxSize",
+    "diagonal_deviation": "DiagonalDeviation",
+    "sample_step": "SampleStep",
+    "start": "Start",
+    "max_refinements": "MaxRefinements",
+    "max_step": "MaxStep",
+    "max_iterations": "MaxIterations",
+    "tolerance": "Tolerance",
 }
 
 _VIEW_STYLE = {

@@ -35,14 +35,12 @@ PanelMesh relaxed_grid(const SurfaceFace& face, const RelaxedGridParams& params,
 
   RelaxedGridReport rep;
   std::vector<Vec3> P(uv.size());
-  std::vector<Vec2> moved(uv.size());
   for (int it = 0; it < params.max_iterations; ++it) {
     for (std::size_t k = 0; k < uv.size(); ++k) P[k] = face.point(uv[k].x(), uv[k].y());
     double largest = 0;
     for (int j = 0; j < nv; ++j) {
       for (int i = 0; i < nu; ++i) {
         const std::size_t k = at(i, j);
-        moved[k] = uv[k];
         const bool u_border = i == 0 || i == nu - 1, v_border = j == 0 || j == nv - 1;
         if (u_border && v_border) continue;  // corners stay
         Vec3 f = Vec3::Zero();
@@ -89,12 +87,14 @@ PanelMesh relaxed_grid(const SurfaceFace& face, const RelaxedGridParams& params,
               dv > 0 ? uv[at(i, j + 1)].y() - uv[k].y() : uv[k].y() - uv[at(i, j - 1)].y();
           dv = std::clamp(dv, -0.3 * std::max(gap, 0.0), 0.3 * std::max(gap, 0.0));
         }
-        moved[k] = {std::clamp(uv[k].x() + du, b.u_min, b.u_max),
-                    std::clamp(uv[k].y() + dv, b.v_min, b.v_max)};
+        // Gauss-Seidel: the move is seen by the next nodes at once (a Jacobi
+        // update lets neighbours overshoot together into a zig-zag).
+        uv[k] = {std::clamp(uv[k].x() + du, b.u_min, b.u_max),
+                 std::clamp(uv[k].y() + dv, b.v_min, b.v_max)};
+        P[k] = face.point(uv[k].x(), uv[k].y());
         largest = std::max({largest, std::abs(du) / su, std::abs(dv) / sv});
       }
     }
-    uv.swap(moved);
     rep.iterations = it + 1;
     rep.last_move = largest;
     if (largest <= params.tolerance) {

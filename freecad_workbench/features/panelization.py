@@ -28,6 +28,27 @@ import FreeCAD
 #: Version of the properties layout; onDocumentRestored upgrades older documents.
 SCHEMA_VERSION = 1
 
+#: Methods of seed 000 and where the agents may start.
+AGENT_METHODS = ("walking_agent", "gradient_descent", "relaxed_grid")
+AGENT_STARTS = ("u_min_v_min", "u_max_v_min", "u_min_v_max", "u_max_v_max", "max_curvature")
+
+#: Which method uses which parameter property (others are hidden in the editor).
+_GRIDS = ("iso_grid", "equal_size_grid")
+METHOD_PROPERTIES = {
+    "Size": _GRIDS,
+    "UCount": ("iso_grid", "relaxed_grid"),
+    "VCount": ("iso_grid", "relaxed_grid"),
+    "DeviationBound": ("walking_agent", "gradient_descent"),
+    "MaxSize": ("walking_agent",),
+    "DiagonalDeviation": ("walking_agent",),
+    "SampleStep": ("walking_agent", "gradient_descent"),
+    "Start": ("walking_agent", "gradient_descent"),
+    "MaxRefinements": ("walking_agent",),
+    "MaxStep": ("gradient_descent",),
+    "MaxIterations": ("relaxed_grid",),
+    "Tolerance": ("relaxed_grid",),
+}
+
 #: Roles of the children, in tree order.
 ROLES = ("Panels", "Rods", "Nodes")
 
@@ -158,6 +179,7 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyEnumeration", "Method", "Panelization",
                      "iso_grid: uniform in (u,v); equal_size_grid: lines spaced by arc length",
                      default="iso_grid", enum=list(api.METHODS))
+        _extend_method_enum(obj, list(api.METHODS))
         add_property(obj, "App::PropertyLength", "Size", "Panelization",
                      "Target panel edge length (equal_size_grid; iso_grid when "
                      "UCount and VCount are 0)", default=0.0)
@@ -176,6 +198,7 @@ class Panelization(_StateMixin):
                      default=d["min_angle"])
         add_property(obj, "App::PropertyInteger", "MaxPanels", "Panelization",
                      "Refuse to build more panels than this", default=d["max_panels"])
+        self._setup_agent_properties(obj)
         add_property(obj, "App::PropertyLength", "TrimDeflection", "Advanced",
                      "Chord deflection of the trim polylines (0 = automatic)", default=0.0)
         add_property(obj, "App::PropertyInteger", "Samples", "Advanced",
@@ -192,17 +215,53 @@ class Panelization(_StateMixin):
             ("MaxDeviation", "App::PropertyLength", "Largest panel-to-surface distance"),
             ("MeanDeviation", "App::PropertyLength", "Mean of the per-panel deviations"),
             ("QuadShare", "App::PropertyFloat", "Fraction of panels that are quads (0..1)"),
+            ("Folds", "App::PropertyInteger",
+             "Quads folded into two flat triangles to hold the deviation bound"),
         ):
             add_property(obj, type_name, name, "Summary", doc, attr=ro)
         self._update_editor_modes(obj)
 
+    def _setup_agent_properties(self, obj):
+        """Parameters of walking_agent, gradient_descent and relaxed_grid
+        (docs/walking_agent.md); added when missing, so older documents upgrade."""
+        from .. import core
+
+        wa = core.WalkingAgentParams()
+        gd = core.GradientDescentParams()
+        rg = core.RelaxedGridParams()
+        add_property(obj, "App::PropertyLength", "DeviationBound", "Agents",
+                     "walking_agent: no panel deviates more than this from the surface; "
+                     "gradient_descent: the target deviation", default=0.0)
+        add_property(obj, "App::PropertyLength", "MaxSize", "Agents",
+                     "walking_agent: longest panel edge (0 = no limit)", default=0.0)
+        add_property(obj, "App::PropertyLength", "DiagonalDeviation", "Agents",
+                     "walking_agent: bound of the diagonal walkers (0 = DeviationBound)",
+                     default=0.0)
+        add_property(obj, "App::PropertyFloat", "SampleStep", "Agents",
+                     "Agents' sample step as a fraction of the parameter span (0.05 = thesis)",
+                     default=float(wa.sample_step))
+        add_property(obj, "App::PropertyEnumeration", "Start", "Agents",
+                     "Where the agents start: a corner of the (u,v) domain or the point "
+                     "of largest curvature", default=wa.start, enum=list(AGENT_STARTS))
+        add_property(obj, "App::PropertyInteger", "MaxRefinements", "Agents",
+                     "walking_agent: rounds of the hard-bound refinement",
+                     default=int(wa.max_refinements))
+        add_property(obj, "App::PropertyFloat", "MaxStep", "Agents",
+                     "gradient_descent: longest step, fraction of the parameter span",
+                     default=float(gd.max_step))
+        add_property(obj, "App::PropertyInteger", "MaxIterations", "Agents",
+                     "relaxed_grid: iteration limit (UCount x VCount panels)",
+                     default=int(rg.max_iterations))
+        add_property(obj, "App::PropertyFloat", "Tolerance", "Agents",
+                     "relaxed_grid: stop when no node moves more than this fraction "
+                     "of the parameter span", default=float(rg.tolerance))
+
     def _update_editor_modes(self, obj):
         if "Method" not in obj.PropertiesList:
             return
-        hide = 0 if obj.Method == "iso_grid" else 2
-        for name in ("UCount", "VCount"):
+        for name, methods in METHOD_PROPERTIES.items():
             if name in obj.PropertiesList:
-                obj.setEditorMode(name, hide)
+                obj.setEditorMode(name, 0 if obj.Method in methods else 2)
 
     def onChanged(self, obj, prop):
         if prop == "Method":
@@ -233,6 +292,8 @@ class Panelization(_StateMixin):
     def parameters(self, obj):
         """(method, keyword parameters for api.panelize) from the properties."""
         method = obj.Method
+        if method in AGENT_METHODS:
+            return method, self._agent_parameters(obj, method)
         if method == "iso_grid" and (obj.UCount or obj.VCount):
             # Counts replace the size (the core takes one or the other).
             params = {"u_count": int(obj.UCount), "v_count": int(obj.VCount)}
@@ -246,6 +307,35 @@ class Panelization(_StateMixin):
         if obj.Samples:
             params["samples"] = int(obj.Samples)
         return method, params
+
+    def _agent_parameters(self, obj, method):
+        if method == "relaxed_grid":
+            params = {
+                "u_count": int(obj.UCount),
+                "v_count": int(obj.VCount),
+                "max_iterations": int(obj.MaxIterations),
+                "tolerance": float(obj.Tolerance),
+            }
+        else:
+            params = {
+                "max_deviation": value_of(obj.DeviationBound),
+                "sample_step": float(obj.SampleStep),
+                "start": str(obj.Start),
+            }
+            if method == "walking_agent":
+                params["max_size"] = value_of(obj.MaxSize)
+                params["diagonal_deviation"] = value_of(obj.DiagonalDeviation)
+                params["max_refinements"] = int(obj.MaxRefinements)
+            else:
+                params["max_step"] = float(obj.MaxStep)
+            params["sliver_fraction"] = float(obj.SliverFraction)
+            if value_of(obj.TrimDeflection) > 0:
+                params["trim_deflection"] = value_of(obj.TrimDeflection)
+        params["min_angle"] = value_of(obj.MinAngle)
+        params["max_panels"] = int(obj.MaxPanels)
+        if obj.Samples:
+            params["samples"] = int(obj.Samples)
+        return params
 
     def _signature(self, obj):
         api = _api()
@@ -314,6 +404,8 @@ class Panelization(_StateMixin):
         obj.MaxDeviation = float(dev.max()) if dev is not None and len(dev) else 0.0
         obj.MeanDeviation = float(dev.mean()) if dev is not None and len(dev) else 0.0
         obj.QuadShare = float(s.get("quad_share", 0.0))
+        if "Folds" in obj.PropertiesList:
+            obj.Folds = int(s.get("fold_count", 0))
 
 
 class PanelizationPart(_StateMixin):
@@ -374,6 +466,20 @@ class PanelizationPart(_StateMixin):
         elif role == "Nodes":
             obj.NodeIds = list(res.node_ids)
             obj.Valence = [int(x) for x in res.metrics["node_valence"]]
+
+
+def _extend_method_enum(obj, methods):
+    """A document saved before a method existed lists fewer methods: extend the
+    enumeration, keeping the chosen one."""
+    try:
+        current = list(obj.getEnumerationsOfProperty("Method"))
+    except Exception:  # pragma: no cover - older FreeCAD without the call
+        return
+    if current != list(methods):
+        chosen = obj.Method
+        obj.Method = list(methods)
+        if chosen in methods:
+            obj.Method = chosen
 
 
 def _attach_view_provider(obj, class_name):
