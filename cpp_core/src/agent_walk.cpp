@@ -7,6 +7,28 @@
 
 namespace tessella::agents {
 
+double path_deviation(const SurfaceFace& face, const Vec2& qa, const Vec2& qb, const Vec3& pa,
+                      const Vec3& pb) {
+  const Vec3 chord = pb - pa;
+  const double length = chord.norm();
+  const Vec3 c = 0.5 * (pa + pb);
+  const Vec2 qm = 0.5 * (qa + qb);
+  const Vec3 pm = face.point(qm.x(), qm.y());
+  if (length <= 0) return (pm - c).norm();
+  const Vec3 d = chord / length;
+  // Position along the chord, 0 at the middle, per unit of path parameter
+  // t in [-1/2, 1/2]: on average `length`.
+  const double t = std::clamp(-(pm - c).dot(d) / length, -0.25, 0.25);
+  const Vec2 q = qm + t * (qb - qa);
+  const Vec3 p = face.point(q.x(), q.y());
+  // Both are surface points near the middle: the one closer to the normal
+  // plane through c gives the sagitta (never report less than the plane
+  // distance allows).
+  const double off_m = std::abs((pm - c).dot(d)), off_p = std::abs((p - c).dot(d));
+  const Vec3& best = off_p < off_m ? p : pm;
+  return (best - c - (best - c).dot(d) * d).norm();
+}
+
 TrimTest::TrimTest(const SurfaceFace& face)
     : loops_(face.trim_loops(1e-3 * face.model_size())), bounds_(face.bounds()) {}
 
@@ -67,8 +89,9 @@ RowAgents::Probe RowAgents::probe(double a, double b) {
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     if (!row_inside(r, a) && !row_inside(r, m) && !row_inside(r, b)) continue;
     const Vec3 pb = eval(r, b);
-    const Vec3 pm = eval(r, m);
-    p.deviation = std::max(p.deviation, chord_deviation(origin_points_[r], pb, pm));
+    const Vec2 qa = dir_ == 0 ? Vec2(a, rows_[r]) : Vec2(rows_[r], a);
+    const Vec2 qb = dir_ == 0 ? Vec2(b, rows_[r]) : Vec2(rows_[r], b);
+    p.deviation = std::max(p.deviation, path_deviation(face_, qa, qb, origin_points_[r], pb));
     p.length = std::max(p.length, (pb - origin_points_[r]).norm());
   }
   return p;

@@ -17,6 +17,16 @@ inline double chord_deviation(const Vec3& a, const Vec3& b, const Vec3& mid) {
   return (0.5 * (a + b) - mid).norm();
 }
 
+// The same for the straight (u,v) path from qa to qb (surface points pa, pb),
+// with "halfway along the path" taken in length: the thesis' agents used the
+// parameter midpoint, which on an uneven parameterization lies off the middle
+// of the path and adds a tangential offset to the deviation (measured: the
+// agents then stop at a quarter of the bound). One secant step moves the
+// parameter midpoint onto the plane through the chord midpoint normal to the
+// chord, where the distance is the sagitta. Two surface evaluations.
+double path_deviation(const SurfaceFace& face, const Vec2& qa, const Vec2& qb, const Vec3& pa,
+                      const Vec3& pb);
+
 // Even-odd inside test against the trim polylines (cheap; exact enough to
 // decide which agents see the face).
 class TrimTest {

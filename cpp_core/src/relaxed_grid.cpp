@@ -51,8 +51,7 @@ PanelMesh relaxed_grid(const SurfaceFace& face, const RelaxedGridParams& params,
           const int ii = i + di[n], jj = j + dj[n];
           if (ii < 0 || ii >= nu || jj < 0 || jj >= nv) continue;
           const std::size_t m = at(ii, jj);
-          const Vec2 mid = 0.5 * (uv[k] + uv[m]);
-          const double e = agents::chord_deviation(P[k], P[m], face.point(mid.x(), mid.y()));
+          const double e = agents::path_deviation(face, uv[k], uv[m], P[k], P[m]);
           const Vec3 rod = P[m] - P[k];
           const double l = rod.norm();
           if (l <= 0) continue;

@@ -119,9 +119,10 @@ int diagonal_walkers(const SurfaceFace& face, const TrimTest& trim, Lines& lines
         const Vec3& p10 = P[j * nu + i + 1];
         const Vec3& p01 = P[(j + 1) * nu + i];
         const Vec3& p11 = P[(j + 1) * nu + i + 1];
-        const Vec3 c = face.point(um, vm);
-        const double d =
-            std::max(agents::chord_deviation(p00, p11, c), agents::chord_deviation(p10, p01, c));
+        const Vec2 q00(lines.u[i], lines.v[j]), q11(lines.u[i + 1], lines.v[j + 1]);
+        const Vec2 q10(lines.u[i + 1], lines.v[j]), q01(lines.u[i], lines.v[j + 1]);
+        const double d = std::max(agents::path_deviation(face, q00, q11, p00, p11),
+                                  agents::path_deviation(face, q10, q01, p10, p01));
         if (d <= bound) continue;
         const double lu = 0.5 * ((p10 - p00).norm() + (p11 - p01).norm());
         const double lv = 0.5 * ((p01 - p00).norm() + (p11 - p10).norm());
@@ -140,7 +141,16 @@ int diagonal_walkers(const SurfaceFace& face, const TrimTest& trim, Lines& lines
 // Largest distance between the panel model and the surface point at the same
 // (u,v), over a sample grid: an upper bound of the distance to the surface at
 // those samples.
-double flat_triangle_estimate(const SurfaceFace& face, const Vec3* p, const Vec2* q) {
+// Distance from a model point x (at model parameter uv) to the surface:
+// estimate = to the surface point at the same (u,v) (an upper bound), exact =
+// to the closest surface point (Newton projection from uv).
+double gap(const SurfaceFace& face, const Vec3& x, const Vec2& uv, bool exact) {
+  if (exact) return face.project(x, uv).distance;
+  return (face.point(uv.x(), uv.y()) - x).norm();
+}
+
+double flat_triangle_estimate(const SurfaceFace& face, const Vec3* p, const Vec2* q,
+                              bool exact = false) {
   double worst = 0;
   const int n = kPanelSamples;
   for (int i = 0; i <= n; ++i) {
@@ -149,14 +159,14 @@ double flat_triangle_estimate(const SurfaceFace& face, const Vec3* p, const Vec2
       const double s = double(i) / n, r = double(j) / n, t = 1 - s - r;
       const Vec2 uv = t * q[0] + s * q[1] + r * q[2];
       const Vec3 x = t * p[0] + s * p[1] + r * p[2];
-      worst = std::max(worst, (face.point(uv.x(), uv.y()) - x).norm());
+      worst = std::max(worst, gap(face, x, uv, exact));
     }
   }
   return worst;
 }
 
 double bilinear_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
-                         const std::vector<Vec2>& q) {
+                         const std::vector<Vec2>& q, bool exact = false) {
   double worst = 0;
   const int n = kPanelSamples;
   for (int i = 0; i <= n; ++i) {
@@ -166,32 +176,34 @@ double bilinear_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
       const double w0 = (1 - s) * (1 - t), w1 = s * (1 - t), w2 = s * t, w3 = (1 - s) * t;
       const Vec2 uv = w0 * q[0] + w1 * q[1] + w2 * q[2] + w3 * q[3];
       const Vec3 x = w0 * p[0] + w1 * p[1] + w2 * p[2] + w3 * p[3];
-      worst = std::max(worst, (face.point(uv.x(), uv.y()) - x).norm());
+      worst = std::max(worst, gap(face, x, uv, exact));
     }
   }
   return worst;
 }
 
 double polygon_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
-                        const std::vector<Vec2>& q) {
-  if (p.size() == 4) return bilinear_estimate(face, p, q);
+                        const std::vector<Vec2>& q, bool exact = false) {
+  if (p.size() == 4) return bilinear_estimate(face, p, q, exact);
   double worst = 0;
   for (const auto& t : triangulate_polygon(q)) {
     const Vec3 tp[3] = {p[t[0]], p[t[1]], p[t[2]]};
     const Vec2 tq[3] = {q[t[0]], q[t[1]], q[t[2]]};
-    worst = std::max(worst, flat_triangle_estimate(face, tp, tq));
+    worst = std::max(worst, flat_triangle_estimate(face, tp, tq, exact));
   }
   return worst;
 }
 
 // Folding a quad along diagonal 0-2 (k = 0) or 1-3 (k = 1): the larger estimate
 // of its two triangles.
-double fold_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
-                     const std::vector<Vec2>& q, int k) {
+// Folding is measured exactly (projection), like the panels that need it.
+double fold_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
+                      const std::vector<Vec2>& q, int k) {
   const int a = k, b = k + 1, c = k + 2, d = (k + 3) % 4;
   const Vec3 t1[3] = {p[a], p[b], p[c]}, t2[3] = {p[a], p[c], p[d]};
   const Vec2 s1[3] = {q[a], q[b], q[c]}, s2[3] = {q[a], q[c], q[d]};
-  return std::max(flat_triangle_estimate(face, t1, s1), flat_triangle_estimate(face, t2, s2));
+  return std::max(flat_triangle_estimate(face, t1, s1, true),
+                  flat_triangle_estimate(face, t2, s2, true));
 }
 
 // Which way to split a panel spanning [u0,u1] x [v0,v1]: along the direction
@@ -206,10 +218,10 @@ int split_panel(const SurfaceFace& face, Lines& lines, const std::vector<Vec2>& 
   double du = 0, dv = 0;
   for (double t : {0.0, 0.5, 1.0}) {
     const double v = v0 + t * (v1 - v0), u = u0 + t * (u1 - u0);
-    du = std::max(du,
-                  agents::chord_deviation(face.point(u0, v), face.point(u1, v), face.point(um, v)));
-    dv = std::max(dv,
-                  agents::chord_deviation(face.point(u, v0), face.point(u, v1), face.point(u, vm)));
+    du = std::max(
+        du, agents::path_deviation(face, {u0, v}, {u1, v}, face.point(u0, v), face.point(u1, v)));
+    dv = std::max(
+        dv, agents::path_deviation(face, {u, v0}, {u, v1}, face.point(u, v0), face.point(u, v1)));
   }
   int added = 0;
   if (std::max(du, dv) < 0.25 * bound) {
@@ -261,7 +273,11 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
 
   const double bound = params.max_deviation;
   const double max_size = params.max_size > 0 ? params.max_size : 1e300;
-  const double diagonal = params.diagonal_deviation > 0 ? params.diagonal_deviation : bound;
+  // Default 2 x max_deviation: where both principal curvatures are equal the
+  // diagonal's sagitta is the sum of its two edges' sagittas, so a quad whose
+  // edges are at the bound has a diagonal at twice the bound without bending
+  // more than its edges show. Whole panels are checked by the hard bound below.
+  const double diagonal = params.diagonal_deviation > 0 ? params.diagonal_deviation : 2 * bound;
   const TrimTest trim(face);
 
   // 1. The edge agents (and their twins on every sample row) place the lines.
@@ -287,13 +303,17 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
       const std::vector<Vec2> q = panel_corner_uv(mesh, p);
       std::vector<Vec3> x;
       for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
-      const double e = polygon_estimate(face, x, q);
+      double e = polygon_estimate(face, x, q);
+      // The estimate (surface point at the same (u,v)) is an upper bound; it
+      // adds a tangential offset where the parameterization is uneven. Over
+      // the limit, measure exactly: distance to the closest surface point.
+      if (e > limit) e = polygon_estimate(face, x, q, true);
       if (e <= limit) {
         worst_kept = std::max(worst_kept, e);
         continue;
       }
       if (x.size() == 4) {
-        const double f0 = fold_estimate(face, x, q, 0), f1 = fold_estimate(face, x, q, 1);
+        const double f0 = fold_deviation(face, x, q, 0), f1 = fold_deviation(face, x, q, 1);
         const int k = f0 <= f1 ? 0 : 1;
         if (std::min(f0, f1) <= limit) {
           folds.push_back({p, k});

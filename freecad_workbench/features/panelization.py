@@ -235,7 +235,7 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyLength", "MaxSize", "Agents",
                      "walking_agent: longest panel edge (0 = no limit)", default=0.0)
         add_property(obj, "App::PropertyLength", "DiagonalDeviation", "Agents",
-                     "walking_agent: bound of the diagonal walkers (0 = DeviationBound)",
+                     "walking_agent: bound of the diagonal walkers (0 = 2 x DeviationBound)",
                      default=0.0)
         add_property(obj, "App::PropertyFloat", "SampleStep", "Agents",
                      "Agents' sample step as a fraction of the parameter span (0.05 = thesis)",

@@ -46,7 +46,7 @@ bool is_valid_agent_start(const std::string& start);
 struct WalkingAgentParams {
   double max_deviation = 0.0;       // mm, required: chord / panel deviation bound
   double max_size = 0.0;            // mm, longest panel edge (chord); 0 = no limit
-  double diagonal_deviation = 0.0;  // mm, bound of the diagonal walkers; 0 = max_deviation
+  double diagonal_deviation = 0.0;  // mm, bound of the diagonal walkers; 0 = 2 x max_deviation
   double sample_step = 0.05;        // fraction of the parameter span (thesis: 0.05)
   std::string start = "u_min_v_min";
   // Rounds of the hard-bound refinement before giving up with an error.
