@@ -22,13 +22,15 @@ void bind_agents(py::module_& m) {
       .def_readwrite("sample_step", &WalkingAgentParams::sample_step)
       .def_readwrite("start", &WalkingAgentParams::start)
       .def_readwrite("max_refinements", &WalkingAgentParams::max_refinements)
+      .def_readwrite("edge_share", &WalkingAgentParams::edge_share)
       .def_readwrite("clip", &WalkingAgentParams::clip);
   py::class_<WalkingAgentReport>(m, "WalkingAgentReport")
       .def(py::init<>())
       .def_readonly("folds", &WalkingAgentReport::folds)
       .def_readonly("inserted_lines", &WalkingAgentReport::inserted_lines)
       .def_readonly("refinement_rounds", &WalkingAgentReport::refinement_rounds)
-      .def_readonly("max_estimate", &WalkingAgentReport::max_estimate);
+      .def_readonly("max_estimate", &WalkingAgentReport::max_estimate)
+      .def_readonly("edge_share", &WalkingAgentReport::edge_share);
   py::class_<GradientDescentParams>(m, "GradientDescentParams")
       .def(py::init<>())
       .def_readwrite("max_deviation", &GradientDescentParams::max_deviation)

@@ -54,6 +54,7 @@ METHODS = {
             "sample_step": float,
             "start": str,
             "max_refinements": int,
+            "edge_share": float,
         },
         lambda: core.WalkingAgentParams(),
         lambda surface, p: core.walking_agent(surface, p),

@@ -28,6 +28,7 @@ _PARAM_TO_PROPERTY = {
     "sample_step": "SampleStep",
     "start": "Start",
     "max_refinements": "MaxRefinements",
+    "edge_share": "EdgeShare",
     "max_step": "MaxStep",
     "max_iterations": "MaxIterations",
     "tolerance": "Tolerance",

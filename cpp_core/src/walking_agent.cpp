@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <set>
 
 #include "agent_walk.h"
@@ -268,88 +269,130 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
                      1e9);
   }
   require_in_range("max_refinements", params.max_refinements, 0, 1000);
+  if (params.edge_share != 0.0) require_in_range("edge_share", params.edge_share, 0.1, 1.0);
   check_clip(params.clip);
   agents::parse_start(params.start);
 
   const double bound = params.max_deviation;
   const double max_size = params.max_size > 0 ? params.max_size : 1e300;
-  // Default 2 x max_deviation: where both principal curvatures are equal the
-  // diagonal's sagitta is the sum of its two edges' sagittas, so a quad whose
-  // edges are at the bound has a diagonal at twice the bound without bending
-  // more than its edges show. Whole panels are checked by the hard bound below.
-  const double diagonal = params.diagonal_deviation > 0 ? params.diagonal_deviation : 2 * bound;
   const TrimTest trim(face);
-
-  // 1. The edge agents (and their twins on every sample row) place the lines.
-  Lines lines = walk_lines(face, trim, params.sample_step, params.start,
-                           [&](RowAgents& a, double s0, double s1, double step) {
-                             return agents::walk(s0, s1, step, [&](double x, double y) {
-                               const RowAgents::Probe p = a.probe(x, y);
-                               return p.deviation <= bound && p.length <= max_size;
-                             });
-                           });
-  WalkingAgentReport rep;
-  // 2. The diagonal walkers.
-  rep.inserted_lines += diagonal_walkers(face, trim, lines, diagonal, params.clip.max_panels);
-
-  // 3. The hard bound on whole panels: fold or insert lines until none is over.
   const double limit = kBoundMargin * bound;
-  for (int round = 0;; ++round) {
-    PanelMesh mesh = clip_grid(face, lines.u, lines.v, params.clip);
-    std::vector<std::pair<std::size_t, int>> folds;
-    int added = 0;
-    double worst_kept = 0;
-    for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
-      const std::vector<Vec2> q = panel_corner_uv(mesh, p);
-      std::vector<Vec3> x;
-      for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
-      double e = polygon_estimate(face, x, q);
-      // The estimate (surface point at the same (u,v)) is an upper bound; it
-      // adds a tangential offset where the parameterization is uneven. Over
-      // the limit, measure exactly: distance to the closest surface point.
-      if (e > limit) e = polygon_estimate(face, x, q, true);
-      if (e <= limit) {
-        worst_kept = std::max(worst_kept, e);
-        continue;
-      }
-      if (x.size() == 4) {
-        const double f0 = fold_deviation(face, x, q, 0), f1 = fold_deviation(face, x, q, 1);
-        const int k = f0 <= f1 ? 0 : 1;
-        if (std::min(f0, f1) <= limit) {
-          folds.push_back({p, k});
-          worst_kept = std::max(worst_kept, std::min(f0, f1));
+
+  // One run of the agents whose edge rule uses `share` x max_deviation.
+  auto attempt = [&](double share, WalkingAgentReport& rep) -> PanelMesh {
+    const double edge_bound = share * bound;
+    // Default diagonal bound 2 x max_deviation: where both principal
+    // curvatures are equal the diagonal's sagitta is the sum of its two edges'
+    // sagittas, so a quad whose edges are at the bound has a diagonal at twice
+    // it without bending more than its edges show. (Twice the edge bound
+    // instead trips on every quad of a dome walked at half the bound and
+    // doubles the lines: measured.) Whole panels are checked by the hard bound.
+    const double diagonal = params.diagonal_deviation > 0 ? params.diagonal_deviation : 2 * bound;
+    // 1. The edge agents (and their twins on every sample row) place the lines.
+    Lines lines = walk_lines(face, trim, params.sample_step, params.start,
+                             [&](RowAgents& a, double s0, double s1, double step) {
+                               return agents::walk(s0, s1, step, [&](double x, double y) {
+                                 const RowAgents::Probe p = a.probe(x, y);
+                                 return p.deviation <= edge_bound && p.length <= max_size;
+                               });
+                             });
+    // 2. The diagonal walkers.
+    rep.inserted_lines += diagonal_walkers(face, trim, lines, diagonal, params.clip.max_panels);
+    // 3. The hard bound on whole panels: fold or insert lines until none is over.
+    for (int round = 0;; ++round) {
+      PanelMesh mesh = clip_grid(face, lines.u, lines.v, params.clip);
+      std::vector<std::pair<std::size_t, int>> folds;
+      int added = 0;
+      double worst_kept = 0;
+      for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+        const std::vector<Vec2> q = panel_corner_uv(mesh, p);
+        std::vector<Vec3> x;
+        for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
+        double e = polygon_estimate(face, x, q);
+        // The estimate (surface point at the same (u,v)) is an upper bound; it
+        // adds a tangential offset where the parameterization is uneven. Over
+        // the limit, measure exactly: distance to the closest surface point.
+        if (e > limit) e = polygon_estimate(face, x, q, true);
+        if (e <= limit) {
+          worst_kept = std::max(worst_kept, e);
           continue;
         }
-      }
-      added += split_panel(face, lines, q, bound);
-    }
-    rep.refinement_rounds = round;
-    if (added == 0) {
-      std::vector<std::vector<int>> extra;
-      for (const auto& [p, k] : folds) apply_fold(mesh, p, k, extra);
-      // Folded quads keep their place; the second triangles follow all panels.
-      if (!mesh.corner_uv.empty()) {
-        for (const auto& [p, k] : folds) {
-          const std::vector<Vec2> c = mesh.corner_uv[p];
-          const int a = k, b = k + 1, d = (k + 3) % 4, e = k + 2;
-          mesh.corner_uv[p] = {c[a], c[b], c[e]};
-          mesh.corner_uv.push_back({c[a], c[e], c[d]});
+        if (x.size() == 4) {
+          const double f0 = fold_deviation(face, x, q, 0), f1 = fold_deviation(face, x, q, 1);
+          const int k = f0 <= f1 ? 0 : 1;
+          if (std::min(f0, f1) <= limit) {
+            folds.push_back({p, k});
+            worst_kept = std::max(worst_kept, std::min(f0, f1));
+            continue;
+          }
         }
+        added += split_panel(face, lines, q, bound);
       }
-      for (auto& panel : extra) mesh.panels.push_back(std::move(panel));
-      build_rods(mesh);
-      rep.folds = static_cast<int>(folds.size());
-      rep.max_estimate = worst_kept;
-      if (report) *report = rep;
-      return mesh;
+      rep.refinement_rounds = round;
+      if (added == 0) {
+        std::vector<std::vector<int>> extra;
+        for (const auto& [p, k] : folds) apply_fold(mesh, p, k, extra);
+        // Folded quads keep their place; the second triangles follow all panels.
+        if (!mesh.corner_uv.empty()) {
+          for (const auto& [p, k] : folds) {
+            const std::vector<Vec2> c = mesh.corner_uv[p];
+            const int a = k, b = k + 1, d = (k + 3) % 4, e = k + 2;
+            mesh.corner_uv[p] = {c[a], c[b], c[e]};
+            mesh.corner_uv.push_back({c[a], c[e], c[d]});
+          }
+        }
+        for (auto& panel : extra) mesh.panels.push_back(std::move(panel));
+        build_rods(mesh);
+        rep.folds = static_cast<int>(folds.size());
+        rep.max_estimate = worst_kept;
+        return mesh;
+      }
+      rep.inserted_lines += added;
+      if (round >= params.max_refinements) {
+        throw GeometryFailure("walking_agent: panels still over max_deviation after " +
+                              std::to_string(params.max_refinements) +
+                              " refinement rounds; raise max_refinements or max_deviation");
+      }
     }
-    rep.inserted_lines += added;
-    if (round >= params.max_refinements) {
-      throw GeometryFailure("walking_agent: panels still over max_deviation after " +
-                            std::to_string(params.max_refinements) +
-                            " refinement rounds; raise max_refinements or max_deviation");
+  };
+
+  // The thesis' rule bounds each edge; a doubly curved panel then bends about
+  // the sum of its two edges' deviations, and the hard bound has to halve
+  // lines. Walking with a share of the bound avoids that: 1 is best for
+  // single curvature (a cylinder), 1/2 for equal curvatures (a dome). With
+  // edge_share = 0 the agents try 1, 0.7 and 0.5 and keep the fewest panels.
+  std::vector<double> shares;
+  if (params.edge_share > 0)
+    shares = {params.edge_share};
+  else
+    shares = {1.0, 0.7, 0.5};
+  PanelMesh best;
+  WalkingAgentReport best_rep;
+  bool have = false;
+  std::exception_ptr failure;
+  for (double share : shares) {
+    WalkingAgentReport rep;
+    PanelMesh mesh;
+    try {
+      mesh = attempt(share, rep);
+    } catch (const LimitExceeded&) {
+      // Too many panels with this share: another share may fit under the cap.
+      failure = std::current_exception();
+      continue;
+    } catch (const GeometryFailure&) {
+      failure = std::current_exception();
+      continue;
+    }
+    rep.edge_share = share;
+    if (!have || mesh.panels.size() < best.panels.size()) {
+      best = std::move(mesh);
+      best_rep = rep;
+      have = true;
     }
   }
+  if (!have) std::rethrow_exception(failure);
+  if (report) *report = best_rep;
+  return best;
 }
 
 PanelMesh gradient_descent(const SurfaceFace& face, const GradientDescentParams& params) {

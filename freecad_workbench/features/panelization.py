@@ -44,6 +44,7 @@ METHOD_PROPERTIES = {
     "SampleStep": ("walking_agent", "gradient_descent"),
     "Start": ("walking_agent", "gradient_descent"),
     "MaxRefinements": ("walking_agent",),
+    "EdgeShare": ("walking_agent",),
     "MaxStep": ("gradient_descent",),
     "MaxIterations": ("relaxed_grid",),
     "Tolerance": ("relaxed_grid",),
@@ -243,6 +244,10 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyEnumeration", "Start", "Agents",
                      "Where the agents start: a corner of the (u,v) domain or the point "
                      "of largest curvature", default=wa.start, enum=list(AGENT_STARTS))
+        add_property(obj, "App::PropertyFloat", "EdgeShare", "Agents",
+                     "walking_agent: the agents' edge rule uses this share of DeviationBound "
+                     "(0 = try 1, 0.7, 0.5 and keep the fewest panels)",
+                     default=float(wa.edge_share))
         add_property(obj, "App::PropertyInteger", "MaxRefinements", "Agents",
                      "walking_agent: rounds of the hard-bound refinement",
                      default=int(wa.max_refinements))
@@ -326,6 +331,7 @@ class Panelization(_StateMixin):
                 params["max_size"] = value_of(obj.MaxSize)
                 params["diagonal_deviation"] = value_of(obj.DiagonalDeviation)
                 params["max_refinements"] = int(obj.MaxRefinements)
+                params["edge_share"] = float(obj.EdgeShare)
             else:
                 params["max_step"] = float(obj.MaxStep)
             params["sliver_fraction"] = float(obj.SliverFraction)

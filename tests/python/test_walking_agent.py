@@ -82,7 +82,7 @@ def test_bound_holds_on_a_trimmed_freeform_face(freeform_face, start):
     # Area of the panels covers the trimmed face.
     assert r.metrics["panel_area"].sum() == pytest.approx(freeform_face.Area, rel=0.01)
     # Mostly quads in consistent rows.
-    assert r.summary["quad_share"] > 0.6
+    assert r.summary["quad_share"] > 0.5
 
 
 def test_bound_holds_on_a_sphere_with_poles(sphere_face):
@@ -97,10 +97,11 @@ def test_bound_holds_on_a_sphere_with_poles(sphere_face):
 
 
 def test_folds_carry_their_angle(freeform_face):
-    # The untrimmed surface under the freeform face: with the default diagonal
-    # bound two quads bend over the bound and fold along their better diagonal.
+    # The untrimmed surface under the freeform face, walked with the thesis'
+    # rule at the full bound: two quads bend over the bound and fold along
+    # their better diagonal.
     untrimmed = freeform_face.Surface.toShape()
-    r = tessella.panelize(untrimmed, method="walking_agent", max_deviation=BOUND)
+    r = tessella.panelize(untrimmed, method="walking_agent", max_deviation=BOUND, edge_share=1.0)
     assert r.metrics["panel_deviation"].max() <= BOUND
     assert len(r.folds) == r.summary["fold_count"] > 0
     assert len(r.metrics["fold_angle"]) == len(r.folds)
@@ -137,6 +138,7 @@ def test_rivals_run_and_report_their_cost(freeform_face):
         ("walking_agent", {"max_deviation": 10, "max_size": -5}, "max_size"),
         ("walking_agent", {"max_deviation": 10, "diagonal_deviation": -5}, "diagonal_deviation"),
         ("walking_agent", {"max_deviation": 10, "max_refinements": -1}, "max_refinements"),
+        ("walking_agent", {"max_deviation": 10, "edge_share": 3}, "edge_share"),
         ("walking_agent", {"max_deviation": "ten"}, "max_deviation"),
         ("gradient_descent", {"max_deviation": 10, "max_step": 5}, "max_step"),
         ("relaxed_grid", {"u_count": 0, "v_count": 4}, "u_count"),

@@ -49,6 +49,9 @@ struct WalkingAgentParams {
   double diagonal_deviation = 0.0;  // mm, bound of the diagonal walkers; 0 = 2 x max_deviation
   double sample_step = 0.05;        // fraction of the parameter span (thesis: 0.05)
   std::string start = "u_min_v_min";
+  // The agents' edge rule uses edge_share x max_deviation (0 = try 1, 0.7 and
+  // 0.5 and keep the layout with the fewest panels; see walking_agent.cpp).
+  double edge_share = 0.0;
   // Rounds of the hard-bound refinement before giving up with an error.
   int max_refinements = 40;
   GridClipParams clip;
@@ -59,6 +62,7 @@ struct WalkingAgentReport {
   int inserted_lines = 0;     // lines added by the diagonal walkers and the bound
   int refinement_rounds = 0;  // rounds of the hard bound
   double max_estimate = 0.0;  // largest panel deviation estimate at the end (mm)
+  double edge_share = 1.0;    // share of the bound the kept layout was walked with
 };
 
 PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& params,
