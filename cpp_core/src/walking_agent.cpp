@@ -151,9 +151,8 @@ double gap(const SurfaceFace& face, const Vec3& x, const Vec2& uv, bool exact) {
 }
 
 double flat_triangle_estimate(const SurfaceFace& face, const Vec3* p, const Vec2* q,
-                              bool exact = false) {
+                              bool exact = false, int n = kPanelSamples) {
   double worst = 0;
-  const int n = kPanelSamples;
   for (int i = 0; i <= n; ++i) {
     for (int j = 0; i + j <= n; ++j) {
       if ((i == 0 && j == 0) || i == n || j == n) continue;  // corners lie on the surface
@@ -187,10 +186,20 @@ double polygon_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
                         const std::vector<Vec2>& q, bool exact = false) {
   if (p.size() == 4) return bilinear_estimate(face, p, q, exact);
   double worst = 0;
+  // Each triangle sampled as densely as its size asks (a boundary panel
+  // following a finely discretized trim has many thin triangles), at least
+  // at its edge midpoints: as the foundation's measure_panels does.
+  double extent = 0;
+  for (const Vec3& a : p)
+    for (const Vec3& b : p) extent = std::max(extent, (a - b).norm());
   for (const auto& t : triangulate_polygon(q)) {
     const Vec3 tp[3] = {p[t[0]], p[t[1]], p[t[2]]};
     const Vec2 tq[3] = {q[t[0]], q[t[1]], q[t[2]]};
-    worst = std::max(worst, flat_triangle_estimate(face, tp, tq, exact));
+    const double longest =
+        std::max({(tp[0] - tp[1]).norm(), (tp[1] - tp[2]).norm(), (tp[2] - tp[0]).norm()});
+    const int n =
+        extent > 0 ? std::max(2, static_cast<int>(std::ceil(kPanelSamples * longest / extent))) : 2;
+    worst = std::max(worst, flat_triangle_estimate(face, tp, tq, exact, n));
   }
   return worst;
 }
