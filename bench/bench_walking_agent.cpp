@@ -94,6 +94,8 @@ BENCHMARK_TEMPLATE(BM_WalkingAgent, dome)
     ->Args({100, 10})
     ->Args({30, 10})
     ->Args({30, 0})
+    ->Args({20, 10})
+    ->Args({15, 10})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_WalkingAgent, trimmed)
     ->Name("walking_agent/trimmed_holes")

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <map>
 #include <set>
 
 #include "agent_walk.h"
@@ -308,6 +309,9 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
     // 2. The diagonal walkers.
     rep.inserted_lines += diagonal_walkers(face, trim, lines, diagonal, params.clip.max_panels);
     // 3. The hard bound on whole panels: fold or insert lines until none is over.
+    // Panels a new line does not touch come back with the same corners: their
+    // deviation is remembered (keyed by the corner (u,v)s) instead of re-sampled.
+    std::map<std::vector<double>, double> known;
     for (int round = 0;; ++round) {
       PanelMesh mesh = clip_grid(face, lines.u, lines.v, params.clip);
       std::vector<std::pair<std::size_t, int>> folds;
@@ -317,11 +321,21 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
         const std::vector<Vec2> q = panel_corner_uv(mesh, p);
         std::vector<Vec3> x;
         for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
-        double e = polygon_estimate(face, x, q);
-        // The estimate (surface point at the same (u,v)) is an upper bound; it
-        // adds a tangential offset where the parameterization is uneven. Over
-        // the limit, measure exactly: distance to the closest surface point.
-        if (e > limit) e = polygon_estimate(face, x, q, true);
+        std::vector<double> key;
+        key.reserve(2 * q.size());
+        for (const Vec2& c : q) key.push_back(c.x()), key.push_back(c.y());
+        auto hit = known.find(key);
+        double e;
+        if (hit != known.end()) {
+          e = hit->second;
+        } else {
+          e = polygon_estimate(face, x, q);
+          // The estimate (surface point at the same (u,v)) is an upper bound;
+          // it adds a tangential offset where the parameterization is uneven.
+          // Over the limit, measure exactly: distance to the closest surface point.
+          if (e > limit) e = polygon_estimate(face, x, q, true);
+          known.emplace(std::move(key), e);
+        }
         if (e <= limit) {
           worst_kept = std::max(worst_kept, e);
           continue;
