@@ -63,8 +63,8 @@ Lines walk_lines(const SurfaceFace& face, const TrimTest& trim, double sample_st
       std::vector<double> up = walker(agents, mid, hi, step);
       RowAgents back(face, trim, dir, agents.rows());
       nodes = agents::merge_walks(std::move(up), walker(back, mid, lo, step));
-      // Drop a node closer than a hundredth of a step to the start (the start
-      // itself is a node: both walks begin there).
+      // The start is a node of both walks (a sample node, so it is either on
+      // the border or at least one sample step inside: no sliver strip).
     } else {
       const bool from_min = dir == 0 ? s.u_from_min : s.v_from_min;
       nodes = walker(agents, from_min ? lo : hi, from_min ? hi : lo, step);
