@@ -181,3 +181,38 @@ def test_document_object_uses_the_agent_methods(freeform_face):
         assert p.PanelCount == walking
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_document_saved_before_the_agent_methods_upgrades(tmp_path):
+    """A Panelization saved by the foundation (two methods, no agent
+    properties) gets the new methods and properties when reopened."""
+    doc = FreeCAD.newDocument("TessellaOld")
+    path = str(tmp_path / "old.FCStd")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = Part.makeCylinder(3000, 4000).Faces[0]
+        doc.recompute()
+        p = tessella.make_panelization((src, "Face1"), method="iso_grid", size=1000.0)
+        doc.recompute()
+        for name in ("DeviationBound", "MaxSize", "DiagonalDeviation", "SampleStep", "Start",
+                     "EdgeShare", "MaxRefinements", "MaxStep", "MaxIterations", "Tolerance",
+                     "Folds"):
+            p.removeProperty(name)
+        p.Method = ["iso_grid", "equal_size_grid"]
+        p.Method = "equal_size_grid"
+        doc.saveAs(path)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(path)
+    try:
+        p = doc.getObject("Panelization")
+        assert p.Method == "equal_size_grid"
+        assert "walking_agent" in p.getEnumerationsOfProperty("Method")
+        p.Method = "walking_agent"
+        p.DeviationBound = 15.0
+        doc.recompute()
+        # Cylinder r = 3000: the bound 15 mm allows 2 acos(1 - 15/3000) = 11.5 deg.
+        assert 0 < p.MaxDeviation.Value <= 15.0
+        assert p.PanelCount >= math.ceil(360 / 11.47)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
