@@ -29,6 +29,7 @@ void bind_agents(py::module_& m) {
       .def_readonly("folds", &WalkingAgentReport::folds)
       .def_readonly("inserted_lines", &WalkingAgentReport::inserted_lines)
       .def_readonly("refinement_rounds", &WalkingAgentReport::refinement_rounds)
+      .def_readonly("bound_lines", &WalkingAgentReport::bound_lines)
       .def_readonly("max_estimate", &WalkingAgentReport::max_estimate)
       .def_readonly("edge_share", &WalkingAgentReport::edge_share);
   py::class_<GradientDescentParams>(m, "GradientDescentParams")

@@ -371,6 +371,7 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
         return mesh;
       }
       rep.inserted_lines += added;
+      rep.bound_lines += added;
       if (round >= params.max_refinements) {
         throw GeometryFailure("walking_agent: panels still over max_deviation after " +
                               std::to_string(params.max_refinements) +
@@ -407,11 +408,15 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
       continue;
     }
     rep.edge_share = share;
+    const bool done = rep.bound_lines == 0 && rep.folds == 0;
     if (!have || mesh.panels.size() < best.panels.size()) {
       best = std::move(mesh);
       best_rep = rep;
       have = true;
     }
+    // The hard bound added nothing: a smaller share only walks a tighter rule,
+    // whose greedy walk places at least as many nodes. Stop here.
+    if (done && params.edge_share == 0) break;
   }
   if (!have) std::rethrow_exception(failure);
   if (report) *report = best_rep;

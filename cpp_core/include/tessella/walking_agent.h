@@ -61,6 +61,7 @@ struct WalkingAgentReport {
   int folds = 0;              // quads folded into two triangles
   int inserted_lines = 0;     // lines added by the diagonal walkers and the bound
   int refinement_rounds = 0;  // rounds of the hard bound
+  int bound_lines = 0;        // lines the hard bound inserted
   double max_estimate = 0.0;  // largest panel deviation estimate at the end (mm)
   double edge_share = 1.0;    // share of the bound the kept layout was walked with
 };
