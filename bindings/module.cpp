@@ -19,6 +19,7 @@ using namespace tessella;
 
 void bind_boundary_driven(py::module_& m);
 void bind_fabrication(py::module_& m);
+void bind_agents(py::module_& m);
 
 namespace {
 
@@ -238,4 +239,5 @@ PYBIND11_MODULE(_core, m) {
         [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
   bind_boundary_driven(m);
   bind_guide_lines(m);
+  bind_agents(m);
 }

@@ -9,6 +9,7 @@
 All lengths are in mm.
 """
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -108,6 +109,15 @@ PARAM_INFO = {
     "rod_length": ("Rod length", "mm"),
     "advance": ("Advance (0: rod length)", "mm"),
     "triangulate": ("Triangulate", bool),
+    "max_deviation": ("Deviation bound", "mm"),
+    "max_size": ("Max panel size", "mm"),
+    "diagonal_deviation": ("Diagonal bound (0: 2 x bound)", "mm"),
+    "sample_step": ("Sample step (of the span)", ""),
+    "max_refinements": ("Max refinements", None),
+    "edge_share": ("Edge share (0: try 1, 0.7, 0.5)", ""),
+    "max_step": ("Max step (of the span)", ""),
+    "max_iterations": ("Max iterations", None),
+    "tolerance": ("Tolerance", ""),
 }
 
 #: The methods, by name. A new method adds one entry here.
@@ -158,6 +168,38 @@ METHODS = {
         lambda surface, p: core.two_guide_lines(surface, p),
         converters={"guides": _guides(2)},
     ),
+    # Seed 000 (docs/walking_agent.md): adaptive quads with a hard deviation bound.
+    "walking_agent": MethodSpec(
+        {
+            "max_deviation": float,
+            "max_size": float,
+            "diagonal_deviation": float,
+            "sample_step": float,
+            "start": str,
+            "max_refinements": int,
+            "edge_share": float,
+        },
+        lambda: core.WalkingAgentParams(),
+        lambda surface, p: core.walking_agent(surface, p),
+    ),
+    # Its rivals from the thesis' comparison (section 5).
+    "gradient_descent": MethodSpec(
+        {"max_deviation": float, "sample_step": float, "max_step": float, "start": str},
+        lambda: core.GradientDescentParams(),
+        lambda surface, p: core.gradient_descent(surface, p),
+    ),
+    "relaxed_grid": MethodSpec(
+        {
+            "u_count": int,
+            "v_count": int,
+            "max_iterations": int,
+            "tolerance": float,
+            "weight": float,
+            "max_panels": int,
+        },
+        lambda: core.RelaxedGridParams(),
+        lambda surface, p: core.relaxed_grid(surface, p),
+    ),
 }
 
 PANEL_ID_FORMAT = "P-{:04d}"
@@ -182,6 +224,9 @@ class PanelizeResult:
     #: crossings, trim corners); the others only shape boundary panels' outlines.
     nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     summary: dict = field(default_factory=dict)
+    #: (F,2) int64 vertex pairs: diagonals along which a method folded a quad
+    #: into two flat triangles (walking_agent's hard bound); see metrics["fold_angle"].
+    folds: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     _mesh: object = field(default=None, repr=False)
 
     @property
@@ -225,6 +270,7 @@ METRIC_NAMES = (
     "panel_max_angle",
     "rod_length",
     "node_valence",
+    "fold_angle",  # one per fold (see PanelizeResult.folds), degrees
 )
 
 
@@ -305,6 +351,32 @@ def _method_params(method, params):
     return p
 
 
+def _fold_angles(vertices, panels, folds):
+    """Fold angle (degrees, 0 = flat) at each fold: the angle between the normals
+    of the two triangles that share the fold diagonal."""
+    if len(folds) == 0:
+        return np.zeros(0)
+    by_edge = {}
+    for k, p in enumerate(panels):
+        if len(p) != 3:
+            continue
+        for a, b in ((p[0], p[1]), (p[1], p[2]), (p[2], p[0])):
+            by_edge.setdefault((min(a, b), max(a, b)), []).append(k)
+    angles = []
+    for a, b in folds:
+        tris = by_edge.get((int(a), int(b)), [])
+        if len(tris) != 2:
+            angles.append(float("nan"))
+            continue
+        n = []
+        for k in tris:
+            p = vertices[list(panels[k])]
+            c = np.cross(p[1] - p[0], p[2] - p[0])
+            n.append(c / np.linalg.norm(c))
+        angles.append(float(np.degrees(np.arccos(np.clip(np.dot(n[0], n[1]), -1.0, 1.0)))))
+    return np.asarray(angles)
+
+
 #: Raised when a progress callback asked to stop (a RuntimeError).
 Cancelled = core.Cancelled
 
@@ -322,10 +394,16 @@ def panelize(face, method="iso_grid", progress=None, **params):
     brep = face_to_brep(face)
     surface = core.SurfaceFace.from_brep_string(brep)
     spec = METHODS[method]
+    method_params = _method_params(method, params)
+    core.reset_surface_evaluations(surface)
+    started = time.perf_counter()
     if spec.reports_progress:
-        mesh = spec.run(surface, _method_params(method, params), progress=progress)
+        mesh = spec.run(surface, method_params, progress=progress)
     else:
-        mesh = spec.run(surface, _method_params(method, params))
+        mesh = spec.run(surface, method_params)
+    core_seconds = time.perf_counter() - started
+    evaluations = int(core.surface_evaluations(surface))
+    folds = np.asarray(core.mesh_folds(mesh), dtype=np.int64).reshape(-1, 2)
 
     mp = core.MetricsParams()
     if "samples" in params:
@@ -340,7 +418,9 @@ def panelize(face, method="iso_grid", progress=None, **params):
     nodes = core.node_data(surface, mesh)
     node_index = np.asarray(mesh.nodes, dtype=np.int64)
 
+    verts = np.asarray(mesh.xyz)
     metrics = {
+        "fold_angle": _fold_angles(verts, mesh.panels, folds),
         "panel_deviation": np.asarray(m.deviation),
         "panel_planarity": np.asarray(m.planarity),
         "panel_area": np.asarray(m.area),
@@ -359,6 +439,11 @@ def panelize(face, method="iso_grid", progress=None, **params):
         "nominal_area": float(mesh.nominal_area),
         "face_area": float(surface.area()),
         "model_size": float(surface.model_size()),
+        "fold_count": int(len(folds)),
+        # Cost of the method call alone (no metrics): surface evaluations
+        # (points, derivatives, projection steps) and wall time in seconds.
+        "surface_evaluations": evaluations,
+        "core_seconds": core_seconds,
     }
     for name in ("panel_deviation", "panel_planarity", "panel_area", "rod_length"):
         summary[name] = core.summarize(metrics[name])
@@ -374,5 +459,6 @@ def panelize(face, method="iso_grid", progress=None, **params):
         irregular=irregular,
         nodes=node_index,
         summary=summary,
+        folds=folds,
         _mesh=mesh,
     )

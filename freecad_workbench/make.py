@@ -29,6 +29,17 @@ _PARAM_TO_PROPERTY = {
     "rod_length": "RodLength",
     "advance": "Advance",
     "triangulate": "Triangulate",
+    # walking_agent, gradient_descent, relaxed_grid (docs/walking_agent.md)
+    "max_deviation": "DeviationBound",
+    "max_size": "MaxSize",
+    "diagonal_deviation": "DiagonalDeviation",
+    "sample_step": "SampleStep",
+    "start": "Start",
+    "max_refinements": "MaxRefinements",
+    "edge_share": "EdgeShare",
+    "max_step": "MaxStep",
+    "max_iterations": "MaxIterations",
+    "tolerance": "Tolerance",
 }
 
 

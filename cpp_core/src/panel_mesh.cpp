@@ -58,6 +58,10 @@ void remove_unused_vertices(PanelMesh& mesh) {
   for (auto& panel : mesh.panels)
     for (int& v : panel) v = new_index[v];
   for (auto& rod : mesh.rods) rod = {new_index[rod[0]], new_index[rod[1]]};
+  for (auto& fold : mesh.folds) {
+    fold = {new_index[fold[0]], new_index[fold[1]]};
+    if (fold[0] > fold[1]) std::swap(fold[0], fold[1]);
+  }
 }
 
 void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {

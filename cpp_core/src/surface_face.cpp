@@ -23,6 +23,7 @@
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Wire.hxx>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -59,6 +60,8 @@ struct SurfaceFace::Impl {
   double area = 0;
   bool reversed = false;
   std::unique_ptr<BRepTopAdaptor_FClass2d> classifier;
+  mutable std::atomic<std::uint64_t> evaluations{0};
+  void count(std::uint64_t n = 1) const { evaluations.fetch_add(n, std::memory_order_relaxed); }
 
   double wrap_u(double u) const {
     if (!surface->IsUPeriodic()) return std::clamp(u, search.u_min, search.u_max);
@@ -148,11 +151,22 @@ double SurfaceFace::v_period() const { return v_periodic() ? impl_->surface->VPe
 bool SurfaceFace::reversed() const { return impl_->reversed; }
 double SurfaceFace::area() const { return impl_->area; }
 
-Vec3 SurfaceFace::point(double u, double v) const { return to_vec(impl_->surface->Value(u, v)); }
+Vec3 SurfaceFace::point(double u, double v) const {
+  impl_->count();
+  return to_vec(impl_->surface->Value(u, v));
+}
+
+std::uint64_t SurfaceFace::evaluations() const {
+  return impl_->evaluations.load(std::memory_order_relaxed);
+}
+void SurfaceFace::reset_evaluations() const {
+  impl_->evaluations.store(0, std::memory_order_relaxed);
+}
 
 SurfacePoint SurfaceFace::derivatives(double u, double v) const {
   gp_Pnt p;
   gp_Vec du, dv;
+  impl_->count();
   impl_->surface->D1(u, v, p, du, dv);
   return {to_vec(p), to_vec(du), to_vec(dv)};
 }
@@ -303,6 +317,7 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
   for (int it = 0; it <= params.max_iterations; ++it) {
     gp_Pnt P;
     gp_Vec Su, Sv, Suu, Svv, Suv;
+    s.count();
     s.surface->D2(u, v, P, Su, Sv, Suu, Svv, Suv);
     const Vec3 r = to_vec(P) - p;
     const Vec3 su = to_vec(Su), sv = to_vec(Sv);

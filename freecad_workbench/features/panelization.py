@@ -28,6 +28,40 @@ import FreeCAD
 #: Version of the properties layout; onDocumentRestored upgrades older documents.
 SCHEMA_VERSION = 1
 
+#: Methods of seed 000 and where the agents may start.
+AGENT_METHODS = ("walking_agent", "gradient_descent", "relaxed_grid")
+AGENT_STARTS = ("u_min_v_min", "u_max_v_min", "u_min_v_max", "u_max_v_max", "max_curvature")
+
+#: Which method uses which parameter property (others are hidden in the editor).
+_GRIDS = ("iso_grid", "equal_size_grid")
+#: Method-specific properties and the methods that use them (others hide them).
+METHOD_PROPERTIES = {
+    "Size": _GRIDS + ("boundary_driven",),
+    "UCount": ("iso_grid", "relaxed_grid"),
+    "VCount": ("iso_grid", "relaxed_grid"),
+    "DeviationBound": ("walking_agent", "gradient_descent"),
+    "MaxSize": ("walking_agent",),
+    "DiagonalDeviation": ("walking_agent",),
+    "SampleStep": ("walking_agent", "gradient_descent"),
+    "Start": ("walking_agent", "gradient_descent"),
+    "MaxRefinements": ("walking_agent",),
+    "EdgeShare": ("walking_agent",),
+    "MaxStep": ("gradient_descent",),
+    "MaxIterations": ("relaxed_grid",),
+    "Tolerance": ("relaxed_grid",),
+    "Rho": ("boundary_driven",),
+    "SkewRatio": ("boundary_driven",),
+    "SmoothingIterations": ("boundary_driven",),
+    "Quadrangulate": ("boundary_driven",),
+    "SourceLoops": ("boundary_driven",),
+    "RodLength": ("guide_line_scaling", "two_guide_lines"),
+    "Advance": ("guide_line_scaling",),
+    "Triangulate": ("two_guide_lines",),
+    "Guides": ("guide_line_scaling", "two_guide_lines"),
+}
+#: The properties only boundary_driven uses.
+BD_PROPERTIES = tuple(n for n, m in METHOD_PROPERTIES.items() if m == ("boundary_driven",))
+
 #: Roles of the children, in tree order.
 ROLES = ("Panels", "Rods", "Nodes")
 
@@ -57,7 +91,6 @@ def _core_defaults():
 
 
 #: Properties that only the boundary_driven method reads (shown only for it).
-BD_PROPERTIES = ("Rho", "SkewRatio", "SmoothingIterations", "Quadrangulate", "SourceLoops")
 
 
 def _upgrade_enumeration(obj, name, values):
@@ -244,6 +277,7 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyIntegerList", "SourceLoops", "Boundary driven",
                      "Trim loops (0 = outer, then the holes) the direction field follows; "
                      "empty = all")
+        self._setup_agent_properties(obj)
         add_property(obj, "App::PropertyLength", "TrimDeflection", "Advanced",
                      "Chord deflection of the trim polylines (0 = automatic)", default=0.0)
         add_property(obj, "App::PropertyInteger", "Samples", "Advanced",
@@ -260,24 +294,55 @@ class Panelization(_StateMixin):
             ("MaxDeviation", "App::PropertyLength", "Largest panel-to-surface distance"),
             ("MeanDeviation", "App::PropertyLength", "Mean of the per-panel deviations"),
             ("QuadShare", "App::PropertyFloat", "Fraction of panels that are quads (0..1)"),
+            ("Folds", "App::PropertyInteger",
+             "Quads folded into two flat triangles to hold the deviation bound"),
         ):
             add_property(obj, type_name, name, "Summary", doc, attr=ro)
         self._update_editor_modes(obj)
 
+    def _setup_agent_properties(self, obj):
+        """Parameters of walking_agent, gradient_descent and relaxed_grid
+        (docs/walking_agent.md); added when missing, so older documents upgrade."""
+        from .. import core
+
+        wa = core.WalkingAgentParams()
+        gd = core.GradientDescentParams()
+        rg = core.RelaxedGridParams()
+        add_property(obj, "App::PropertyLength", "DeviationBound", "Agents",
+                     "walking_agent: no panel deviates more than this from the surface; "
+                     "gradient_descent: the target deviation", default=0.0)
+        add_property(obj, "App::PropertyLength", "MaxSize", "Agents",
+                     "walking_agent: longest panel edge (0 = no limit)", default=0.0)
+        add_property(obj, "App::PropertyLength", "DiagonalDeviation", "Agents",
+                     "walking_agent: bound of the diagonal walkers (0 = 2 x DeviationBound)",
+                     default=0.0)
+        add_property(obj, "App::PropertyFloat", "SampleStep", "Agents",
+                     "Agents' sample step as a fraction of the parameter span (0.05 = thesis)",
+                     default=float(wa.sample_step))
+        add_property(obj, "App::PropertyEnumeration", "Start", "Agents",
+                     "Where the agents start: a corner of the (u,v) domain or the point "
+                     "of largest curvature", default=wa.start, enum=list(AGENT_STARTS))
+        add_property(obj, "App::PropertyFloat", "EdgeShare", "Agents",
+                     "walking_agent: the agents' edge rule uses this share of DeviationBound "
+                     "(0 = try 1, 0.7, 0.5 and keep the fewest panels)",
+                     default=float(wa.edge_share))
+        add_property(obj, "App::PropertyInteger", "MaxRefinements", "Agents",
+                     "walking_agent: rounds of the hard-bound refinement",
+                     default=int(wa.max_refinements))
+        add_property(obj, "App::PropertyFloat", "MaxStep", "Agents",
+                     "gradient_descent: longest step, fraction of the parameter span",
+                     default=float(gd.max_step))
+        add_property(obj, "App::PropertyInteger", "MaxIterations", "Agents",
+                     "relaxed_grid: iteration limit (UCount x VCount panels)",
+                     default=int(rg.max_iterations))
+        add_property(obj, "App::PropertyFloat", "Tolerance", "Agents",
+                     "relaxed_grid: stop when no node moves more than this fraction "
+                     "of the parameter span", default=float(rg.tolerance))
+
     def _update_editor_modes(self, obj):
         if "Method" not in obj.PropertiesList:
             return
-        hide = 0 if obj.Method == "iso_grid" else 2
-        for name in ("UCount", "VCount"):
-            if name in obj.PropertiesList:
-                obj.setEditorMode(name, hide)
-        hide = 0 if obj.Method == "boundary_driven" else 2
-        for name in BD_PROPERTIES:
-            if name in obj.PropertiesList:
-                obj.setEditorMode(name, hide)
-        for name, methods in (("RodLength", ("guide_line_scaling", "two_guide_lines")),
-                              ("Advance", ("guide_line_scaling",)),
-                              ("Triangulate", ("two_guide_lines",))):
+        for name, methods in METHOD_PROPERTIES.items():
             if name in obj.PropertiesList:
                 obj.setEditorMode(name, 0 if obj.Method in methods else 2)
 
@@ -323,6 +388,8 @@ class Panelization(_StateMixin):
             if obj.Samples:
                 params["samples"] = int(obj.Samples)
             return method, params
+        if method in AGENT_METHODS:
+            return method, self._agent_parameters(obj, method)
         if method == "iso_grid" and (obj.UCount or obj.VCount):
             # Counts replace the size (the core takes one or the other).
             params = {"u_count": int(obj.UCount), "v_count": int(obj.VCount)}
@@ -361,6 +428,35 @@ class Panelization(_StateMixin):
         if not edges:
             raise ValueError(f"{obj.Label}: {obj.Method} needs guide edges (set Guides)")
         return edges
+    def _agent_parameters(self, obj, method):
+        if method == "relaxed_grid":
+            params = {
+                "u_count": int(obj.UCount),
+                "v_count": int(obj.VCount),
+                "max_iterations": int(obj.MaxIterations),
+                "tolerance": float(obj.Tolerance),
+            }
+        else:
+            params = {
+                "max_deviation": value_of(obj.DeviationBound),
+                "sample_step": float(obj.SampleStep),
+                "start": str(obj.Start),
+            }
+            if method == "walking_agent":
+                params["max_size"] = value_of(obj.MaxSize)
+                params["diagonal_deviation"] = value_of(obj.DiagonalDeviation)
+                params["max_refinements"] = int(obj.MaxRefinements)
+                params["edge_share"] = float(obj.EdgeShare)
+            else:
+                params["max_step"] = float(obj.MaxStep)
+            params["sliver_fraction"] = float(obj.SliverFraction)
+            if value_of(obj.TrimDeflection) > 0:
+                params["trim_deflection"] = value_of(obj.TrimDeflection)
+        params["min_angle"] = value_of(obj.MinAngle)
+        params["max_panels"] = int(obj.MaxPanels)
+        if obj.Samples:
+            params["samples"] = int(obj.Samples)
+        return params
 
     def _signature(self, obj):
         api = _api()
@@ -443,6 +539,8 @@ class Panelization(_StateMixin):
         obj.MaxDeviation = float(dev.max()) if dev is not None and len(dev) else 0.0
         obj.MeanDeviation = float(dev.mean()) if dev is not None and len(dev) else 0.0
         obj.QuadShare = float(s.get("quad_share", 0.0))
+        if "Folds" in obj.PropertiesList:
+            obj.Folds = int(s.get("fold_count", 0))
 
 
 class PanelizationPart(_StateMixin):

@@ -155,13 +155,14 @@ class PanelizationTaskPanel:
             return box
         if unit is None:  # a count
             box = QtGui.QSpinBox()
-            box.setRange(0 if name.endswith("_count") else 1, 100000000)
+            box.setRange(0 if name.endswith("_count") or name == "max_refinements" else 1,
+                         100000000)
             box.setValue(int(value))
             return box
         if unit == "":
             box = QtGui.QDoubleSpinBox()
             box.setRange(0.0, 1e9)
-            box.setDecimals(4)
+            box.setDecimals(6 if name == "tolerance" else 4)
             box.setSingleStep(0.05)
             box.setValue(float(value))
             return box

@@ -30,6 +30,10 @@ struct PanelMesh {
   // seam, a pole); empty until weld_coincident_vertices() fills it.
   std::vector<std::vector<Vec2>> corner_uv;
 
+  // Folds: quads a method split into two flat triangles along a diagonal
+  // (vertex pair, a < b). The fold angle follows from the two triangles.
+  std::vector<std::array<int, 2>> folds;
+
   // What the method reports about its own run.
   int merged_slivers = 0;     // slivers merged into a neighbour
   double nominal_area = 0.0;  // area of a full panel (mm^2), for irregularity

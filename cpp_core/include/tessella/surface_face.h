@@ -3,6 +3,7 @@
 // arrives as a BRep string (BRepTools::Write format).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -95,6 +96,13 @@ class SurfaceFace {
   Projection project(const Vec3& p, const Vec2& start, const ProjectionParams& params = {}) const;
   // Same, without a start: the start is found by OCCT (global search).
   Projection project(const Vec3& p) const;
+
+  // How many times the surface was evaluated (point, derivatives, one Newton
+  // step of project) since construction or the last reset: the cost measure of
+  // the methods' comparison. Counted with a relaxed atomic, so a face shared
+  // by threads still counts every evaluation.
+  std::uint64_t evaluations() const;
+  void reset_evaluations() const;
 
  private:
   struct Impl;

@@ -1,0 +1,218 @@
+"""walking_agent, gradient_descent and relaxed_grid through the console API and
+the document object, checked independently of the core: panel models sampled
+with numpy, distances to the surface from FreeCAD's own Surface.parameter."""
+
+import math
+
+import FreeCAD  # noqa: F401  (before Part)
+import numpy as np
+import Part
+import pytest
+
+import freecad_workbench as tessella
+
+BOUND = 30.0  # mm
+
+
+def model_points(vertices, panel, n=6):
+    """Sample points of the panel model: bilinear quads, flat triangles, and for
+    an n-gon (triangulated in (u,v) by the core) its edges, which every
+    triangulation contains."""
+    p = vertices[list(panel)]
+    s = np.linspace(0.0, 1.0, n + 1)
+    if len(p) == 4:
+        S, T = np.meshgrid(s, s)
+        S, T = S.ravel()[:, None], T.ravel()[:, None]
+        return (1 - S) * (1 - T) * p[0] + S * (1 - T) * p[1] + S * T * p[2] + (1 - S) * T * p[3]
+    if len(p) == 3:
+        out = []
+        for i in range(n + 1):
+            for j in range(n + 1 - i):
+                a, b = i / n, j / n
+                out.append((1 - a - b) * p[0] + a * p[1] + b * p[2])
+        return np.asarray(out)
+    return np.asarray([(1 - t) * p[k] + t * p[(k + 1) % len(p)] for k in range(len(p)) for t in s])
+
+
+def distance_to_surface(surface, x):
+    u, v = surface.parameter(FreeCAD.Vector(*x))
+    q = surface.value(u, v)
+    return math.dist((q.x, q.y, q.z), x)
+
+
+def independent_deviation(face, result, panels):
+    surface = face.Surface
+    return {
+        k: max(distance_to_surface(surface, x) for x in model_points(result.vertices, result.panels[k]))
+        for k in panels
+    }
+
+
+def panels_to_check(result, bound, worst=50, others=15):
+    dev = result.metrics["panel_deviation"]
+    order = np.argsort(-dev)
+    chosen = [int(k) for k in order[:worst]]
+    rng = np.random.default_rng(7)
+    rest = [int(k) for k in order[worst:]]
+    if rest:
+        chosen += [int(k) for k in rng.choice(rest, size=min(others, len(rest)), replace=False)]
+    return chosen
+
+
+@pytest.fixture(scope="module")
+def sphere_face():
+    return Part.makeSphere(4000).Faces[0]
+
+
+@pytest.mark.parametrize("start", ["u_min_v_min", "max_curvature"])
+def test_bound_holds_on_a_trimmed_freeform_face(freeform_face, start):
+    r = tessella.panelize(freeform_face, method="walking_agent", max_deviation=BOUND, start=start)
+    assert r.summary["panel_count"] > 50
+    # The foundation's measure (projection of sampled model points), every panel.
+    assert r.metrics["panel_deviation"].max() <= BOUND
+    # Independently: FreeCAD's projection of our own samples of the models.
+    dev = independent_deviation(freeform_face, r, panels_to_check(r, BOUND))
+    assert max(dev.values()) <= BOUND * (1 + 1e-6)
+    # The bound is used, not just met: the worst panel comes close to it.
+    assert max(dev.values()) > 0.3 * BOUND
+    # Panels stay on the face (trim and holes respected): every node is on it.
+    for x in r.vertices[:: max(1, len(r.vertices) // 80)]:
+        d = freeform_face.distToShape(Part.Vertex(FreeCAD.Vector(*x)))[0]
+        assert d < 1e-6 * r.summary["model_size"] + 1e-7
+    # Area of the panels covers the trimmed face.
+    assert r.metrics["panel_area"].sum() == pytest.approx(freeform_face.Area, rel=0.01)
+    # Mostly quads in consistent rows.
+    assert r.summary["quad_share"] > 0.5
+
+
+def test_bound_holds_on_a_sphere_with_poles(sphere_face):
+    r = tessella.panelize(sphere_face, method="walking_agent", max_deviation=20.0,
+                          sample_step=0.05)
+    dev = independent_deviation(sphere_face, r, panels_to_check(r, 20.0, worst=40))
+    assert max(dev.values()) <= 20.0 * (1 + 1e-6)
+    # On a sphere of radius R a chord of angle t deviates R (1 - cos(t/2)):
+    # every rod is at most the chord that deviates 20 mm.
+    t_max = 2 * math.acos(1 - 20.0 / 4000)
+    assert r.metrics["rod_length"].max() <= 2 * 4000 * math.sin(t_max / 2) * (1 + 1e-9)
+
+
+def test_folds_carry_their_angle(freeform_face):
+    # The untrimmed surface under the freeform face, walked with the thesis'
+    # rule at the full bound: two quads bend over the bound and fold along
+    # their better diagonal.
+    untrimmed = freeform_face.Surface.toShape()
+    r = tessella.panelize(untrimmed, method="walking_agent", max_deviation=BOUND, edge_share=1.0)
+    assert r.metrics["panel_deviation"].max() <= BOUND
+    assert len(r.folds) == r.summary["fold_count"] > 0
+    assert len(r.metrics["fold_angle"]) == len(r.folds)
+    assert np.all(r.metrics["fold_angle"] > 0) and np.all(r.metrics["fold_angle"] < 90)
+    # Each fold is the shared edge of two triangles (the rest stay quads).
+    tris = [set(p) for p in r.panels if len(p) == 3]
+    assert len(tris) == 2 * len(r.folds)
+    for a, b in r.folds:
+        assert sum(1 for t in tris if {int(a), int(b)} <= t) == 2
+    dev = independent_deviation(untrimmed, r, panels_to_check(r, BOUND, worst=30, others=5))
+    assert max(dev.values()) <= BOUND * (1 + 1e-6)
+
+
+def test_rivals_run_and_report_their_cost(freeform_face):
+    gd = tessella.panelize(freeform_face, method="gradient_descent", max_deviation=BOUND)
+    rg = tessella.panelize(freeform_face, method="relaxed_grid", u_count=12, v_count=10)
+    for r in (gd, rg):
+        assert r.summary["panel_count"] > 0
+        assert r.summary["surface_evaluations"] > 0
+        assert r.summary["core_seconds"] > 0
+    # Fixed topology: 12 x 10 cells, those whose middle is in the face kept.
+    assert rg.summary["panel_count"] <= 120
+    assert rg.summary["quad_share"] == 1.0
+
+
+@pytest.mark.parametrize(
+    "method, params, name",
+    [
+        ("walking_agent", {}, "max_deviation"),
+        ("walking_agent", {"max_deviation": -1}, "max_deviation"),
+        ("walking_agent", {"max_deviation": 10, "sample_step": 0.0}, "sample_step"),
+        ("walking_agent", {"max_deviation": 10, "sample_step": 2}, "sample_step"),
+        ("walking_agent", {"max_deviation": 10, "start": "centre"}, "start"),
+        ("walking_agent", {"max_deviation": 10, "max_size": -5}, "max_size"),
+        ("walking_agent", {"max_deviation": 10, "diagonal_deviation": -5}, "diagonal_deviation"),
+        ("walking_agent", {"max_deviation": 10, "max_refinements": -1}, "max_refinements"),
+        ("walking_agent", {"max_deviation": 10, "edge_share": 3}, "edge_share"),
+        ("walking_agent", {"max_deviation": "ten"}, "max_deviation"),
+        ("gradient_descent", {"max_deviation": 10, "max_step": 5}, "max_step"),
+        ("relaxed_grid", {"u_count": 0, "v_count": 4}, "u_count"),
+        ("relaxed_grid", {"u_count": 4, "v_count": 4, "tolerance": -1}, "tolerance"),
+        ("relaxed_grid", {"u_count": 4, "v_count": 4, "max_iterations": -2}, "max_iterations"),
+        ("relaxed_grid", {"u_count": 400, "v_count": 400, "max_panels": 1000}, "max_panels"),
+    ],
+)
+def test_bad_parameters_name_themselves(freeform_face, method, params, name):
+    with pytest.raises(ValueError, match=name):
+        tessella.panelize(freeform_face, method=method, **params)
+
+
+def test_document_object_uses_the_agent_methods(freeform_face):
+    doc = FreeCAD.newDocument("TessellaAgents")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = freeform_face
+        doc.recompute()
+        p = tessella.make_panelization((src, "Face1"), method="walking_agent",
+                                       max_deviation=BOUND, start="max_curvature")
+        doc.recompute()
+        assert p.Method == "walking_agent"
+        assert p.DeviationBound.Unit == FreeCAD.Units.Length
+        assert p.DeviationBound.Value == BOUND
+        assert p.Start == "max_curvature"
+        assert 0 < p.MaxDeviation.Value <= BOUND
+        assert p.getEditorMode("Size") == ["Hidden"]
+        assert p.getEditorMode("DeviationBound") == []
+        walking = p.PanelCount
+        p.Method = "relaxed_grid"
+        p.UCount, p.VCount = 10, 8
+        doc.recompute()
+        assert 0 < p.PanelCount <= 80 and p.QuadShare == 1.0
+        p.Method = "gradient_descent"
+        doc.recompute()
+        assert p.PanelCount > 0
+        p.Method = "walking_agent"
+        doc.recompute()
+        assert p.PanelCount == walking
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_document_saved_before_the_agent_methods_upgrades(tmp_path):
+    """A Panelization saved by the foundation (two methods, no agent
+    properties) gets the new methods and properties when reopened."""
+    doc = FreeCAD.newDocument("TessellaOld")
+    path = str(tmp_path / "old.FCStd")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = Part.makeCylinder(3000, 4000).Faces[0]
+        doc.recompute()
+        p = tessella.make_panelization((src, "Face1"), method="iso_grid", size=1000.0)
+        doc.recompute()
+        for name in ("DeviationBound", "MaxSize", "DiagonalDeviation", "SampleStep", "Start",
+                     "EdgeShare", "MaxRefinements", "MaxStep", "MaxIterations", "Tolerance",
+                     "Folds"):
+            p.removeProperty(name)
+        p.Method = ["iso_grid", "equal_size_grid"]
+        p.Method = "equal_size_grid"
+        doc.saveAs(path)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(path)
+    try:
+        p = doc.getObject("Panelization")
+        assert p.Method == "equal_size_grid"
+        assert "walking_agent" in p.getEnumerationsOfProperty("Method")
+        p.Method = "walking_agent"
+        p.DeviationBound = 15.0
+        doc.recompute()
+        # Cylinder r = 3000: the bound 15 mm allows 2 acos(1 - 15/3000) = 11.5 deg.
+        assert 0 < p.MaxDeviation.Value <= 15.0
+        assert p.PanelCount >= math.ceil(360 / 11.47)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
