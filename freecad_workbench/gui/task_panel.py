@@ -95,6 +95,8 @@ class PanelizationTaskPanel:
         form.addRow(self.method_box)
         self.widgets = {}
         self.values = dict(p["values"])  # last value of every parameter seen
+        self.guides = self._initial_guides()
+        self.guides_changed = False
         self._build_method_rows()
         self.method.currentIndexChanged.connect(self._method_changed)
         self.sliver = self._make_widget("sliver_fraction", p["sliver_fraction"])
@@ -188,6 +190,7 @@ class PanelizationTaskPanel:
         self.widgets = {}
         method = self.method.currentText()
         common = ("sliver_fraction", "min_angle", "max_panels", "trim_deflection", "samples")
+        self._add_guides_row(method)
         for name, kind in api.METHODS[method].params.items():
             if kind not in (int, float, bool) or name in common or name not in _PARAM_TO_PROPERTY:
                 continue  # e.g. guide curves: picked, not typed
@@ -196,6 +199,72 @@ class PanelizationTaskPanel:
             self._connect(box)
             self.widgets[name] = box
             self.method_form.addRow(api.PARAM_INFO.get(name, (name, ""))[0], box)
+
+    # ------------------------------------------------------------ guide edges
+    def guides_needed(self, method=None):
+        """How many guide edges the method takes (0: none)."""
+        method = method or self.method.currentText()
+        return {"guide_line_scaling": 1, "two_guide_lines": 2}.get(method, 0) \
+            if "guides" in api.METHODS[method].converters else 0
+
+    def _add_guides_row(self, method):
+        from PySide import QtGui
+
+        self.guides_label = self.guides_pick = None
+        need = self.guides_needed(method)
+        if not need:
+            return
+        self.guides_label = QtGui.QLabel(self._guides_text())
+        self.guides_label.setWordWrap(True)
+        pick = QtGui.QPushButton("Pick edges...")
+        pick.setCheckable(True)
+        pick.setToolTip(f"Then click {need} edge(s) in the 3D view (only edges can be selected)")
+        pick.toggled.connect(self.set_picking_guides)
+        self.guides_pick = pick
+        row = QtGui.QHBoxLayout()
+        row.addWidget(self.guides_label, 1)
+        row.addWidget(pick)
+        self.method_form.addRow("Guides", row)
+
+    def _guides_text(self):
+        if not self.guides:
+            return "(none: pick)"
+        return ", ".join(f"{o.Label}.{s}" if s else o.Label for o, s in self.guides)
+
+    def set_picking_guides(self, on):
+        """Pick guide edges in the 3D view through an edges-only selection gate."""
+        panel = self
+
+        class EdgeGate:
+            def allow(self, doc, obj, sub):
+                return bool(sub) and sub.startswith("Edge") and hasattr(obj, "Shape") \
+                    and not panel._is_own(obj)
+
+        class Picker:
+            def addSelection(self, doc, obj_name, sub, pnt):
+                obj = FreeCAD.getDocument(doc).getObject(obj_name)
+                if obj is not None and sub and sub.startswith("Edge"):
+                    panel.add_guide(obj, sub)
+
+        self._stop_picking()
+        self._uncheck(self.pick)
+        if on:
+            self.guides = []
+            self.guides_label.setText(self._guides_text())
+            Gui.Selection.clearSelection()
+            self._gate, self._observer = EdgeGate(), Picker()
+            Gui.Selection.addSelectionGate(self._gate)
+            Gui.Selection.addObserver(self._observer)
+
+    def add_guide(self, obj, sub):
+        """Append a guide edge; picking ends when the method has all it needs."""
+        self.guides.append((obj, sub))
+        self.guides_changed = True
+        self.guides_label.setText(self._guides_text())
+        if len(self.guides) >= self.guides_needed():
+            self.guides_pick.setChecked(False)
+            Gui.Selection.clearSelection()
+        self.schedule_preview()
 
     def _method_changed(self, *args):
         for name, box in self.widgets.items():
@@ -208,6 +277,15 @@ class PanelizationTaskPanel:
             return bool(box.isChecked())
         return _value(box) if box.property("rawValue") is not None or \
             hasattr(box, "decimals") else int(box.value())
+
+    def _initial_guides(self):
+        if self.obj is None or "Guides" not in self.obj.PropertiesList:
+            return []
+        out = []
+        for owner, subs in self.obj.Guides or []:
+            subs = [x for x in (subs or []) if x]
+            out.extend((owner, x) for x in subs) if subs else out.append((owner, ""))
+        return out
 
     def _source_text(self):
         if self.obj is not None:
@@ -240,6 +318,7 @@ class PanelizationTaskPanel:
                     panel.use_face(obj, sub)
 
         self._stop_picking()
+        self._uncheck(getattr(self, "guides_pick", None))
         if on:
             Gui.Selection.clearSelection()
             self._gate, self._observer = FaceGate(), Picker()
@@ -251,6 +330,14 @@ class PanelizationTaskPanel:
         if self.obj is None:
             return False
         return obj == self.obj or getattr(obj, "Base", None) == self.obj
+
+    @staticmethod
+    def _uncheck(button):
+        """Release the other pick button without running its handler."""
+        if button is not None and button.isChecked():
+            button.blockSignals(True)
+            button.setChecked(False)
+            button.blockSignals(False)
 
     def _stop_picking(self):
         if self._gate is not None:
@@ -281,8 +368,15 @@ class PanelizationTaskPanel:
             else:
                 params.pop("u_count", None)
                 params.pop("v_count", None)
+        if self.guides_needed(method):
+            params["guides"] = [(o, s) if s else o for o, s in self.guides]
         params.update(sliver_fraction=float(self.sliver.value()),
                       min_angle=_value(self.min_angle), max_panels=int(self.max_panels.value()))
+        for name in list(params):  # only what this method takes
+            spec = api.METHODS[method]
+            if name not in spec.params and name not in spec.converters \
+                    and name not in api.COMMON_PARAMS:
+                params.pop(name)
         return method, params
 
     def widget(self, name):
@@ -411,7 +505,17 @@ class PanelizationTaskPanel:
 
     def _create(self, method, params):
         obj, sub = self.source
-        args = ", ".join(f"{k}={v!r}" for k, v in params.items())
+
+        def ref(o):
+            return f"FreeCAD.getDocument({o.Document.Name!r}).getObject({o.Name!r})"
+
+        def literal(key, value):
+            if key == "guides":  # document objects: write how to find them
+                return "[" + ", ".join(f"({ref(g[0])}, {g[1]!r})" if isinstance(g, tuple)
+                                       else ref(g) for g in value) + "]"
+            return repr(value)
+
+        args = ", ".join(f"{k}={literal(k, v)}" for k, v in params.items())
         # gui_progress() is None in a headless replay of the recorded macro.
         call = ("tessella.make_panelization("
                 f"(FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}), {sub!r}), "
@@ -443,6 +547,10 @@ class PanelizationTaskPanel:
                 params.setdefault("u_count", 0)
                 params.setdefault("v_count", 0)
             for name, value in params.items():
+                if name == "guides":
+                    obj.Guides = [(g[0], [g[1]]) if isinstance(g, tuple) else (g, [])
+                                  for g in value]
+                    continue
                 setattr(obj, _PARAM_TO_PROPERTY[name], value)
             obj.Proxy.seed(obj, result)
             doc.recompute()

@@ -506,6 +506,99 @@ def test_task_panel_edit():
             FreeCAD.closeDocument(name)
 
 
+def test_task_panel_guides():
+    """Guide-line methods: the task panel shows a Guides row; edges are picked
+    through an edges-only gate; OK links them (and the echo replays)."""
+    import Part
+    import freecad_workbench as tessella
+    from freecad_workbench.gui import task_panel
+
+    doc = FreeCAD.newDocument("TessellaGuides")
+    try:
+        Gui.activateWorkbench("TessellaWorkbench")
+        surf = doc.addObject("Part::Feature", "Plate")
+        surf.Shape = Part.makePlane(10000, 8000)
+        doc.recompute()
+        doc.clearUndos()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
+        Gui.runCommand("Tessella_Panelize")
+        panel = task_panel.active()
+        if not check("guides: panel open", panel is not None):
+            return
+        panel.method.setCurrentIndex(list(tessella.METHODS).index("guide_line_scaling"))
+        check("guides: row shown for GSM", panel.guides_label is not None and panel.guides_needed() == 1)
+        panel.widget("rod_length").setProperty("rawValue", 1000.0)
+        panel.guides_pick.setChecked(True)
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
+        process_events()
+        check("guides: the gate refuses a face", not Gui.Selection.getSelectionEx())
+        n = panel.preview_count
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Edge1")
+        process_events()
+        check("guides: the edge is taken and picking ends",
+              panel.guides == [(surf, "Edge1")] and not panel.guides_pick.isChecked(),
+              str(panel.guides))
+        check("guides: preview of the guide grid", wait_for_preview(panel, n)
+              and panel.last_result is not None and len(panel.last_result.panels) > 10,
+              panel.summary.text())
+        echoed = []
+        original = Gui.doCommand
+
+        def record(line):
+            echoed.append(line)
+            return original(line)
+
+        Gui.doCommand = record
+        try:
+            ok = panel.accept()
+        finally:
+            Gui.doCommand = original
+        process_events()
+        ps = panelizations(doc)
+        check("guides: created", ok and len(ps) == 1, f"{ok} {len(ps)}")
+        if ps:
+            p = ps[0]
+            check("guides: linked", p.Method == "guide_line_scaling"
+                  and [(o.Name, list(s)) for o, s in p.Guides] == [(surf.Name, ["Edge1"])],
+                  str(p.Guides))
+            check("guides: the echo names the guide object",
+                  any("guides=[(FreeCAD.getDocument(" in line for line in echoed), str(echoed))
+            count = p.PanelCount
+            doc.undo()
+            namespace = {"FreeCAD": FreeCAD, "App": FreeCAD}
+            for line in echoed:
+                exec(line, namespace)
+            replayed = panelizations(doc)
+            check("guides: the echo replays", len(replayed) == 1
+                  and replayed[0].PanelCount == count, str([r.PanelCount for r in replayed]))
+        # Two guides for 2G2VM in edit mode.
+        ps = panelizations(doc)
+        if ps:
+            p = ps[0]
+            p.ViewObject.Proxy.doubleClicked(p.ViewObject)
+            panel = task_panel.active()
+            panel.method.setCurrentIndex(list(tessella.METHODS).index("two_guide_lines"))
+            check("guides: 2G2VM wants two", panel.guides_needed() == 2)
+            panel.guides_pick.setChecked(True)
+            Gui.Selection.addSelection(doc.Name, surf.Name, "Edge1")
+            process_events()
+            check("guides: still picking after one of two", panel.guides_pick.isChecked())
+            Gui.Selection.addSelection(doc.Name, surf.Name, "Edge2")
+            process_events()
+            panel.timer.stop()
+            panel.update_preview()
+            check("guides: 2G2VM preview", panel.last_result is not None, panel.summary.text())
+            check("guides: OK", panel.accept())
+            check("guides: two linked", p.Method == "two_guide_lines"
+                  and sum(len(s) for o, s in p.Guides) == 2 and p.isValid(), str(p.Guides))
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Selection.clearSelection()
+        FreeCAD.closeDocument(doc.Name)
+
+
 def test_progress_cancel():
     """A long panelization shows the progress dialog; Cancel leaves nothing behind."""
     import Part
@@ -684,7 +777,8 @@ def test_analysis_colors():
 
 def main():
     for test in (test_workbench, test_command, test_command_failure, test_open_headless_document,
-                 test_analysis_colors, test_task_panel_edit, test_progress_cancel,
+                 test_analysis_colors, test_task_panel_edit, test_task_panel_guides,
+                 test_progress_cancel,
                  test_preferences_page):
         try:
             test()
