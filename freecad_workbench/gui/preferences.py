@@ -13,7 +13,8 @@ UI_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.a
                        "resources", "ui", "preferences.ui")
 
 #: Order of the method combo box on the page (stored as its index).
-METHOD_ORDER = ("iso_grid", "equal_size_grid")
+METHOD_ORDER = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent",
+                "gradient_descent", "relaxed_grid", "guide_line_scaling", "two_guide_lines")
 
 
 def defaults():
@@ -27,6 +28,7 @@ def defaults():
         "sliver_fraction": p.GetFloat("SliverFraction", 0.25),
         "min_angle": p.GetFloat("MinAngle", 30.0),
         "max_panels": p.GetInt("MaxPanels", 200000),
+        "max_deviation": p.GetFloat("DefaultDeviation", 0.0),  # 0: the method's default
         "panel_id_format": valid_id_format(p.GetString("PanelIdFormat", "P-{:04d}")),
         # FreeCAD stores colours as 0xRRGGBBAA.
         "preview_color": _rgb(p.GetUnsigned("PreviewColor", 0xF2730DFF)),

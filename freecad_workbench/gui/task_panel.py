@@ -142,6 +142,8 @@ class PanelizationTaskPanel:
 
         prefs = preferences.defaults()
         values["size"] = size or 1000.0
+        if prefs["max_deviation"] > 0:
+            values["max_deviation"] = prefs["max_deviation"]
         return {"method": prefs["method"], "values": values,
                 "sliver_fraction": prefs["sliver_fraction"], "min_angle": prefs["min_angle"],
                 "max_panels": prefs["max_panels"]}

@@ -649,6 +649,15 @@ def test_preferences_page():
     check("preferences: ID format and preview colour read back",
           preferences.defaults()["panel_id_format"] == "F-{:05d}"
           and preferences.defaults()["preview_color"] == (0.0, 1.0, 0.0))
+    p.SetFloat("DefaultDeviation", 7.5)
+    p.SetInt("DefaultMethod", 3)
+    check("preferences: deviation and a newer method",
+          preferences.defaults()["max_deviation"] == 7.5
+          and preferences.defaults()["method"] == "walking_agent", str(preferences.defaults()))
+    import freecad_workbench as tessella
+    check("preferences: the page lists every method", set(preferences.METHOD_ORDER)
+          == set(tessella.METHODS), str(preferences.METHOD_ORDER))
+    p.RemFloat("DefaultDeviation")
     p.RemString("PanelIdFormat")
     p.RemUnsigned("PreviewColor")
     p.RemInt("DefaultMethod")
