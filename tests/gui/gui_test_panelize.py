@@ -10,83 +10,18 @@ quits FreeCAD. If the repository is not installed as a Mod folder, the workbench
 registered the way FreeCAD would do it (repository on sys.path, InitGui.py run).
 """
 
-import json
 import os
 import sys
 import tempfile
-import traceback
 
 import FreeCAD
 import FreeCADGui as Gui
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = (os.environ.get("TESSELLA_ROOT") or os.environ.get("TESSELLA_REPO")
-        or os.path.dirname(os.path.dirname(HERE)))
-RESULT = os.environ.get("TESSELLA_GUI_RESULT") or os.path.join(
-    tempfile.gettempdir(), "tessella_gui_test_result.json")
-
-results = {"passed": 0, "failed": 0, "failures": [], "checks": [], "registration": None}
-
-
-def check(name, condition, detail=""):
-    results["checks"].append(name)
-    if condition:
-        results["passed"] += 1
-    else:
-        results["failed"] += 1
-        results["failures"].append(f"{name}: {detail}" if detail else name)
-    return bool(condition)
-
-
-def process_events():
-    from PySide import QtGui
-
-    QtGui.QApplication.processEvents()
-
-
-class DialogCatcher:
-    """Closes modal message boxes while a command runs and remembers their text."""
-
-    def __init__(self):
-        from PySide import QtCore
-
-        self.texts = []
-        self.timer = QtCore.QTimer()
-        self.timer.setInterval(50)
-        self.timer.timeout.connect(self._close)
-
-    def _close(self):
-        from PySide import QtGui
-
-        w = QtGui.QApplication.activeModalWidget()
-        if w is not None and isinstance(w, QtGui.QMessageBox):
-            self.texts.append(w.text())
-            w.done(0)
-
-    def __enter__(self):
-        self.texts.clear()
-        self.timer.start()
-        return self
-
-    def __exit__(self, *exc):
-        process_events()
-        self.timer.stop()
-        return False
-
-
-def ensure_workbench():
-    if "TessellaWorkbench" in Gui.listWorkbenches():
-        results["registration"] = "Mod folder"
-        return
-    # What FreeCAD does for a Mod folder: the folder on sys.path, InitGui.py
-    # exec()'d with names that its functions cannot see (strict: empty globals).
-    if REPO not in sys.path:
-        sys.path.insert(0, REPO)
-    with open(os.path.join(REPO, "InitGui.py"), encoding="utf-8") as f:
-        source = f.read()
-    exec(compile(source, os.path.join(REPO, "InitGui.py"), "exec"),
-         {"__builtins__": __builtins__}, {})
-    results["registration"] = "manual (InitGui.py executed by the test)"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gui_harness  # noqa: E402
+from gui_harness import (  # noqa: E402
+    REPO, DialogCatcher, check, ensure_workbench, process_events,
+)
 
 
 def bspline_face_with_hole():
@@ -321,6 +256,7 @@ def test_command_failure():
 
 HEADLESS_SCRIPT = r"""
 import sys
+import tempfile
 sys.path[:0] = [{lib!r}, {repo!r}]
 import FreeCAD, Part
 import freecad_workbench as tessella
@@ -784,25 +720,9 @@ def test_analysis_colors():
         FreeCAD.closeDocument(doc.Name)
 
 
-def main():
-    for test in (test_workbench, test_command, test_command_failure, test_open_headless_document,
-                 test_analysis_colors, test_task_panel_edit, test_task_panel_guides,
-                 test_progress_cancel,
-                 test_preferences_page):
-        try:
-            test()
-        except Exception:
-            check(test.__name__ + " raised", False, traceback.format_exc())
-    with open(RESULT, "w", encoding="utf-8") as f:
-        json.dump(results, f, indent=1)
-    FreeCAD.Console.PrintMessage(
-        f"Tessella GUI test: {results['passed']} passed, {results['failed']} failed\n")
-
-
-try:
-    main()
-finally:
-    sys.stdout.flush()
-    sys.stderr.flush()
-    # Quit without the save prompts and without waiting for the event loop.
-    os._exit(0 if results["failed"] == 0 else 1)
+# FreeCAD runs this file as a script: run the tests, write the result, quit.
+ensure_workbench()
+gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command_failure, test_open_headless_document,
+    test_analysis_colors, test_task_panel_edit, test_task_panel_guides,
+    test_progress_cancel,
+    test_preferences_page), 'tessella_gui_test_result.json')

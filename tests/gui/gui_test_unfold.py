@@ -5,81 +5,18 @@ Panelization (or its Panels child) -> one Unfold per run, one undo step, its vie
 provider and icon, the echoed Python call; save and reopen restores the view provider.
 """
 
-import json
 import os
 import sys
 import tempfile
-import traceback
 
 import FreeCAD
 import FreeCADGui as Gui
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = (os.environ.get("TESSELLA_ROOT") or os.environ.get("TESSELLA_REPO")
-        or os.path.dirname(os.path.dirname(HERE)))
-RESULT = os.environ.get("TESSELLA_GUI_RESULT") or os.path.join(
-    tempfile.gettempdir(), "tessella_gui_unfold_result.json")
-
-results = {"passed": 0, "failed": 0, "failures": [], "checks": [], "registration": None}
-
-
-def check(name, condition, detail=""):
-    results["checks"].append(name)
-    if condition:
-        results["passed"] += 1
-    else:
-        results["failed"] += 1
-        results["failures"].append(f"{name}: {detail}" if detail else name)
-    return bool(condition)
-
-
-def process_events():
-    from PySide import QtGui
-
-    QtGui.QApplication.processEvents()
-
-
-class DialogCatcher:
-    """Closes modal message boxes while a command runs and remembers their text."""
-
-    def __init__(self):
-        from PySide import QtCore
-
-        self.texts = []
-        self.timer = QtCore.QTimer()
-        self.timer.setInterval(50)
-        self.timer.timeout.connect(self._close)
-
-    def _close(self):
-        from PySide import QtGui
-
-        w = QtGui.QApplication.activeModalWidget()
-        if w is not None and isinstance(w, QtGui.QMessageBox):
-            self.texts.append(w.text())
-            w.done(0)
-
-    def __enter__(self):
-        self.texts.clear()
-        self.timer.start()
-        return self
-
-    def __exit__(self, *exc):
-        process_events()
-        self.timer.stop()
-        return False
-
-
-def ensure_workbench():
-    if "TessellaWorkbench" in Gui.listWorkbenches():
-        results["registration"] = "Mod folder"
-        return
-    if REPO not in sys.path:
-        sys.path.insert(0, REPO)
-    with open(os.path.join(REPO, "InitGui.py"), encoding="utf-8") as f:
-        source = f.read()
-    exec(compile(source, os.path.join(REPO, "InitGui.py"), "exec"),
-         {"__builtins__": __builtins__}, {})
-    results["registration"] = "manual (InitGui.py executed by the test)"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gui_harness  # noqa: E402
+from gui_harness import (  # noqa: E402
+    REPO, DialogCatcher, check, ensure_workbench, process_events,
+)
 
 
 def unfolds(doc):
@@ -215,20 +152,6 @@ def test_unfold_command():
             FreeCAD.closeDocument(name)
 
 
-def main():
-    try:
-        test_unfold_command()
-    except Exception:
-        check("test_unfold_command raised", False, traceback.format_exc())
-    with open(RESULT, "w", encoding="utf-8") as f:
-        json.dump(results, f, indent=1)
-    FreeCAD.Console.PrintMessage(
-        f"Tessella GUI unfold test: {results['passed']} passed, {results['failed']} failed\n")
-
-
-try:
-    main()
-finally:
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(0 if results["failed"] == 0 else 1)
+# FreeCAD runs this file as a script: run the tests, write the result, quit.
+ensure_workbench()
+gui_harness.run('Tessella GUI unfold test', (test_unfold_command,), 'tessella_gui_unfold_result.json')
