@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <clipper.hpp>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <unordered_map>
 
@@ -341,6 +342,31 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
         insert_between(on_y[pa.Y], pa.X, pb.X, fixed);
     }
     panel = std::move(fixed);
+  }
+
+  // Crossings of a grid line (or a hole's split line) with a trim lie on the
+  // trim polyline's chord; move them onto the trim edges' own curves, so every
+  // boundary vertex is on the true trim (the polyline's own points already are).
+  for (std::size_t v = 0; v < int_points.size(); ++v) {
+    const IntPoint& p = int_points[v];
+    const bool grid_node = x_line.count(p.X) && y_line.count(p.Y);
+    if (grid_node || exact_uv.count(p)) continue;
+    const Vec2 q = mesh.uv[v];
+    int best_loop = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      const auto& uv = loops[l].uv;
+      for (std::size_t k = 0; k < uv.size(); ++k) {
+        const Vec2 a = uv[k], d = uv[(k + 1) % uv.size()] - a;
+        const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        const double dist = (a + t * d - q).squaredNorm();
+        if (dist < best) best = dist, best_loop = int(l);
+      }
+    }
+    if (best_loop < 0) continue;
+    const Vec2 snapped = face.snap_to_trim(best_loop, q);
+    mesh.uv[v] = snapped;
+    mesh.xyz[v] = face.point(snapped.x(), snapped.y());
   }
 
   // Nodes (rod ends): grid nodes and grid/trim crossings (on a grid line),
