@@ -48,6 +48,7 @@ test-gui: build
 
 demo: build
 	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) examples/demo.py --out out
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) examples/fabrication_demo.py --out out/fabrication
 
 bench: build
 	$(BUILD)/tessella_bench
