@@ -510,17 +510,27 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
             try_node(c);
           }
       } else {
-        for (int w : nbr[v])
+        // toward / away from each neighbour and square to that edge, in the
+        // tangent plane (the (u,v) step solves the same move to first order)
+        const Vec3 nrm = face.normal(old.uv.x(), old.uv.y());
+        for (int w : nbr[v]) {
+          const BdNode& o = net.nodes[w];
+          const Vec3 d = o.xyz - old.xyz;
+          const Vec2 duv = o.uv - old.uv;
+          const Vec3 dp = nrm.cross(d);
+          const Vec2 duvp(-duv.y(), duv.x());  // a quarter turn in (u,v), same sense
           for (double t : kSteps)
-            for (double sign : {1.0, -1.0}) {
-              const BdNode& o = net.nodes[w];
-              const Projection pr = face.project(old.xyz + sign * t * (o.xyz - old.xyz),
-                                                 old.uv + sign * t * (o.uv - old.uv));
-              if (!inside.inside(pr.uv)) continue;
-              BdNode c = old;
-              c.uv = pr.uv, c.xyz = pr.point;
-              try_node(c);
-            }
+            for (double sign : {1.0, -1.0})
+              for (int perp = 0; perp < 2; ++perp) {
+                const Vec3 x = old.xyz + sign * t * (perp ? dp : d);
+                const Vec2 g = old.uv + sign * t * (perp ? duvp : duv);
+                const Projection pr = face.project(x, g);
+                if (!inside.inside(pr.uv)) continue;
+                BdNode c = old;
+                c.uv = pr.uv, c.xyz = pr.point;
+                try_node(c);
+              }
+        }
       }
       n = best;
       if (best.uv != old.uv) ++moved;
