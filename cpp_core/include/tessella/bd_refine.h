@@ -47,10 +47,9 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
 // or where a triangle was quadrangulated (a quad with one flat corner). Every
 // node of a panel with a corner under `target_deg` (3D) is moved, by local
 // search, to the candidate position that maximizes the smallest corner angle
-// of the panels around it (a reflex corner in (u,v) counts as 0 unless it
-// is on a concave trim). Interior
-// nodes try points toward and away from each neighbour and square to that
-// edge in the tangent plane, projected onto the
+// of the panels around it (a reflex corner in (u,v) counts as 0 unless it is
+// on a concave trim). Interior nodes try points toward and away from each
+// neighbour and square to that edge in the tangent plane, projected onto the
 // surface and inside the trim; trim nodes slide along their loop toward or
 // away from their trim neighbours (so they stay on the trim polyline); corners
 // stay fixed. A move is kept only when it raises that local minimum and makes
