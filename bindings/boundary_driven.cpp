@@ -46,6 +46,8 @@ void bind_boundary_driven(py::module_& m) {
       .def_readwrite("corner_angle", &BoundaryDrivenParams::corner_angle_deg)
       .def_readwrite("min_edge_fraction", &BoundaryDrivenParams::min_edge_fraction)
       .def_readwrite("max_panels", &BoundaryDrivenParams::max_panels)
+      .def_readwrite("angle_target", &BoundaryDrivenParams::angle_target_deg)
+      .def_readwrite("angle_passes", &BoundaryDrivenParams::angle_passes)
       .def_property(
           "source_loops", [](const BoundaryDrivenParams& p) { return p.sources.loops; },
           [](BoundaryDrivenParams& p, const std::vector<int>& v) { p.sources.loops = v; })
@@ -100,6 +102,7 @@ void bind_boundary_driven(py::module_& m) {
     d["network_panels"] = r.network.panels;
     d["removed_triangles"] = r.removed_triangles;
     d["collapsed_edges"] = r.collapsed_edges;
+    d["angle_moves"] = r.angle_moves;
     d["mesh"] = std::move(r.mesh);
     return d;
   });

@@ -146,6 +146,7 @@ METHODS = {
             "extra_curves": list,
             "corner_angle": float,
             "min_edge_fraction": float,
+            "angle_target": float,
             "trim_deflection": float,
             "max_panels": int,
         },

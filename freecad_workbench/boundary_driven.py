@@ -32,6 +32,7 @@ def boundary_driven_stages(face, **params):
         "network_panels": [tuple(p) for p in d["network_panels"]],
         "removed_triangles": int(d["removed_triangles"]),
         "collapsed_edges": int(d["collapsed_edges"]),
+        "angle_moves": int(d["angle_moves"]),
         "vertices": np.asarray(mesh.xyz),
         "panels": [tuple(p) for p in mesh.panels],
     }

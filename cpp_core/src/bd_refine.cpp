@@ -393,3 +393,152 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
 }
 
 }  // namespace tessella
+
+namespace tessella {
+
+namespace {
+
+// Smallest corner angle (3D, radians) of panel p; an interior corner that is
+// reflex in (u,v) counts as 0 (a trim node may be reflex where its trim is
+// concave) and a panel folded in (u,v) as -1.
+double panel_quality(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
+  if (!(uv_area(nodes, p) > 0)) return -1.0;
+  const std::size_t n = p.size();
+  double q = 1e9;
+  for (std::size_t i = 0; i < n; ++i) {
+    const BdNode& a = nodes[p[(i + n - 1) % n]];
+    const BdNode& b = nodes[p[i]];
+    const BdNode& c = nodes[p[(i + 1) % n]];
+    if (b.loop < 0 && bd::cross2(b.uv - a.uv, c.uv - b.uv) < 0) return 0.0;
+    q = std::min(q, corner_angle(a.xyz, b.xyz, c.xyz));
+  }
+  return q;
+}
+
+}  // namespace
+
+int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                      BdNetwork& net, double target_deg, int passes) {
+  require_in_range("angle target (deg)", target_deg, 0.0, 90.0);
+  require_in_range("angle passes", passes, 0, 1000);
+  const double target = target_deg * 3.14159265358979323846 / 180.0;
+  const std::size_t nn = net.nodes.size();
+  std::map<std::pair<int, int>, int> uses;
+  std::vector<std::vector<int>> nbr(nn), incident(nn);
+  for (std::size_t pi = 0; pi < net.panels.size(); ++pi) {
+    const auto& p = net.panels[pi];
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+      nbr[a].push_back(b), nbr[b].push_back(a);
+      incident[a].push_back(static_cast<int>(pi));
+    }
+  }
+  std::vector<int> prev(nn, -1), next(nn, -1);
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && net.nodes[a].loop >= 0 &&
+          net.nodes[a].loop == net.nodes[b].loop)
+        next[a] = b, prev[b] = a;
+    }
+  for (auto& v : nbr) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  auto local = [&](int v) {
+    double q = 1e9;
+    for (int pi : incident[v]) q = std::min(q, panel_quality(net.nodes, net.panels[pi]));
+    return q;
+  };
+  // a move may not make an edge at v shorter than 0.3 x the median edge
+  // (unless it was already shorter and gets no shorter): no tiny rods
+  std::vector<double> lengths;
+  for (std::size_t v = 0; v < nn; ++v)
+    for (int w : nbr[v])
+      if (static_cast<int>(v) < w) lengths.push_back((net.nodes[v].xyz - net.nodes[w].xyz).norm());
+  if (lengths.empty()) return 0;
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const double min_edge = 0.3 * lengths[lengths.size() / 2];
+  auto short_edge = [&](int v, const BdNode& old) {
+    for (int w : nbr[v]) {
+      const double l = (net.nodes[v].xyz - net.nodes[w].xyz).norm();
+      if (l < min_edge && l < (old.xyz - net.nodes[w].xyz).norm()) return true;
+    }
+    return false;
+  };
+  static const double kSteps[] = {0.05, 0.1, 0.2, 0.3, 0.45};
+  int moves = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    // nodes of the panels with a corner under the target, in index order
+    std::vector<char> todo(nn, 0);
+    for (const auto& p : net.panels)
+      if (panel_quality(net.nodes, p) < target)
+        for (int v : p) todo[v] = 1;
+    int moved = 0;
+    for (std::size_t vi = 0; vi < nn; ++vi) {
+      if (!todo[vi]) continue;
+      const int v = static_cast<int>(vi);
+      BdNode& n = net.nodes[v];
+      if (n.corner || nbr[v].empty()) continue;
+      const BdNode old = n;
+      double best_q = local(v);
+      BdNode best = old;
+      auto try_node = [&](const BdNode& cand) {
+        n = cand;
+        const double q = short_edge(v, old) ? -2.0 : local(v);
+        if (q > best_q + 1e-9) best_q = q, best = cand;
+        n = old;
+      };
+      if (n.loop >= 0) {
+        if (prev[v] < 0 || next[v] < 0) continue;
+        const BdPolyline& L = boundary[n.loop];
+        const double len = L.length();
+        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len),
+               dn = std::fmod(net.nodes[next[v]].s - n.s, len);
+        if (dp < 0) dp += len;
+        if (dn < 0) dn += len;
+        for (double t : kSteps)
+          for (double ds : {t * dn, -t * dp}) {
+            BdNode c = old;
+            double s = old.s + ds;
+            L.segment_at(s);
+            c.s = s;
+            c.uv = L.uv_at(s);
+            c.xyz = face.point(c.uv.x(), c.uv.y());
+            try_node(c);
+          }
+      } else {
+        // toward / away from each neighbour and square to that edge, in the
+        // tangent plane (the (u,v) step solves the same move to first order)
+        const Vec3 nrm = face.normal(old.uv.x(), old.uv.y());
+        for (int w : nbr[v]) {
+          const BdNode& o = net.nodes[w];
+          const Vec3 d = o.xyz - old.xyz;
+          const Vec2 duv = o.uv - old.uv;
+          const Vec3 dp = nrm.cross(d);
+          const Vec2 duvp(-duv.y(), duv.x());  // a quarter turn in (u,v), same sense
+          for (double t : kSteps)
+            for (double sign : {1.0, -1.0})
+              for (int perp = 0; perp < 2; ++perp) {
+                const Vec3 x = old.xyz + sign * t * (perp ? dp : d);
+                const Vec2 g = old.uv + sign * t * (perp ? duvp : duv);
+                const Projection pr = face.project(x, g);
+                if (!inside.inside(pr.uv)) continue;
+                BdNode c = old;
+                c.uv = pr.uv, c.xyz = pr.point;
+                try_node(c);
+              }
+        }
+      }
+      n = best;
+      if (best.uv != old.uv) ++moved;
+    }
+    moves += moved;
+    if (moved == 0) break;
+  }
+  return moves;
+}
+
+}  // namespace tessella

@@ -55,6 +55,8 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
   require_in_range("smoothing_iterations", params.smoothing_iterations, 0, 1000);
   require_in_range("trim_deflection (mm)", params.trim_deflection, 0.0, 0.01 * ms);
   require_in_range("min_edge_fraction", params.min_edge_fraction, 0.0, 0.9);
+  require_in_range("angle_target", params.angle_target_deg, 0.0, 90.0);
+  require_in_range("angle_passes", params.angle_passes, 0, 1000);
   require_in_range("max_panels", params.max_panels, 1, 1e8);
   const double estimate = face.area() / (params.size * params.size);
   if (estimate > params.max_panels)
@@ -90,6 +92,9 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
   r.removed_triangles = remove_skewed_triangles(net, params.skew_ratio);
   if (params.quadrangulate) quadrangulate(face, r.boundary, net);
   smooth_bd_mesh(face, r.boundary, net, params.smoothing_iterations);
+  if (params.angle_target_deg > 0)
+    r.angle_moves =
+        improve_bd_angles(face, r.boundary, net, params.angle_target_deg, params.angle_passes);
 
   check_mesh(face, r.boundary, net, params.size);
 

@@ -352,6 +352,77 @@ TEST(BdRefine, SmoothingRestoresARegularGridAndKeepsTrimNodesOnTheTrim) {
   EXPECT_NEAR(net.nodes[id(2, 0)].uv.y(), 0.0, 1e-12);  // slid along the trim
 }
 
+TEST(BdRefine, AngleRelocationOpensSharpCornersKeepingTrimNodesOnTheTrim) {
+  const SurfaceFace f = square_plate(300);
+  const BdSources s = sources_of(f);
+  const BdPolyline& loop = s.boundary[0];
+  auto s_of = [&](const Vec2& p) {
+    for (int i = 0; i < loop.segment_count(); ++i) {
+      const Vec2 a = loop.uv[i], b = loop.seg_end_uv(i);
+      const double l = (b - a).norm();
+      const double t = (p - a).dot(b - a) / (l * l);
+      if (t >= 0 && t <= 1 && (a + t * (b - a) - p).norm() < 1e-9) return loop.s_at(i, t);
+    }
+    return -1.0;
+  };
+  BdNetwork net;
+  auto id = [](int i, int j) { return 4 * j + i; };
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      BdNode n;
+      n.uv = Vec2(100 * i, 100 * j);
+      if (i == 0 || j == 0 || i == 3 || j == 3) {
+        n.loop = 0;
+        n.corner = (i == 0 || i == 3) && (j == 0 || j == 3);
+      }
+      net.nodes.push_back(n);
+    }
+  // an interior node pulled next to the corner (a 14 deg corner at (100, 0)) and
+  // a trim node pushed next to its neighbour (a sliver along the top edge)
+  net.nodes[id(1, 1)].uv = Vec2(20, 20);
+  net.nodes[id(2, 3)].uv = Vec2(110, 300);
+  for (auto& n : net.nodes) {
+    n.xyz = f.point(n.uv.x(), n.uv.y());
+    if (n.loop >= 0) n.s = s_of(n.uv);
+  }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      net.panels.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  auto min_angle = [&]() {
+    double m = 180;
+    for (const auto& p : net.panels)
+      for (std::size_t i = 0; i < 4; ++i) {
+        const Vec3 a = net.nodes[p[(i + 3) % 4]].xyz - net.nodes[p[i]].xyz;
+        const Vec3 b = net.nodes[p[(i + 1) % 4]].xyz - net.nodes[p[i]].xyz;
+        m = std::min(m, std::acos(a.dot(b) / (a.norm() * b.norm())) * 180 / kPi);
+      }
+    return m;
+  };
+  ASSERT_LT(min_angle(), 15.0);
+  EXPECT_GT(improve_bd_angles(f, s.boundary, net, 30.0, 50), 0);
+  EXPECT_GE(min_angle(), 30.0);
+  double area = 0;
+  for (const auto& p : net.panels) {
+    const double a = polygon_area(net.nodes, p);
+    EXPECT_GT(a, 0.0);
+    area += a;
+  }
+  EXPECT_NEAR(area, 90000.0, 1e-6);  // still tiles the square
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const BdNode& n = net.nodes[id(i, j)];
+      if (n.loop < 0) continue;
+      const double x = n.uv.x(), y = n.uv.y();
+      const double off = std::min({std::abs(x), std::abs(y), std::abs(x - 300), std::abs(y - 300)});
+      EXPECT_NEAR(off, 0.0, 1e-9) << i << "," << j;  // on the trim
+      if (n.corner) {
+        EXPECT_EQ((n.uv - Vec2(100 * i, 100 * j)).norm(), 0.0);
+      }
+    }
+  EXPECT_NEAR(net.nodes[id(2, 3)].uv.y(), 300.0, 1e-12);  // slid along the top edge
+  EXPECT_THROW(improve_bd_angles(f, s.boundary, net, 95.0, 5), InvalidParameter);
+}
+
 // ---------------------------------------------------------------- end to end
 TEST(BoundaryDriven, PlateWithHoleIsAllQuadsTilingTheFaceWithNodesOnTheTrim) {
   const SurfaceFace f = plate_with_square_hole(1000, 375, 625);

@@ -42,4 +42,20 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
 void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
                     BdNetwork& net, int iterations, double factor = 0.5);
 
+// Angle-aware node relocation (our addition after section 3.3): Laplacian
+// smoothing cannot open a sharp corner where two trims are closer than a panel
+// or where a triangle was quadrangulated (a quad with one flat corner). Every
+// node of a panel with a corner under `target_deg` (3D) is moved, by local
+// search, to the candidate position that maximizes the smallest corner angle
+// of the panels around it (a reflex corner in (u,v) counts as 0 unless it is
+// on a concave trim). Interior nodes try points toward and away from each
+// neighbour and square to that edge in the tangent plane, projected onto the
+// surface and inside the trim; trim nodes slide along their loop toward or
+// away from their trim neighbours (so they stay on the trim polyline); corners
+// stay fixed. A move is kept only when it raises that local minimum and makes
+// no edge at the node shorter than 0.3 x the median edge (unless it already
+// was and gets no shorter). Returns the number of moves.
+int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                      BdNetwork& net, double target_deg, int passes);
+
 }  // namespace tessella

@@ -25,6 +25,10 @@ struct BoundaryDrivenParams {
   double corner_angle_deg = 30.0;
   // Network edges shorter than this fraction of the curve spacing are collapsed.
   double min_edge_fraction = 0.35;
+  // After smoothing, nodes of panels with a corner under this angle (deg) are
+  // relocated to open it (improve_bd_angles); 0 switches the step off.
+  double angle_target_deg = 30.0;
+  int angle_passes = 30;
   int max_panels = 200000;
 };
 
@@ -35,6 +39,7 @@ struct BoundaryDrivenResult {
   BdNetwork network;  // the preliminary mesh (before refinement)
   int removed_triangles = 0;
   int collapsed_edges = 0;
+  int angle_moves = 0;  // node moves made by improve_bd_angles
   PanelMesh mesh;
 };
 
