@@ -341,6 +341,29 @@ SweepFront sweep_front(const Context& cx, const SurfaceCurve& c, double side) {
   return f;
 }
 
+// Where a concave part of an offset curve folds over itself (two arms of a V
+// crossing), the loop between the first and the last crossing segment is cut
+// out, as for offset curves in the plane (in (u,v)).
+std::vector<Vec2> cut_self_crossings(std::vector<Vec2> pts) {
+  auto cross2 = [](const Vec2& a, const Vec2& b) { return a[0] * b[1] - a[1] * b[0]; };
+  for (std::size_t i = 0; i + 3 < pts.size(); ++i) {
+    const Vec2 a = pts[i], r = pts[i + 1] - pts[i];
+    for (std::size_t j = pts.size() - 2; j >= i + 2; --j) {
+      const Vec2 c = pts[j], q = pts[j + 1] - pts[j];
+      const double den = cross2(r, q);
+      if (den == 0.0) continue;
+      const double t = cross2(c - a, q) / den, u = cross2(c - a, r) / den;
+      if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) continue;
+      std::vector<Vec2> out(pts.begin(), pts.begin() + i + 1);
+      out.push_back(a + t * r);
+      out.insert(out.end(), pts.begin() + j + 1, pts.end());
+      pts = std::move(out);
+      break;
+    }
+  }
+  return pts;
+}
+
 bool offset_curve(const Context& cx, const SweepFront& front, const SurfaceCurve& c, double side,
                   SurfaceCurve& next) {
   const SurfaceFace& face = cx.face;
@@ -387,10 +410,9 @@ bool offset_curve(const Context& cx, const SweepFront& front, const SurfaceCurve
   // (under a quarter of the last GSM curve) it no longer sweeps new ground.
   if (best_n < last / 4) return false;
   SurfaceCurve run;
-  for (std::size_t k = best0; k < best0 + best_n; ++k) {
-    run.uv.push_back(uv[k]);
-    run.xyz.push_back(face.point(uv[k][0], uv[k][1]));
-  }
+  run.uv = cut_self_crossings(std::vector<Vec2>(uv.begin() + best0, uv.begin() + best0 + best_n));
+  for (const Vec2& x : run.uv) run.xyz.push_back(face.point(x[0], x[1]));
+  if (run.uv.size() < 2) return false;
   const std::size_t n = run.uv.size();
   if (cx.inside(run.uv[0][0], run.uv[0][1])) {
     const Vec2 e = extend_to_boundary(cx, run.uv[0], run.uv[1]);
