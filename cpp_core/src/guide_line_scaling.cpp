@@ -553,35 +553,93 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   result.curves.push_back(c0);
   for (const SurfaceCurve& c : sides[0]) result.curves.push_back(c);
 
-  // Step 7: divide every curve (each piece inside the face) into equal chords.
+  // Step 7: divide every curve (each piece inside the face) into chords near
+  // L1. The guide curve gets the paper's equal chords; with `stagger`, every
+  // other curve (outwards from the guide) takes its nodes at the feet of the
+  // midpoints of the neighbouring curve's rods nearer the guide, so the rods
+  // between the curves are close to sqrt(L^2 + (L1/2)^2) instead of anything
+  // from L to sqrt(L^2 + L1^2); gaps under L1/2 are merged, over 3/2 L1 split.
   PanelMesh& mesh = result.mesh;
-  std::vector<Row> rows;
   ChordDivisionParams cp;
   cp.chord = cx.l1;
   cp.merge_fraction = params.merge_fraction;
-  for (const SurfaceCurve& c : result.curves) {
-    Row row;
+  const std::size_t nc = result.curves.size(), guide_index = sides[1].size();
+  std::vector<std::vector<std::pair<Vec2, int>>> nodes(nc);  // (uv, run) per curve
+  auto divide = [&](std::size_t ci, const std::vector<std::pair<Vec2, int>>* prev) {
     int run_id = 0;
-    for (const SurfaceCurve& run : inside_runs(cx, c)) {
+    for (const SurfaceCurve& run : inside_runs(cx, result.curves[ci])) {
       const double len = polyline_length(run.xyz);
       if (len < 1e-6 * size) continue;
+      std::vector<double> sk(run.xyz.size(), 0.0);
+      for (std::size_t i = 1; i < sk.size(); ++i)
+        sk[i] = sk[i - 1] + (run.xyz[i] - run.xyz[i - 1]).norm();
       std::vector<Vec2> uvs;
       if (len < params.merge_fraction * cx.l1) {
         uvs = {run.uv.front(), run.uv.back()};
-      } else {
+      } else if (!params.stagger || prev == nullptr) {
         for (double t : divide_by_chords(run.xyz, cp)) {
-          const std::size_t s = std::min(static_cast<std::size_t>(t), run.uv.size() - 2);
-          const double f = t - static_cast<double>(s);
-          uvs.push_back(run.uv[s] + f * (run.uv[s + 1] - run.uv[s]));
+          const std::size_t k = std::min(static_cast<std::size_t>(t), run.uv.size() - 2);
+          const double f = t - static_cast<double>(k);
+          uvs.push_back(run.uv[k] + f * (run.uv[k + 1] - run.uv[k]));
+        }
+      } else {
+        // Arc-length positions of the feet of the previous rods' midpoints.
+        std::vector<double> pos = {0.0, len};
+        for (std::size_t j = 0; j + 1 < prev->size(); ++j) {
+          if ((*prev)[j].second != (*prev)[j + 1].second) continue;
+          const Vec2 muv = 0.5 * ((*prev)[j].first + (*prev)[j + 1].first);
+          const Vec3 m = face.point(muv[0], muv[1]);
+          double best = std::numeric_limits<double>::infinity(), at = 0.0;
+          for (std::size_t i = 0; i + 1 < run.xyz.size(); ++i) {
+            const Vec3 ab = run.xyz[i + 1] - run.xyz[i];
+            const double l2 = ab.squaredNorm();
+            const double t = l2 > 0 ? std::clamp((m - run.xyz[i]).dot(ab) / l2, 0.0, 1.0) : 0.0;
+            const double d = (run.xyz[i] + t * ab - m).norm();
+            if (d < best) best = d, at = sk[i] + t * (sk[i + 1] - sk[i]);
+          }
+          if (best < 1.5 * cx.advance && at > 0.0 && at < len) pos.push_back(at);
+        }
+        std::sort(pos.begin(), pos.end());
+        std::vector<double> kept = {0.0};
+        for (std::size_t i = 1; i + 1 < pos.size(); ++i)
+          if (pos[i] - kept.back() >= 0.7 * cx.l1 && len - pos[i] >= 0.7 * cx.l1)
+            kept.push_back(pos[i]);
+        kept.push_back(len);
+        std::vector<double> split = {0.0};
+        for (std::size_t i = 1; i < kept.size(); ++i) {
+          const double gap = kept[i] - kept[i - 1];
+          const int n = gap > 1.5 * cx.l1 ? static_cast<int>(std::round(gap / cx.l1)) : 1;
+          for (int q = 1; q <= n; ++q) split.push_back(kept[i - 1] + gap * q / n);
+        }
+        // Pull the chords towards L1 (the feet stay the targets): Gauss-Seidel
+        // on sum (x_i - foot_i)^2 + sum (x_{i+1} - x_i - L1)^2, ends fixed.
+        const std::vector<double> foot = split;
+        for (int it = 0; it < 50; ++it)
+          for (std::size_t i = 1; i + 1 < split.size(); ++i)
+            split[i] = (foot[i] + 2.0 * (split[i - 1] + split[i + 1])) / 5.0;
+        std::size_t k = 0;
+        for (double at : split) {
+          while (k + 2 < sk.size() && sk[k + 1] < at) ++k;
+          const double span = sk[k + 1] - sk[k];
+          const double f = span > 0 ? std::clamp((at - sk[k]) / span, 0.0, 1.0) : 0.0;
+          uvs.push_back(run.uv[k] + f * (run.uv[k + 1] - run.uv[k]));
         }
       }
-      for (const Vec2& uv : uvs) {
-        row.ids.push_back(static_cast<int>(mesh.uv.size()));
-        row.runs.push_back(run_id);
-        mesh.uv.push_back(uv);
-        mesh.xyz.push_back(face.point(uv[0], uv[1]));
-      }
+      for (const Vec2& uv : uvs) nodes[ci].push_back({uv, run_id});
       ++run_id;
+    }
+  };
+  divide(guide_index, nullptr);
+  for (std::size_t ci = guide_index + 1; ci < nc; ++ci) divide(ci, &nodes[ci - 1]);
+  for (std::size_t ci = guide_index; ci-- > 0;) divide(ci, &nodes[ci + 1]);
+  std::vector<Row> rows;
+  for (const auto& list : nodes) {
+    Row row;
+    for (const auto& [uv, run_id] : list) {
+      row.ids.push_back(static_cast<int>(mesh.uv.size()));
+      row.runs.push_back(run_id);
+      mesh.uv.push_back(uv);
+      mesh.xyz.push_back(face.point(uv[0], uv[1]));
     }
     if (!row.ids.empty()) rows.push_back(std::move(row));
   }
