@@ -602,7 +602,7 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
         std::sort(pos.begin(), pos.end());
         std::vector<double> kept = {0.0};
         for (std::size_t i = 1; i + 1 < pos.size(); ++i)
-          if (pos[i] - kept.back() >= 0.7 * cx.l1 && len - pos[i] >= 0.7 * cx.l1)
+          if (pos[i] - kept.back() >= 0.8 * cx.l1 && len - pos[i] >= 0.8 * cx.l1)
             kept.push_back(pos[i]);
         kept.push_back(len);
         std::vector<double> split = {0.0};
