@@ -364,8 +364,8 @@ std::vector<Vec2> cut_self_crossings(std::vector<Vec2> pts) {
   return pts;
 }
 
-bool offset_curve(const Context& cx, const SweepFront& front, const SurfaceCurve& c, double side,
-                  SurfaceCurve& next) {
+bool offset_curve(const Context& cx, const SweepFront& front, const SweepFront& guide_front,
+                  const SurfaceCurve& c, double side, SurfaceCurve& next) {
   const SurfaceFace& face = cx.face;
   const UvBounds b = face.bounds();
   const std::size_t last = c.xyz.size() - 1;
@@ -391,7 +391,7 @@ bool offset_curve(const Context& cx, const SweepFront& front, const SurfaceCurve
     const Vec3 tau_new =
         face.point(uv[k][0], uv[k][1]) - face.point(c.uv[k][0], c.uv[k][1]);  // the move
     ok[k] = pr.distance <= 0.1 * cx.advance && !on_border(pr.uv) && front.ahead(pr.uv) > 0.0 &&
-            tau_new.dot(d) > 0.5 * cx.advance;
+            guide_front.ahead(pr.uv) > 0.0 && tau_new.dot(d) > 0.5 * cx.advance;
   }
   std::size_t best0 = 0, best_n = 0;
   for (std::size_t k = 0; k <= last;) {
@@ -536,13 +536,21 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
     const double side = k == 0 ? 1.0 : -1.0;
     SurfaceCurve cur = c0, next;
     bool finishing = false;
-    SweepFront front;
+    SweepFront front, guide_front;
+    // Finishing offsets could wrap around a closed face (a full period in u
+    // or v) onto the curves already there: not on closed faces.
+    const UvBounds fb = face.bounds();
+    const bool closed_u = face.u_periodic() && fb.u_max - fb.u_min > 0.99 * face.u_period();
+    const bool closed_v = face.v_periodic() && fb.v_max - fb.v_min > 0.99 * face.v_period();
+    const bool finish = params.finish_sweep && !closed_u && !closed_v;
     for (;;) {
       if (!finishing && !advance_curve(cx, cur, side, next)) {
         finishing = true;
         front = sweep_front(cx, cur, side);
+        guide_front = sweep_front(cx, c0, side);
       }
-      if (finishing && (!params.finish_sweep || !offset_curve(cx, front, cur, side, next))) break;
+      if (finishing && !finish) break;
+      if (finishing && !offset_curve(cx, front, guide_front, cur, side, next)) break;
       sides[k].push_back(next);
       if (static_cast<int>(sides[0].size() + sides[1].size()) + 1 > params.max_curves)
         throw LimitExceeded("guide_line_scaling: more than max_curves curves; increase advance");
