@@ -388,10 +388,10 @@ bool offset_curve(const Context& cx, const SweepFront& front, const SweepFront& 
     uv[k] = pr.uv;
     // On the surface, ahead of the GSM sweep, and not folded back (a
     // concave part of the curve that collapsed into a swallowtail).
-    const Vec3 tau_new =
-        face.point(uv[k][0], uv[k][1]) - face.point(c.uv[k][0], c.uv[k][1]);  // the move
-    ok[k] = pr.distance <= 0.1 * cx.advance && !on_border(pr.uv) && front.ahead(pr.uv) > 0.0 &&
-            guide_front.ahead(pr.uv) > 0.0 && tau_new.dot(d) > 0.5 * cx.advance;
+    const Vec3 move = pr.point - c.xyz[k];
+    ok[k] = pr.distance <= 0.1 * cx.advance && !on_border(pr.uv) &&
+            move.dot(d) > 0.5 * cx.advance && front.ahead(pr.uv) > 0.0 &&
+            guide_front.ahead(pr.uv) > 0.0;
   }
   std::size_t best0 = 0, best_n = 0;
   for (std::size_t k = 0; k <= last;) {
