@@ -55,6 +55,8 @@ void bind_guide_lines(py::module_& m) {
       .def_readwrite("merge_fraction", &GuideLineScalingParams::merge_fraction)
       .def_readwrite("guide_tolerance", &GuideLineScalingParams::guide_tolerance)
       .def_readwrite("max_curves", &GuideLineScalingParams::max_curves)
+      .def_readwrite("finish_sweep", &GuideLineScalingParams::finish_sweep)
+      .def_readwrite("stagger", &GuideLineScalingParams::stagger)
       .def_readwrite("trim_deflection", &GuideLineScalingParams::trim_deflection)
       .def_readwrite("max_panels", &GuideLineScalingParams::max_panels);
 

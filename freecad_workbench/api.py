@@ -155,8 +155,8 @@ METHODS = {
     ),
     "guide_line_scaling": MethodSpec(
         {"rod_length": float, "advance": float, "merge_fraction": float,
-         "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
-         "max_panels": int},
+         "guide_tolerance": float, "max_curves": int, "finish_sweep": bool, "stagger": bool,
+         "trim_deflection": float, "max_panels": int},
         lambda: core.GuideLineScalingParams(),
         lambda surface, p: core.guide_line_scaling(surface, p),
         converters={"guides": _guides(1)},

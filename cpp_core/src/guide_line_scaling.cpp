@@ -45,27 +45,50 @@ SurfaceCurve resample(const SurfaceFace& face, const SurfaceCurve& c, int count)
 }
 
 // Boundary crossing between an inside and an outside (u,v) point (bisection).
-Vec2 bisect_boundary(const SurfaceFace& face, Vec2 in, Vec2 out) {
+// The fast test finds the crossing of the trim polyline; the last steps use
+// OCCT's classifier in a small bracket around it, so the point lies on the true
+// trim (the polyline is up to the trim deflection away from it).
+Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out) {
+  const Vec2 in0 = in, out0 = out;
   for (int it = 0; it < 36; ++it) {
     const Vec2 mid = 0.5 * (in + out);
-    if (face.is_inside(mid[0], mid[1]))
+    if (cx.inside(mid[0], mid[1]))
       in = mid;
     else
       out = mid;
+  }
+  if (!cx.inside.fast()) return in;
+  const Vec2 dir = out0 - in0;
+  const double len = dir.norm();
+  if (!(len > 0.0)) return in;
+  const double t = (in - in0).dot(dir) / (len * len);
+  for (double w = 1e-3; w <= 1.0; w *= 4.0) {
+    double lo = std::max(0.0, t - w), hi = std::min(1.0, t + w);
+    if (!cx.inside.exact(in0[0] + lo * dir[0], in0[1] + lo * dir[1])) continue;
+    if (cx.inside.exact(in0[0] + hi * dir[0], in0[1] + hi * dir[1])) continue;
+    for (int it = 0; it < 30; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (cx.inside.exact(in0[0] + mid * dir[0], in0[1] + mid * dir[1]))
+        lo = mid;
+      else
+        hi = mid;
+    }
+    return in0 + lo * dir;
   }
   return in;
 }
 
 // The pieces of the curve inside the trimmed face, cut at the boundary.
-std::vector<SurfaceCurve> inside_runs(const SurfaceFace& face, const SurfaceCurve& c) {
+std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c) {
+  const SurfaceFace& face = cx.face;
   std::vector<SurfaceCurve> runs;
   SurfaceCurve cur;
   bool prev_in = false;
   for (std::size_t i = 0; i < c.uv.size(); ++i) {
-    const bool in = face.is_inside(c.uv[i][0], c.uv[i][1]);
+    const bool in = cx.inside(c.uv[i][0], c.uv[i][1]);
     if (i > 0 && in != prev_in) {
-      const Vec2 b = in ? bisect_boundary(face, c.uv[i], c.uv[i - 1])
-                        : bisect_boundary(face, c.uv[i - 1], c.uv[i]);
+      const Vec2 b = in ? bisect_boundary(cx, c.uv[i], c.uv[i - 1])
+                        : bisect_boundary(cx, c.uv[i - 1], c.uv[i]);
       cur.uv.push_back(b);
       cur.xyz.push_back(face.point(b[0], b[1]));
       if (!in) {
@@ -86,21 +109,30 @@ std::vector<SurfaceCurve> inside_runs(const SurfaceFace& face, const SurfaceCurv
   return runs;
 }
 
+// Length of the curve on the face (sampled: the exact pieces come at the
+// division).
+double length_inside(const Context& cx, const SurfaceCurve& c) {
+  double inside = 0.0;
+  for (std::size_t i = 2; i < c.uv.size(); i += 2)
+    if (cx.inside(c.uv[i - 1][0], c.uv[i - 1][1])) inside += (c.xyz[i] - c.xyz[i - 2]).norm();
+  return inside;
+}
+
 bool inside_bounds(const UvBounds& b, const Vec2& uv) {
   return uv[0] >= b.u_min && uv[0] <= b.u_max && uv[1] >= b.v_min && uv[1] <= b.v_max;
 }
 
 // Extends the curve end (index 0 or last) along its (u,v) tangent up to the
 // boundary (doubling steps, then bisection).
-Vec2 extend_to_boundary(const SurfaceFace& face, const Vec2& end, const Vec2& before) {
+Vec2 extend_to_boundary(const Context& cx, const Vec2& end, const Vec2& before) {
   const Vec2 dir = end - before;
   if (dir.norm() <= 0.0) return end;
-  const UvBounds b = face.bounds();
+  const UvBounds b = cx.face.bounds();
   Vec2 in = end;
   double h = 1.0;
   for (int it = 0; it < 60; ++it, h *= 2.0) {
     const Vec2 x = end + h * dir;
-    if (!inside_bounds(b, x) || !face.is_inside(x[0], x[1])) return bisect_boundary(face, in, x);
+    if (!inside_bounds(b, x) || !cx.inside(x[0], x[1])) return bisect_boundary(cx, in, x);
     in = x;
   }
   return in;
@@ -261,12 +293,140 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
     std::nth_element(progress.begin(), progress.begin() + progress.size() / 2, progress.end());
     if (progress[progress.size() / 2] < 0.2 * cx.advance) return false;
   }
-  // Enough of it on the face (sampled: the exact pieces come at the division).
-  double inside = 0.0;
-  for (std::size_t i = 2; i <= last; i += 2)
-    if (face.is_inside(next.uv[i - 1][0], next.uv[i - 1][1]))
-      inside += (next.xyz[i] - next.xyz[i - 2]).norm();
-  return inside >= 0.5 * cx.l1;
+  // Enough of it on the face.
+  return length_inside(cx, next) >= 0.5 * cx.l1;
+}
+
+// Finishing the sweep (beyond seed 004): where the face rises between its
+// edges, the projection pulls the middle of each scaled curve back, so the
+// ends reach the far corners while a strip in the middle is still open and
+// the GSM step stalls. Then every point of the curve is moved by `advance`
+// across the curve (N x tangent, tangent over about one rod length so the
+// offset is smooth) and projected onto the surface; points whose target lies
+// beyond the surface's border are dropped, the longest remaining run is kept
+// and its ends are extended to the trim. False when less than L1/2 of the new
+// curve lies on the face.
+// The side of the last curve of the GSM sweep, in (u,v): positive ahead of it
+// (where the finishing curves go), negative behind it (covered already).
+struct SweepFront {
+  std::vector<Vec2> uv;
+  double sign = 1.0;
+  double ahead(const Vec2& p) const {
+    double best = std::numeric_limits<double>::infinity(), value = 0.0;
+    for (std::size_t i = 0; i + 1 < uv.size(); ++i) {
+      const Vec2 ab = uv[i + 1] - uv[i];
+      const double len2 = ab.squaredNorm();
+      if (len2 <= 0.0) continue;
+      const double t = std::clamp((p - uv[i]).dot(ab) / len2, 0.0, 1.0);
+      const Vec2 q = uv[i] + t * ab;
+      const double d = (p - q).norm();
+      if (d < best) best = d, value = sign * (p - q).dot(Vec2(-ab[1], ab[0]));
+    }
+    return value;
+  }
+};
+
+SweepFront sweep_front(const Context& cx, const SurfaceCurve& c, double side) {
+  SweepFront f;
+  f.uv = c.uv;
+  const std::size_t k = c.uv.size() / 2;
+  const Vec3 tau = (c.xyz[k + 1] - c.xyz[k - 1]).normalized();
+  const SurfacePoint sp = cx.face.derivatives(c.uv[k][0], c.uv[k][1]);
+  const Vec3 d = side * cx.face.normal(c.uv[k][0], c.uv[k][1]).cross(tau);
+  Eigen::Matrix<double, 3, 2> j;
+  j << sp.du, sp.dv;
+  const Vec2 duv = (j.transpose() * j).ldlt().solve(j.transpose() * d);
+  const Vec2 ab = c.uv[k + 1] - c.uv[k - 1];
+  f.sign = Vec2(-ab[1], ab[0]).dot(duv) >= 0.0 ? 1.0 : -1.0;
+  return f;
+}
+
+// Where a concave part of an offset curve folds over itself (two arms of a V
+// crossing), the loop between the first and the last crossing segment is cut
+// out, as for offset curves in the plane (in (u,v)).
+std::vector<Vec2> cut_self_crossings(std::vector<Vec2> pts) {
+  auto cross2 = [](const Vec2& a, const Vec2& b) { return a[0] * b[1] - a[1] * b[0]; };
+  for (std::size_t i = 0; i + 3 < pts.size(); ++i) {
+    const Vec2 a = pts[i], r = pts[i + 1] - pts[i];
+    for (std::size_t j = pts.size() - 2; j >= i + 2; --j) {
+      const Vec2 c = pts[j], q = pts[j + 1] - pts[j];
+      const double den = cross2(r, q);
+      if (den == 0.0) continue;
+      const double t = cross2(c - a, q) / den, u = cross2(c - a, r) / den;
+      if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) continue;
+      std::vector<Vec2> out(pts.begin(), pts.begin() + i + 1);
+      out.push_back(a + t * r);
+      out.insert(out.end(), pts.begin() + j + 1, pts.end());
+      pts = std::move(out);
+      break;
+    }
+  }
+  return pts;
+}
+
+bool offset_curve(const Context& cx, const SweepFront& front, const SweepFront& guide_front,
+                  const SurfaceCurve& c, double side, SurfaceCurve& next) {
+  const SurfaceFace& face = cx.face;
+  const UvBounds b = face.bounds();
+  const std::size_t last = c.xyz.size() - 1;
+  const std::size_t m = std::clamp<std::size_t>(
+      static_cast<std::size_t>(0.5 * cx.l1 / std::max(polyline_length(c.xyz) / last, cx.tol)), 1,
+      last / 4 + 1);
+  auto on_border = [&](const Vec2& uv) {
+    return (!face.u_periodic() && (uv[0] <= b.u_min || uv[0] >= b.u_max)) ||
+           (!face.v_periodic() && (uv[1] <= b.v_min || uv[1] >= b.v_max));
+  };
+  std::vector<Vec2> uv(last + 1);
+  std::vector<char> ok(last + 1, 0);
+  for (std::size_t k = 0; k <= last; ++k) {
+    const std::size_t k0 = k >= m ? k - m : 0, k1 = std::min(last, k + m);
+    const Vec3 tau = (c.xyz[k1] - c.xyz[k0]).normalized();
+    Vec3 d = face.normal(c.uv[k][0], c.uv[k][1]).cross(tau);
+    if (d.norm() < 1e-12) continue;
+    d = side * d.normalized();
+    const Projection pr = project_near(face, c.xyz[k] + cx.advance * d, c.uv[k]);
+    uv[k] = pr.uv;
+    // On the surface, ahead of the GSM sweep, and not folded back (a
+    // concave part of the curve that collapsed into a swallowtail).
+    const Vec3 move = pr.point - c.xyz[k];
+    ok[k] = pr.distance <= 0.1 * cx.advance && !on_border(pr.uv) &&
+            move.dot(d) > 0.5 * cx.advance && front.ahead(pr.uv) > 0.0 &&
+            guide_front.ahead(pr.uv) > 0.0;
+  }
+  std::size_t best0 = 0, best_n = 0;
+  for (std::size_t k = 0; k <= last;) {
+    if (!ok[k]) {
+      ++k;
+      continue;
+    }
+    std::size_t e = k;
+    while (e <= last && ok[e]) ++e;
+    if (e - k > best_n) best0 = k, best_n = e - k;
+    k = e;
+  }
+  if (best_n < 2) return false;
+  // The curve collapses where it is concave and is cut where it leaves the
+  // face; once its remaining part is a short piece sliding along the border
+  // (under a quarter of the last GSM curve) it no longer sweeps new ground.
+  if (best_n < last / 4) return false;
+  SurfaceCurve run;
+  run.uv = cut_self_crossings(std::vector<Vec2>(uv.begin() + best0, uv.begin() + best0 + best_n));
+  for (const Vec2& x : run.uv) run.xyz.push_back(face.point(x[0], x[1]));
+  if (run.uv.size() < 2) return false;
+  const std::size_t n = run.uv.size();
+  if (cx.inside(run.uv[0][0], run.uv[0][1])) {
+    const Vec2 e = extend_to_boundary(cx, run.uv[0], run.uv[1]);
+    if (front.ahead(e) > 0.0) run.uv.front() = e;
+  }
+  if (cx.inside(run.uv[n - 1][0], run.uv[n - 1][1])) {
+    const Vec2 e = extend_to_boundary(cx, run.uv[n - 1], run.uv[n - 2]);
+    if (front.ahead(e) > 0.0) run.uv.back() = e;
+  }
+  run.xyz.front() = face.point(run.uv.front()[0], run.uv.front()[1]);
+  run.xyz.back() = face.point(run.uv.back()[0], run.uv.back()[1]);
+  if (polyline_length(run.xyz) < 0.5 * cx.l1) return false;
+  next = resample(face, run, cx.samples);
+  return length_inside(cx, next) >= 0.5 * cx.l1;
 }
 
 SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide) {
@@ -297,7 +457,7 @@ SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide) {
     projected.uv.push_back(pr.uv);
     projected.xyz.push_back(pr.point);
   }
-  std::vector<SurfaceCurve> runs = inside_runs(face, projected);
+  std::vector<SurfaceCurve> runs = inside_runs(cx, projected);
   if (runs.empty()) throw InvalidParameter("guides: the guide curve does not cross the face");
   SurfaceCurve best =
       *std::max_element(runs.begin(), runs.end(), [](const SurfaceCurve& a, const SurfaceCurve& b) {
@@ -308,8 +468,8 @@ SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide) {
         "guides: the part of the guide curve on the face is shorter than rod_length / 2");
   // Ends that stop inside the face are extended to the boundary.
   const std::size_t n = best.uv.size();
-  best.uv.front() = extend_to_boundary(face, best.uv[0], best.uv[1]);
-  best.uv.back() = extend_to_boundary(face, best.uv[n - 1], best.uv[n - 2]);
+  best.uv.front() = extend_to_boundary(cx, best.uv[0], best.uv[1]);
+  best.uv.back() = extend_to_boundary(cx, best.uv[n - 1], best.uv[n - 2]);
   best.xyz.front() = face.point(best.uv.front()[0], best.uv.front()[1]);
   best.xyz.back() = face.point(best.uv.back()[0], best.uv.back()[1]);
   return resample(face, best, cx.samples);
@@ -347,7 +507,8 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
              params.rod_length,
              params.advance > 0 ? params.advance : params.rod_length * std::sqrt(3.0) / 2.0,
              1e-9 * size,
-             0};
+             0,
+             {}};
   require_in_range("advance (mm)", cx.advance, 1e-3, 1e9);
   if (size / cx.advance > params.max_curves)
     throw LimitExceeded(
@@ -356,8 +517,10 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   const double est_len = std::max(guide_len, size);
   cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * est_len / cx.l1) + 1.0, 33.0, 4001.0));
   const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
-  for (const TrimLoop& loop : face.trim_loops(deflection))
+  const std::vector<TrimLoop> loops = face.trim_loops(deflection);
+  for (const TrimLoop& loop : loops)
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
+  cx.inside = UvInside(face, loops);
   if (cx.boundary.xyz.size() < 3)
     throw InvalidGeometry("guide_line_scaling: the face has no outer boundary");
 
@@ -372,7 +535,22 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   for (int k = 0; k < 2; ++k) {
     const double side = k == 0 ? 1.0 : -1.0;
     SurfaceCurve cur = c0, next;
-    while (advance_curve(cx, cur, side, next)) {
+    bool finishing = false;
+    SweepFront front, guide_front;
+    // Finishing offsets could wrap around a closed face (a full period in u
+    // or v) onto the curves already there: not on closed faces.
+    const UvBounds fb = face.bounds();
+    const bool closed_u = face.u_periodic() && fb.u_max - fb.u_min > 0.99 * face.u_period();
+    const bool closed_v = face.v_periodic() && fb.v_max - fb.v_min > 0.99 * face.v_period();
+    const bool finish = params.finish_sweep && !closed_u && !closed_v;
+    for (;;) {
+      if (!finishing && !advance_curve(cx, cur, side, next)) {
+        finishing = true;
+        front = sweep_front(cx, cur, side);
+        guide_front = sweep_front(cx, c0, side);
+      }
+      if (finishing && !finish) break;
+      if (finishing && !offset_curve(cx, front, guide_front, cur, side, next)) break;
       sides[k].push_back(next);
       if (static_cast<int>(sides[0].size() + sides[1].size()) + 1 > params.max_curves)
         throw LimitExceeded("guide_line_scaling: more than max_curves curves; increase advance");
@@ -383,35 +561,93 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   result.curves.push_back(c0);
   for (const SurfaceCurve& c : sides[0]) result.curves.push_back(c);
 
-  // Step 7: divide every curve (each piece inside the face) into equal chords.
+  // Step 7: divide every curve (each piece inside the face) into chords near
+  // L1. The guide curve gets the paper's equal chords; with `stagger`, every
+  // other curve (outwards from the guide) takes its nodes at the feet of the
+  // midpoints of the neighbouring curve's rods nearer the guide, so the rods
+  // between the curves are close to sqrt(L^2 + (L1/2)^2) instead of anything
+  // from L to sqrt(L^2 + L1^2); gaps under L1/2 are merged, over 3/2 L1 split.
   PanelMesh& mesh = result.mesh;
-  std::vector<Row> rows;
   ChordDivisionParams cp;
   cp.chord = cx.l1;
   cp.merge_fraction = params.merge_fraction;
-  for (const SurfaceCurve& c : result.curves) {
-    Row row;
+  const std::size_t nc = result.curves.size(), guide_index = sides[1].size();
+  std::vector<std::vector<std::pair<Vec2, int>>> nodes(nc);  // (uv, run) per curve
+  auto divide = [&](std::size_t ci, const std::vector<std::pair<Vec2, int>>* prev) {
     int run_id = 0;
-    for (const SurfaceCurve& run : inside_runs(face, c)) {
+    for (const SurfaceCurve& run : inside_runs(cx, result.curves[ci])) {
       const double len = polyline_length(run.xyz);
       if (len < 1e-6 * size) continue;
+      std::vector<double> sk(run.xyz.size(), 0.0);
+      for (std::size_t i = 1; i < sk.size(); ++i)
+        sk[i] = sk[i - 1] + (run.xyz[i] - run.xyz[i - 1]).norm();
       std::vector<Vec2> uvs;
       if (len < params.merge_fraction * cx.l1) {
         uvs = {run.uv.front(), run.uv.back()};
-      } else {
+      } else if (!params.stagger || prev == nullptr) {
         for (double t : divide_by_chords(run.xyz, cp)) {
-          const std::size_t s = std::min(static_cast<std::size_t>(t), run.uv.size() - 2);
-          const double f = t - static_cast<double>(s);
-          uvs.push_back(run.uv[s] + f * (run.uv[s + 1] - run.uv[s]));
+          const std::size_t k = std::min(static_cast<std::size_t>(t), run.uv.size() - 2);
+          const double f = t - static_cast<double>(k);
+          uvs.push_back(run.uv[k] + f * (run.uv[k + 1] - run.uv[k]));
+        }
+      } else {
+        // Arc-length positions of the feet of the previous rods' midpoints.
+        std::vector<double> pos = {0.0, len};
+        for (std::size_t j = 0; j + 1 < prev->size(); ++j) {
+          if ((*prev)[j].second != (*prev)[j + 1].second) continue;
+          const Vec2 muv = 0.5 * ((*prev)[j].first + (*prev)[j + 1].first);
+          const Vec3 m = face.point(muv[0], muv[1]);
+          double best = std::numeric_limits<double>::infinity(), at = 0.0;
+          for (std::size_t i = 0; i + 1 < run.xyz.size(); ++i) {
+            const Vec3 ab = run.xyz[i + 1] - run.xyz[i];
+            const double l2 = ab.squaredNorm();
+            const double t = l2 > 0 ? std::clamp((m - run.xyz[i]).dot(ab) / l2, 0.0, 1.0) : 0.0;
+            const double d = (run.xyz[i] + t * ab - m).norm();
+            if (d < best) best = d, at = sk[i] + t * (sk[i + 1] - sk[i]);
+          }
+          if (best < 1.5 * cx.advance && at > 0.0 && at < len) pos.push_back(at);
+        }
+        std::sort(pos.begin(), pos.end());
+        std::vector<double> kept = {0.0};
+        for (std::size_t i = 1; i + 1 < pos.size(); ++i)
+          if (pos[i] - kept.back() >= 0.8 * cx.l1 && len - pos[i] >= 0.8 * cx.l1)
+            kept.push_back(pos[i]);
+        kept.push_back(len);
+        std::vector<double> split = {0.0};
+        for (std::size_t i = 1; i < kept.size(); ++i) {
+          const double gap = kept[i] - kept[i - 1];
+          const int n = gap > 1.5 * cx.l1 ? static_cast<int>(std::round(gap / cx.l1)) : 1;
+          for (int q = 1; q <= n; ++q) split.push_back(kept[i - 1] + gap * q / n);
+        }
+        // Pull the chords towards L1 (the feet stay the targets): Gauss-Seidel
+        // on sum (x_i - foot_i)^2 + sum (x_{i+1} - x_i - L1)^2, ends fixed.
+        const std::vector<double> foot = split;
+        for (int it = 0; it < 50; ++it)
+          for (std::size_t i = 1; i + 1 < split.size(); ++i)
+            split[i] = (foot[i] + 2.0 * (split[i - 1] + split[i + 1])) / 5.0;
+        std::size_t k = 0;
+        for (double at : split) {
+          while (k + 2 < sk.size() && sk[k + 1] < at) ++k;
+          const double span = sk[k + 1] - sk[k];
+          const double f = span > 0 ? std::clamp((at - sk[k]) / span, 0.0, 1.0) : 0.0;
+          uvs.push_back(run.uv[k] + f * (run.uv[k + 1] - run.uv[k]));
         }
       }
-      for (const Vec2& uv : uvs) {
-        row.ids.push_back(static_cast<int>(mesh.uv.size()));
-        row.runs.push_back(run_id);
-        mesh.uv.push_back(uv);
-        mesh.xyz.push_back(face.point(uv[0], uv[1]));
-      }
+      for (const Vec2& uv : uvs) nodes[ci].push_back({uv, run_id});
       ++run_id;
+    }
+  };
+  divide(guide_index, nullptr);
+  for (std::size_t ci = guide_index + 1; ci < nc; ++ci) divide(ci, &nodes[ci - 1]);
+  for (std::size_t ci = guide_index; ci-- > 0;) divide(ci, &nodes[ci + 1]);
+  std::vector<Row> rows;
+  for (const auto& list : nodes) {
+    Row row;
+    for (const auto& [uv, run_id] : list) {
+      row.ids.push_back(static_cast<int>(mesh.uv.size()));
+      row.runs.push_back(run_id);
+      mesh.uv.push_back(uv);
+      mesh.xyz.push_back(face.point(uv[0], uv[1]));
     }
     if (!row.ids.empty()) rows.push_back(std::move(row));
   }
@@ -442,7 +678,7 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
       }
       if (!ok) continue;
       const Vec2 cuv = (mesh.uv[ids[0]] + mesh.uv[ids[1]] + mesh.uv[ids[2]]) / 3.0;
-      if (!face.is_inside(cuv[0], cuv[1])) continue;
+      if (!cx.inside(cuv[0], cuv[1])) continue;
       const Vec3 e1 = mesh.xyz[ids[1]] - mesh.xyz[ids[0]], e2 = mesh.xyz[ids[2]] - mesh.xyz[ids[0]];
       const Vec3 nrm = e1.cross(e2);
       if (nrm.norm() < 1e-9 * cx.l1 * cx.l1) continue;

@@ -177,11 +177,13 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
   if (size / params.rod_length > params.max_curves)
     throw LimitExceeded(
         "two_guide_lines: the face needs more than max_curves curves at this rod_length");
-  Context cx{face, {}, params.rod_length, params.rod_length, 1e-9 * size, 0};
+  Context cx{face, {}, params.rod_length, params.rod_length, 1e-9 * size, 0, {}};
   cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * size / cx.l1) + 1.0, 33.0, 4001.0));
   const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
-  for (const TrimLoop& loop : face.trim_loops(deflection))
+  const std::vector<TrimLoop> loops = face.trim_loops(deflection);
+  for (const TrimLoop& loop : loops)
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
+  cx.inside = UvInside(face, loops);
   if (cx.boundary.xyz.size() < 3)
     throw InvalidGeometry("two_guide_lines: the face has no outer boundary");
   const Loop loop(cx.boundary, params.corner_angle);
@@ -234,7 +236,7 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
             Vec2 p;
             if (!segment_intersection(a, b, fb[js[0]].uv[js[1]], fb[js[0]].uv[js[1] + 1], p))
               continue;
-            if (!face.is_inside(p.x(), p.y())) continue;
+            if (!cx.inside(p.x(), p.y())) continue;
             id = static_cast<int>(mesh.uv.size());
             mesh.uv.push_back(p);
             mesh.xyz.push_back(face.point(p.x(), p.y()));
@@ -252,7 +254,7 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
       for (int k = 0; k < 4; ++k)
         if ((mesh.xyz[q[k]] - mesh.xyz[q[(k + 1) % 4]]).norm() > max_edge) ok = false;
       const Vec2 c = 0.25 * (mesh.uv[q[0]] + mesh.uv[q[1]] + mesh.uv[q[2]] + mesh.uv[q[3]]);
-      if (!ok || !face.is_inside(c.x(), c.y())) continue;
+      if (!ok || !cx.inside(c.x(), c.y())) continue;
       const Vec3 nrm = (mesh.xyz[q[2]] - mesh.xyz[q[0]]).cross(mesh.xyz[q[3]] - mesh.xyz[q[1]]);
       if (nrm.norm() < 1e-9 * cx.l1 * cx.l1) continue;
       if (nrm.dot(face.normal(c.x(), c.y())) < 0) std::swap(q[1], q[3]);

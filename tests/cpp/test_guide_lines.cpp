@@ -140,6 +140,7 @@ TEST(GuideLineScaling, FlatRectangleIsCoveredByParallelCurvesAndEqualRods) {
   p.guide = {Vec3(0, 0, 0), Vec3(0, 6000, 0)};
   p.rod_length = 1000;
   p.advance = 866;
+  p.stagger = false;  // the paper's equal chords on every curve
   const GuideLineResult r = guide_line_scaling_curves(f, p);
   // Straight curves at x = k * 866, k = 0..11, and the last on the right edge
   // (the step beyond is clamped there); listed in sweep order.
@@ -169,6 +170,40 @@ TEST(GuideLineScaling, FlatRectangleIsCoveredByParallelCurvesAndEqualRods) {
     }
   }
   EXPECT_EQ(along, 6 * static_cast<int>(r.curves.size()));
+}
+
+TEST(GuideLineScaling, StaggeredRowsGiveNearEqualRodsBetweenCurves) {
+  // Same plate: the guide x = 0 has nodes every 1000 mm; with stagger the next
+  // curve (x = 866) takes its inner nodes near the feet of the guide rods'
+  // midpoints (y = 1500 .. 4500), so the rods between the two curves in the
+  // middle are near sqrt(866^2 + 500^2) = 1000 mm; without stagger the nodes
+  // face each other and those rods are 866 and 1323 mm.
+  const SurfaceFace f = rectangle(10000, 6000);
+  GuideLineScalingParams p;
+  p.guide = {Vec3(0, 0, 0), Vec3(0, 6000, 0)};
+  p.rod_length = 1000;
+  p.advance = 866;
+  auto between = [&](bool stagger) {
+    p.stagger = stagger;
+    const PanelMesh m = guide_line_scaling(f, p);
+    std::vector<double> len;
+    for (const auto& rod : m.rods) {
+      const Vec3 a = m.xyz[rod[0]], b = m.xyz[rod[1]];
+      const bool first_gap =
+          std::min(a.x(), b.x()) < 1e-6 && std::abs(std::max(a.x(), b.x()) - 866) < 1e-6;
+      if (first_gap && std::min(a.y(), b.y()) > 1400 && std::max(a.y(), b.y()) < 4600)
+        len.push_back((a - b).norm());
+    }
+    return len;
+  };
+  const std::vector<double> staggered = between(true), facing = between(false);
+  ASSERT_GE(staggered.size(), 4u);
+  // Within 10% (the spacing is smoothed towards L1 between the feet and the
+  // boundary nodes, so the inner nodes move a little off the exact feet).
+  for (double l : staggered) EXPECT_NEAR(l, 1000.0, 100.0);
+  double worst_facing = 0;
+  for (double l : facing) worst_facing = std::max(worst_facing, std::abs(l - 1000.0));
+  EXPECT_GT(worst_facing, 130.0);
 }
 
 TEST(GuideLineScaling, RejectsBadInput) {

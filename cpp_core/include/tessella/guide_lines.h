@@ -59,7 +59,15 @@ struct GuideLineScalingParams {
   // Largest allowed distance of a guide point from the surface (mm);
   // 0 = 5% of the model size.
   double guide_tolerance = 0.0;
-  int max_curves = 2000;         // refuse to advance more curves than this
+  int max_curves = 2000;  // refuse to advance more curves than this
+  // After the GSM step stalls (the ends reached the far corners), offset the
+  // curve point by point until it has left the face (covers the strip the
+  // paper's sweep leaves open); false = the paper's sweep only.
+  bool finish_sweep = true;
+  // Nodes of each curve at the feet of the midpoints of the neighbouring
+  // curve's rods (staggered rows, near-equal rods between the curves); false =
+  // the paper's equal chords on every curve.
+  bool stagger = true;
   double trim_deflection = 0.0;  // chord deflection of the trim polylines; 0 = automatic
   int max_panels = 200000;
 };
