@@ -95,6 +95,7 @@ BENCHMARK_TEMPLATE(BM_WalkingAgent, dome)
     ->Args({30, 10})
     ->Args({30, 0})
     ->Args({20, 10})
+    ->Args({20, 0})
     ->Args({15, 10})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_WalkingAgent, trimmed)

@@ -103,6 +103,40 @@ void clip_cell(const Paths& subject, cInt x0, cInt y0, cInt x1, cInt y1, int dep
   }
 }
 
+// Drops the points strictly inside an axis-parallel straight run of a closed
+// trim polyline (keeping trim corners). The natural boundary of an untrimmed
+// face is four such runs, discretized finely because the edges bend in 3D;
+// their inner points add nothing to the cut (a cell cut by the run gets its
+// crossings with the grid lines anyway, at the same integer points, and the
+// leftover boundary points are removed again by drop_straight_boundary_points)
+// but cost Clipper work in every strip and cell. The cells near the trim stay
+// the same (the union of the runs' pieces is the run).
+Path drop_axis_run_points(const Path& path,
+                          const std::unordered_map<IntPoint, char, PointHash, PointEq>& corner) {
+  Path cur = path;
+  for (bool changed = true; changed && cur.size() > 3;) {
+    changed = false;
+    Path kept;
+    const std::size_t n = cur.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const IntPoint& a = kept.empty() ? cur[n - 1] : kept.back();
+      const IntPoint& p = cur[k];
+      const IntPoint& b = cur[(k + 1) % n];
+      const bool on_x =
+          a.X == p.X && p.X == b.X && ((a.Y < p.Y && p.Y < b.Y) || (b.Y < p.Y && p.Y < a.Y));
+      const bool on_y =
+          a.Y == p.Y && p.Y == b.Y && ((a.X < p.X && p.X < b.X) || (b.X < p.X && p.X < a.X));
+      if ((on_x || on_y) && !corner.count(p) && n - (k - kept.size()) > 3) {
+        changed = true;
+        continue;
+      }
+      kept.push_back(p);
+    }
+    cur = std::move(kept);
+  }
+  return cur;
+}
+
 // Cells whose closed rectangle meets a trim segment's bounding box.
 std::vector<char> cells_near_trim(const Paths& domain, const std::vector<cInt>& X,
                                   const std::vector<cInt>& Y) {
@@ -223,7 +257,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
       path.push_back(p);
       exact_uv.emplace(p, loop.uv[k]);
     }
-    if (path.size() >= 3) domain.push_back(std::move(path));
+    if (path.size() >= 3) domain.push_back(drop_axis_run_points(path, trim_corner));
   }
 
   const std::size_t nu = X.size() - 1, nv = Y.size() - 1;

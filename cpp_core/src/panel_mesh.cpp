@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <tuple>
+#include <unordered_map>
 
 #include "tessella/surface_face.h"
 
@@ -66,8 +66,16 @@ void remove_unused_vertices(PanelMesh& mesh) {
 
 void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {
   // Bucket by a grid of cell `tolerance`; compare with the 27 neighbours.
+  // (Only looked up, never iterated: a hash map gives the same result.)
   using Key = std::tuple<long long, long long, long long>;
-  std::map<Key, std::vector<int>> buckets;
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      const std::hash<long long> h;
+      return h(std::get<0>(k)) ^ (h(std::get<1>(k)) * 1000003u) ^ (h(std::get<2>(k)) * 998244353u);
+    }
+  };
+  std::unordered_map<Key, std::vector<int>, KeyHash> buckets;
+  buckets.reserve(mesh.vertex_count());
   auto key = [&](const Vec3& p) {
     return Key(std::llround(std::floor(p.x() / tolerance)),
                std::llround(std::floor(p.y() / tolerance)),

@@ -1,7 +1,7 @@
 #include "tessella/panel_model.h"
 
+#include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 
 namespace tessella {
@@ -50,13 +50,34 @@ double angle_at(const Vec2& a, const Vec2& b, const Vec2& c) {
 // triangulation of the outline.
 void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>& tris) {
   for (int pass = 0; pass < 64; ++pass) {
-    std::map<std::pair<int, int>, std::pair<int, int>> edge;  // directed edge -> (tri, k)
+    // Directed edge -> (tri, k), sorted by edge; of repeated edges the last
+    // triangle counts. (A sorted vector: the order of a std::map, without its
+    // allocations.)
+    using Edge = std::pair<std::pair<int, int>, std::pair<int, int>>;
+    std::vector<Edge> all;
+    all.reserve(3 * tris.size());
     for (int t = 0; t < int(tris.size()); ++t)
-      for (int k = 0; k < 3; ++k) edge[{tris[t][k], tris[t][(k + 1) % 3]}] = {t, k};
+      for (int k = 0; k < 3; ++k) all.push_back({{tris[t][k], tris[t][(k + 1) % 3]}, {t, k}});
+    std::stable_sort(all.begin(), all.end(),
+                     [](const Edge& x, const Edge& y) { return x.first < y.first; });
+    std::vector<Edge> edge;
+    edge.reserve(all.size());
+    for (const Edge& x : all) {
+      if (!edge.empty() && edge.back().first == x.first)
+        edge.back() = x;
+      else
+        edge.push_back(x);
+    }
+    auto find = [&](const std::pair<int, int>& key) {
+      auto it =
+          std::lower_bound(edge.begin(), edge.end(), key,
+                           [](const Edge& x, const std::pair<int, int>& k) { return x.first < k; });
+      return it != edge.end() && it->first == key ? it : edge.end();
+    };
     bool flipped = false;
     std::vector<char> touched(tris.size(), 0);
     for (const auto& [e, tk] : edge) {
-      auto other = edge.find({e.second, e.first});
+      auto other = find({e.second, e.first});
       if (other == edge.end()) continue;  // an outline edge
       const int t1 = tk.first, t2 = other->second.first;
       if (touched[t1] || touched[t2]) continue;

@@ -51,6 +51,11 @@ int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& r
   if (fraction <= 0) return 0;
   std::vector<double> area(mesh.panels.size());
   for (std::size_t p = 0; p < mesh.panels.size(); ++p) area[p] = panel_area(mesh, p);
+  // No sliver at all (the usual case): nothing to merge, skip the edge map.
+  bool any = false;
+  for (std::size_t p = 0; p < mesh.panels.size() && !any; ++p)
+    any = area[p] < fraction * reference_area[p];
+  if (!any) return 0;
   std::vector<char> alive(mesh.panels.size(), 1);
   // Directed edge -> panel, kept up to date as panels merge.
   std::map<std::pair<int, int>, int> owner;

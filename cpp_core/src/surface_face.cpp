@@ -15,6 +15,7 @@
 #include <Geom2dAPI_ProjectPointOnCurve.hxx>
 #include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <Geom_Surface.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
@@ -33,6 +34,14 @@
 namespace tessella {
 
 namespace {
+
+// The FastEvaluation scope active on this thread: which face (its Impl) and
+// the adaptor that caches the span polynomial.
+struct FastScope {
+  const void* impl = nullptr;
+  GeomAdaptor_Surface* adaptor = nullptr;
+};
+thread_local FastScope tls_fast;
 
 Vec3 to_vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Vec3 to_vec(const gp_Vec& v) { return {v.X(), v.Y(), v.Z()}; }
@@ -62,6 +71,15 @@ struct SurfaceFace::Impl {
   std::unique_ptr<BRepTopAdaptor_FClass2d> classifier;
   mutable std::atomic<std::uint64_t> evaluations{0};
   void count(std::uint64_t n = 1) const { evaluations.fetch_add(n, std::memory_order_relaxed); }
+  // The adaptor of a FastEvaluation of this face on this thread, or null.
+  GeomAdaptor_Surface* fast() const { return tls_fast.impl == this ? tls_fast.adaptor : nullptr; }
+  void d2(double u, double v, gp_Pnt& p, gp_Vec& su, gp_Vec& sv, gp_Vec& suu, gp_Vec& svv,
+          gp_Vec& suv) const {
+    if (GeomAdaptor_Surface* a = fast())
+      a->D2(u, v, p, su, sv, suu, svv, suv);
+    else
+      surface->D2(u, v, p, su, sv, suu, svv, suv);
+  }
 
   double wrap_u(double u) const {
     if (!surface->IsUPeriodic()) return std::clamp(u, search.u_min, search.u_max);
@@ -153,8 +171,23 @@ double SurfaceFace::area() const { return impl_->area; }
 
 Vec3 SurfaceFace::point(double u, double v) const {
   impl_->count();
+  if (GeomAdaptor_Surface* a = impl_->fast()) return to_vec(a->Value(u, v));
   return to_vec(impl_->surface->Value(u, v));
 }
+
+struct SurfaceFace::FastEvaluation::State {
+  FastScope previous;
+  GeomAdaptor_Surface adaptor;
+  explicit State(const Handle(Geom_Surface) & s) : adaptor(s) {}
+};
+
+SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face)
+    : state_(std::make_unique<State>(face.impl_->surface)) {
+  state_->previous = tls_fast;
+  tls_fast = {face.impl_.get(), &state_->adaptor};
+}
+
+SurfaceFace::FastEvaluation::~FastEvaluation() { tls_fast = state_->previous; }
 
 std::uint64_t SurfaceFace::evaluations() const {
   return impl_->evaluations.load(std::memory_order_relaxed);
@@ -167,7 +200,10 @@ SurfacePoint SurfaceFace::derivatives(double u, double v) const {
   gp_Pnt p;
   gp_Vec du, dv;
   impl_->count();
-  impl_->surface->D1(u, v, p, du, dv);
+  if (GeomAdaptor_Surface* a = impl_->fast())
+    a->D1(u, v, p, du, dv);
+  else
+    impl_->surface->D1(u, v, p, du, dv);
   return {to_vec(p), to_vec(du), to_vec(dv)};
 }
 
@@ -318,7 +354,7 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
     gp_Pnt P;
     gp_Vec Su, Sv, Suu, Svv, Suv;
     s.count();
-    s.surface->D2(u, v, P, Su, Sv, Suu, Svv, Suv);
+    s.d2(u, v, P, Su, Sv, Suu, Svv, Suv);
     const Vec3 r = to_vec(P) - p;
     const Vec3 su = to_vec(Su), sv = to_vec(Sv);
     const double rn = r.norm();

@@ -140,19 +140,27 @@ int diagonal_walkers(const SurfaceFace& face, const TrimTest& trim, Lines& lines
   return added;
 }
 
-// Largest distance between the panel model and the surface point at the same
-// (u,v), over a sample grid: an upper bound of the distance to the surface at
-// those samples.
-// Distance from a model point x (at model parameter uv) to the surface:
-// estimate = to the surface point at the same (u,v) (an upper bound), exact =
-// to the closest surface point (Newton projection from uv).
-double gap(const SurfaceFace& face, const Vec3& x, const Vec2& uv, bool exact) {
-  if (exact) return face.project(x, uv).distance;
-  return (face.point(uv.x(), uv.y()) - x).norm();
-}
+// Distance from a model point x (at model parameter uv) to the surface, as the
+// panel check needs it: the distance to the surface point at the same (u,v)
+// (an upper bound, one evaluation); only where that is over `limit`, the
+// distance to the closest surface point (Newton projection from uv) - the
+// smaller of the two, both being upper bounds of the true distance. Samples
+// under the limit cannot change the decision, so they are not projected.
+struct Gauge {
+  const SurfaceFace& face;
+  double limit;
+  double operator()(const Vec3& x, const Vec2& uv) const {
+    const double d = (face.point(uv.x(), uv.y()) - x).norm();
+    if (d <= limit) return d;
+    return std::min(d, face.project(x, uv).distance);
+  }
+};
 
-double flat_triangle_estimate(const SurfaceFace& face, const Vec3* p, const Vec2* q,
-                              bool exact = false, int n = kPanelSamples) {
+// The panel estimates below are the largest gauge over a sample grid of the
+// panel model; once one sample is over the limit they return at once (a
+// value over the limit, not the maximum: only "over or not" is used then).
+double flat_triangle_estimate(const Gauge& gauge, const Vec3* p, const Vec2* q,
+                              int n = kPanelSamples) {
   double worst = 0;
   for (int i = 0; i <= n; ++i) {
     for (int j = 0; i + j <= n; ++j) {
@@ -160,14 +168,15 @@ double flat_triangle_estimate(const SurfaceFace& face, const Vec3* p, const Vec2
       const double s = double(i) / n, r = double(j) / n, t = 1 - s - r;
       const Vec2 uv = t * q[0] + s * q[1] + r * q[2];
       const Vec3 x = t * p[0] + s * p[1] + r * p[2];
-      worst = std::max(worst, gap(face, x, uv, exact));
+      worst = std::max(worst, gauge(x, uv));
+      if (worst > gauge.limit) return worst;
     }
   }
   return worst;
 }
 
-double bilinear_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
-                         const std::vector<Vec2>& q, bool exact = false) {
+double bilinear_estimate(const Gauge& gauge, const std::vector<Vec3>& p,
+                         const std::vector<Vec2>& q) {
   double worst = 0;
   const int n = kPanelSamples;
   for (int i = 0; i <= n; ++i) {
@@ -177,15 +186,16 @@ double bilinear_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
       const double w0 = (1 - s) * (1 - t), w1 = s * (1 - t), w2 = s * t, w3 = (1 - s) * t;
       const Vec2 uv = w0 * q[0] + w1 * q[1] + w2 * q[2] + w3 * q[3];
       const Vec3 x = w0 * p[0] + w1 * p[1] + w2 * p[2] + w3 * p[3];
-      worst = std::max(worst, gap(face, x, uv, exact));
+      worst = std::max(worst, gauge(x, uv));
+      if (worst > gauge.limit) return worst;
     }
   }
   return worst;
 }
 
-double polygon_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
-                        const std::vector<Vec2>& q, bool exact = false) {
-  if (p.size() == 4) return bilinear_estimate(face, p, q, exact);
+double polygon_estimate(const Gauge& gauge, const std::vector<Vec3>& p,
+                        const std::vector<Vec2>& q) {
+  if (p.size() == 4) return bilinear_estimate(gauge, p, q);
   double worst = 0;
   // Each triangle sampled as densely as its size asks (a boundary panel
   // following a finely discretized trim has many thin triangles), at least
@@ -200,21 +210,22 @@ double polygon_estimate(const SurfaceFace& face, const std::vector<Vec3>& p,
         std::max({(tp[0] - tp[1]).norm(), (tp[1] - tp[2]).norm(), (tp[2] - tp[0]).norm()});
     const int n =
         extent > 0 ? std::max(2, static_cast<int>(std::ceil(kPanelSamples * longest / extent))) : 2;
-    worst = std::max(worst, flat_triangle_estimate(face, tp, tq, exact, n));
+    worst = std::max(worst, flat_triangle_estimate(gauge, tp, tq, n));
+    if (worst > gauge.limit) return worst;
   }
   return worst;
 }
 
 // Folding a quad along diagonal 0-2 (k = 0) or 1-3 (k = 1): the larger estimate
-// of its two triangles.
-// Folding is measured exactly (projection), like the panels that need it.
-double fold_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
-                      const std::vector<Vec2>& q, int k) {
+// of its two triangles (over the limit: some value over it).
+double fold_deviation(const Gauge& gauge, const std::vector<Vec3>& p, const std::vector<Vec2>& q,
+                      int k) {
   const int a = k, b = k + 1, c = k + 2, d = (k + 3) % 4;
   const Vec3 t1[3] = {p[a], p[b], p[c]}, t2[3] = {p[a], p[c], p[d]};
   const Vec2 s1[3] = {q[a], q[b], q[c]}, s2[3] = {q[a], q[c], q[d]};
-  return std::max(flat_triangle_estimate(face, t1, s1, true),
-                  flat_triangle_estimate(face, t2, s2, true));
+  const double first = flat_triangle_estimate(gauge, t1, s1);
+  if (first > gauge.limit) return first;
+  return std::max(first, flat_triangle_estimate(gauge, t2, s2));
 }
 
 // Which way to split a panel spanning [u0,u1] x [v0,v1]: along the direction
@@ -282,11 +293,14 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
   if (params.edge_share != 0.0) require_in_range("edge_share", params.edge_share, 0.1, 1.0);
   check_clip(params.clip);
   agents::parse_start(params.start);
+  // Hundreds of thousands of evaluations close together: keep the span cache.
+  const SurfaceFace::FastEvaluation fast(face);
 
   const double bound = params.max_deviation;
   const double max_size = params.max_size > 0 ? params.max_size : 1e300;
   const TrimTest trim(face);
   const double limit = kBoundMargin * bound;
+  const Gauge gauge{face, limit};
 
   // One run of the agents whose edge rule uses `share` x max_deviation.
   auto attempt = [&](double share, WalkingAgentReport& rep) -> PanelMesh {
@@ -329,11 +343,10 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
         if (hit != known.end()) {
           e = hit->second;
         } else {
-          e = polygon_estimate(face, x, q);
           // The estimate (surface point at the same (u,v)) is an upper bound;
           // it adds a tangential offset where the parameterization is uneven.
-          // Over the limit, measure exactly: distance to the closest surface point.
-          if (e > limit) e = polygon_estimate(face, x, q, true);
+          // Samples over the limit are measured exactly (closest surface point).
+          e = polygon_estimate(gauge, x, q);
           known.emplace(std::move(key), e);
         }
         if (e <= limit) {
@@ -341,7 +354,7 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
           continue;
         }
         if (x.size() == 4) {
-          const double f0 = fold_deviation(face, x, q, 0), f1 = fold_deviation(face, x, q, 1);
+          const double f0 = fold_deviation(gauge, x, q, 0), f1 = fold_deviation(gauge, x, q, 1);
           const int k = f0 <= f1 ? 0 : 1;
           if (std::min(f0, f1) <= limit) {
             folds.push_back({p, k});

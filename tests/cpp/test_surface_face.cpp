@@ -120,3 +120,34 @@ TEST(SurfaceFace, ALoopOfOneClosedEdgeIsDiscretized) {
   // Inscribed polygon: its area is under the disc's by at most the chord sagittas.
   EXPECT_NEAR(loop_area(loops[0].uv), kPi * 500.0 * 500.0, 2 * kPi * 500.0 * 0.01);
 }
+
+// FastEvaluation (OCCT's span cache) gives the closed-form surface, its
+// derivatives and projections, counts every evaluation, and ends with its scope.
+TEST(SurfaceFace, FastEvaluationMatchesTheClosedForm) {
+  const SurfaceFace f = stretched_plate();  // x = 400u + 600u^2, y = 1000v, z = 0
+  auto check = [&](double u, double v) {
+    const Vec3 p = f.point(u, v);
+    EXPECT_NEAR(p.x(), 400 * u + 600 * u * u, 1e-9);
+    EXPECT_NEAR(p.y(), 1000 * v, 1e-9);
+    EXPECT_NEAR(p.z(), 0, 1e-9);
+    const SurfacePoint d = f.derivatives(u, v);
+    EXPECT_NEAR(d.du.x(), 400 + 1200 * u, 1e-9);
+    EXPECT_NEAR(d.dv.y(), 1000, 1e-9);
+    const Projection pr = f.project(Vec3(p.x(), p.y(), 50.0), {0.5, 0.5});
+    EXPECT_NEAR(pr.distance, 50.0, 1e-6);
+    EXPECT_NEAR(pr.uv.x(), u, 1e-9);
+    EXPECT_NEAR(pr.uv.y(), v, 1e-9);
+  };
+  f.reset_evaluations();
+  {
+    const SurfaceFace::FastEvaluation fast(f);
+    for (double u : {0.0, 0.13, 0.5, 0.91, 1.0}) check(u, 0.37);
+    {
+      const SurfaceFace::FastEvaluation inner(f);  // scopes nest
+      check(0.25, 0.75);
+    }
+    check(0.75, 0.25);
+  }
+  EXPECT_GE(f.evaluations(), 7u * 3u);  // point, derivatives, >= 1 Newton step each
+  check(0.6, 0.6);                      // and without the scope
+}
