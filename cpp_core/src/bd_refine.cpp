@@ -115,6 +115,40 @@ bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<
   return false;
 }
 
+// Splits a panel of six or more corners along its shortest diagonal (3D)
+// among those whose two parts are closest to quads. Centre + midpoint
+// quadrangulation of a big n-gon makes spokes about its radius long, twice
+// the other rods; two smaller parts have shorter spokes.
+bool split_big_panel(const std::vector<BdNode>& nodes, const std::vector<int>& p,
+                     std::vector<int>& a, std::vector<int>& b) {
+  const int n = static_cast<int>(p.size());
+  if (n < 6) return false;
+  double best_score = 1e300, best_len = 1e300;
+  bool found = false;
+  for (int r = 0; r < n; ++r)
+    for (int k = r + 3; k <= r + n - 3; ++k) {
+      std::vector<int> pa, pb;
+      for (int i = r; i <= k; ++i) pa.push_back(p[i % n]);
+      for (int i = k; i <= r + n; ++i) pb.push_back(p[i % n]);
+      if (!(uv_area(nodes, pa) > 0) || !(uv_area(nodes, pb) > 0)) continue;
+      bool crosses = false;
+      const Vec2 d0 = nodes[p[r]].uv, d1 = nodes[p[k % n]].uv;
+      for (int e = 0; e < n && !crosses; ++e) {
+        const int e0 = e, e1 = (e + 1) % n;
+        if (e0 == r || e1 == r || e0 == k % n || e1 == k % n) continue;
+        double t, s;
+        if (bd::intersect_segments(d0, d1, nodes[p[e0]].uv, nodes[p[e1]].uv, t, s)) crosses = true;
+      }
+      if (crosses) continue;
+      const double score = std::abs(double(pa.size()) - 4) + std::abs(double(pb.size()) - 4);
+      const double len = (nodes[p[r]].xyz - nodes[p[k % n]].xyz).norm();
+      if (score < best_score - 1e-9 || (score < best_score + 1e-9 && len < best_len)) {
+        best_score = score, best_len = len, a = pa, b = pb, found = true;
+      }
+    }
+  return found;
+}
+
 }  // namespace
 
 int remove_skewed_triangles(BdNetwork& net, double ratio) {
@@ -289,6 +323,78 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     }
   }
   std::reverse(convex.begin(), convex.end());
+  // Network edges much longer than the median (curves stopped or joined
+  // leaving a wide gap) would give rods of half their length: subdivide them,
+  // then cut panels of six or more corners in two (shorter spokes).
+  {
+    std::map<std::pair<int, int>, int> edge_uses;
+    std::vector<double> lengths;
+    for (const auto& p : convex)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const int a = p[i], b = p[(i + 1) % p.size()];
+        if (edge_uses[{std::min(a, b), std::max(a, b)}]++ == 0)
+          lengths.push_back((net.nodes[a].xyz - net.nodes[b].xyz).norm());
+      }
+    std::map<std::pair<int, int>, std::vector<int>> inner;  // from min to max node
+    if (!lengths.empty()) {
+      std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+      const double median = lengths[lengths.size() / 2];
+      for (const auto& [key, count] : edge_uses) {
+        const BdNode na = net.nodes[key.first], nb = net.nodes[key.second];
+        const double len = (na.xyz - nb.xyz).norm();
+        if (!(median > 0) || len < 1.8 * median) continue;
+        const int k = static_cast<int>(std::lround(len / median));
+        if (k < 2) continue;
+        std::vector<BdNode> made;
+        bool ok = true;
+        for (int j = 1; j < k && ok; ++j) {
+          const double t = double(j) / k;
+          if (count != 2) {  // only interior edges (trim edges keep their trim midpoints)
+            ok = false;
+            break;
+          }
+          const Projection pr =
+              face.project((1 - t) * na.xyz + t * nb.xyz, (1 - t) * na.uv + t * nb.uv);
+          BdNode m;
+          m.uv = pr.uv, m.xyz = pr.point;
+          ok = is_in(m.uv);
+          made.push_back(m);
+        }
+        if (!ok) continue;
+        std::vector<int> ids;
+        for (const BdNode& m : made) ids.push_back(add(m));
+        inner[key] = ids;
+      }
+    }
+    std::vector<std::vector<int>> todo2;
+    for (const auto& p : convex) {
+      std::vector<int> q;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const int a = p[i], b = p[(i + 1) % p.size()];
+        q.push_back(a);
+        auto it = inner.find({std::min(a, b), std::max(a, b)});
+        if (it == inner.end()) continue;
+        if (a < b)
+          q.insert(q.end(), it->second.begin(), it->second.end());
+        else
+          q.insert(q.end(), it->second.rbegin(), it->second.rend());
+      }
+      todo2.push_back(std::move(q));
+    }
+    std::reverse(todo2.begin(), todo2.end());
+    convex.clear();
+    while (!todo2.empty()) {
+      std::vector<int> p = std::move(todo2.back());
+      todo2.pop_back();
+      std::vector<int> a, b;
+      if (split_big_panel(net.nodes, p, a, b)) {
+        todo2.push_back(std::move(a));
+        todo2.push_back(std::move(b));
+      } else {
+        convex.push_back(std::move(p));
+      }
+    }
+  }
   net.panels = std::move(convex);
   for (const auto& p : net.panels)
     for (std::size_t i = 0; i < p.size(); ++i) {
