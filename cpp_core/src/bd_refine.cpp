@@ -432,35 +432,56 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
   net.panels = std::move(out);
 }
 
-void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
-                    BdNetwork& net, int iterations, double factor) {
-  require_in_range("smoothing_iterations", iterations, 0, 1000);
-  require_in_range("smoothing factor", factor, 0.0, 1.0);
+namespace {
+
+// Who touches whom in the network: neighbours (sorted, unique), incident
+// panels, and the previous / next node along a trim loop through trim edges
+// (edges used by one panel whose ends lie on the same loop).
+struct NodeAdjacency {
+  std::vector<std::vector<int>> nbr, incident;
+  std::vector<int> prev, next;
+};
+
+NodeAdjacency node_adjacency(const BdNetwork& net) {
   const std::size_t nn = net.nodes.size();
+  NodeAdjacency adj{std::vector<std::vector<int>>(nn), std::vector<std::vector<int>>(nn),
+                    std::vector<int>(nn, -1), std::vector<int>(nn, -1)};
   std::map<std::pair<int, int>, int> uses;
-  std::vector<std::vector<int>> nbr(nn), incident(nn);
   for (std::size_t pi = 0; pi < net.panels.size(); ++pi) {
     const auto& p = net.panels[pi];
     for (std::size_t i = 0; i < p.size(); ++i) {
       const int a = p[i], b = p[(i + 1) % p.size()];
       ++uses[{std::min(a, b), std::max(a, b)}];
-      nbr[a].push_back(b), nbr[b].push_back(a);
-      incident[a].push_back(static_cast<int>(pi));
+      adj.nbr[a].push_back(b), adj.nbr[b].push_back(a);
+      adj.incident[a].push_back(static_cast<int>(pi));
     }
   }
-  // trim neighbours: previous / next node along the loop through trim edges
-  std::vector<int> prev(nn, -1), next(nn, -1);
   for (const auto& p : net.panels)
     for (std::size_t i = 0; i < p.size(); ++i) {
       const int a = p[i], b = p[(i + 1) % p.size()];
       if (uses[{std::min(a, b), std::max(a, b)}] == 1 && net.nodes[a].loop >= 0 &&
           net.nodes[a].loop == net.nodes[b].loop)
-        next[a] = b, prev[b] = a;
+        adj.next[a] = b, adj.prev[b] = a;
     }
-  for (auto& v : nbr) {
+  for (auto& v : adj.nbr) {
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
+  return adj;
+}
+
+}  // namespace
+
+void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                    BdNetwork& net, int iterations, double factor) {
+  require_in_range("smoothing_iterations", iterations, 0, 1000);
+  require_in_range("smoothing factor", factor, 0.0, 1.0);
+  const std::size_t nn = net.nodes.size();
+  NodeAdjacency adj = node_adjacency(net);
+  auto& nbr = adj.nbr;
+  auto& incident = adj.incident;
+  auto& prev = adj.prev;
+  auto& next = adj.next;
   auto folds = [&](int v) {
     for (int pi : incident[v])
       if (uv_area(net.nodes, net.panels[pi]) <= 0) return true;
@@ -529,29 +550,11 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
   require_in_range("angle passes", passes, 0, 1000);
   const double target = target_deg * 3.14159265358979323846 / 180.0;
   const std::size_t nn = net.nodes.size();
-  std::map<std::pair<int, int>, int> uses;
-  std::vector<std::vector<int>> nbr(nn), incident(nn);
-  for (std::size_t pi = 0; pi < net.panels.size(); ++pi) {
-    const auto& p = net.panels[pi];
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const int a = p[i], b = p[(i + 1) % p.size()];
-      ++uses[{std::min(a, b), std::max(a, b)}];
-      nbr[a].push_back(b), nbr[b].push_back(a);
-      incident[a].push_back(static_cast<int>(pi));
-    }
-  }
-  std::vector<int> prev(nn, -1), next(nn, -1);
-  for (const auto& p : net.panels)
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const int a = p[i], b = p[(i + 1) % p.size()];
-      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && net.nodes[a].loop >= 0 &&
-          net.nodes[a].loop == net.nodes[b].loop)
-        next[a] = b, prev[b] = a;
-    }
-  for (auto& v : nbr) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  }
+  NodeAdjacency adj = node_adjacency(net);
+  auto& nbr = adj.nbr;
+  auto& incident = adj.incident;
+  auto& prev = adj.prev;
+  auto& next = adj.next;
   const bd::UvClassifier inside = bd::make_classifier(boundary);
   auto local = [&](int v) {
     double q = 1e9;
