@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "tessella/guide_line_diamond.h"
 #include "tessella/surface_face.h"
 
 namespace py = pybind11;
@@ -75,6 +76,8 @@ void bind_guide_lines(py::module_& m) {
           })
       .def_readwrite("rod_length", &TwoGuideLinesParams::rod_length)
       .def_readwrite("triangulate", &TwoGuideLinesParams::triangulate)
+      .def_readwrite("boundary_divisions", &TwoGuideLinesParams::boundary_divisions)
+      .def_readwrite("map_in_uv", &TwoGuideLinesParams::map_in_uv)
       .def_readwrite("corner_angle", &TwoGuideLinesParams::corner_angle)
       .def_readwrite("guide_tolerance", &TwoGuideLinesParams::guide_tolerance)
       .def_readwrite("max_curves", &TwoGuideLinesParams::max_curves)
@@ -96,6 +99,31 @@ void bind_guide_lines(py::module_& m) {
     for (const SurfaceCurve& c : r.curves_b)
       b.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
     return py::make_tuple(std::move(r.mesh), a, b);
+  });
+  py::class_<GuideLineDiamondParams>(m, "GuideLineDiamondParams")
+      .def(py::init<>())
+      .def_property(
+          "guides",
+          [](const GuideLineDiamondParams& p) {
+            return py::make_tuple(points3(p.guide_a), points3(p.guide_b));
+          },
+          [](GuideLineDiamondParams& p,
+             const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& g) {
+            if (g.size() != 2) throw py::value_error("guides must hold exactly 2 polylines");
+            p.guide_a = to_points(g[0]);
+            p.guide_b = to_points(g[1]);
+          })
+      .def_readwrite("rod_length", &GuideLineDiamondParams::rod_length)
+      .def_readwrite("advance", &GuideLineDiamondParams::advance)
+      .def_readwrite("finish_sweep", &GuideLineDiamondParams::finish_sweep)
+      .def_readwrite("triangulate", &GuideLineDiamondParams::triangulate)
+      .def_readwrite("guide_tolerance", &GuideLineDiamondParams::guide_tolerance)
+      .def_readwrite("max_curves", &GuideLineDiamondParams::max_curves)
+      .def_readwrite("trim_deflection", &GuideLineDiamondParams::trim_deflection)
+      .def_readwrite("max_panels", &GuideLineDiamondParams::max_panels);
+  m.def("guide_line_diamond", [](const SurfaceFace& f, const GuideLineDiamondParams& p) {
+    py::gil_scoped_release release;
+    return guide_line_diamond(f, p);
   });
   m.def("guide_line_scaling", [](const SurfaceFace& f, const GuideLineScalingParams& p) {
     py::gil_scoped_release release;

@@ -109,6 +109,8 @@ PARAM_INFO = {
     "rod_length": ("Rod length", "mm"),
     "advance": ("Advance (0: rod length)", "mm"),
     "triangulate": ("Triangulate", bool),
+    "boundary_divisions": ("Boundary divisions (0: rod length)", None),
+    "map_in_uv": ("Map curves in (u,v)", bool),
     "max_deviation": ("Deviation bound", "mm"),
     "max_size": ("Max panel size", "mm"),
     "diagonal_deviation": ("Diagonal bound (0: 2 x bound)", "mm"),
@@ -161,9 +163,18 @@ METHODS = {
         lambda surface, p: core.guide_line_scaling(surface, p),
         converters={"guides": _guides(1)},
     ),
-    "two_guide_lines": MethodSpec(
-        {"rod_length": float, "triangulate": bool, "corner_angle": float,
+    # GSM run once per guide; the cells between the two curve sets (diamonds).
+    "guide_line_diamond": MethodSpec(
+        {"rod_length": float, "advance": float, "finish_sweep": bool, "triangulate": bool,
          "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
+         "max_panels": int},
+        lambda: core.GuideLineDiamondParams(),
+        lambda surface, p: core.guide_line_diamond(surface, p),
+        converters={"guides": _guides(2)},
+    ),
+    "two_guide_lines": MethodSpec(
+        {"rod_length": float, "triangulate": bool, "boundary_divisions": int, "map_in_uv": bool,
+         "corner_angle": float, "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
          "max_panels": int},
         lambda: core.TwoGuideLinesParams(),
         lambda surface, p: core.two_guide_lines(surface, p),

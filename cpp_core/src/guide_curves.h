@@ -61,7 +61,13 @@ Projection project_near(const SurfaceFace& face, const Vec3& p, const Vec2& star
 // InvalidParameter naming `guides`.
 SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide);
 // Seed 004 section 5.1 steps 4-6: c moved so that its ends land on end0 / end1.
+// Each moved point starts its projection from the matching point of `near`
+// (c when null; a curve with as many points as c).
 SurfaceCurve map_curve(const Context& cx, const SurfaceCurve& c, const Vec3& end0, const Vec2& uv0,
-                       const Vec3& end1, const Vec2& uv1);
+                       const Vec3& end1, const Vec2& uv1, const SurfaceCurve* near = nullptr);
+// c moved by the similarity of the (u,v) plane that takes its ends to uv0 /
+// uv1 (same point count, exactly on the surface, no projection needed).
+SurfaceCurve map_curve_uv(const SurfaceFace& face, const SurfaceCurve& c, const Vec2& uv0,
+                          const Vec2& uv1);
 
 }  // namespace tessella::guide_detail

@@ -215,7 +215,7 @@ Projection project_near(const SurfaceFace& face, const Vec3& p, const Vec2& star
 // so that its ends land on end0 / end1 (eq. 21-24), projected point by point
 // (Newton from the matching point of c) and resampled.
 SurfaceCurve map_curve(const Context& cx, const SurfaceCurve& c, const Vec3& end0, const Vec2& uv0,
-                       const Vec3& end1, const Vec2& uv1) {
+                       const Vec3& end1, const Vec2& uv1, const SurfaceCurve* near) {
   const SurfaceFace& face = cx.face;
   const std::size_t last = c.xyz.size() - 1;
   const Vec3 new_end[2] = {end0, end1};
@@ -231,6 +231,7 @@ SurfaceCurve map_curve(const Context& cx, const SurfaceCurve& c, const Vec3& end
   if (axis.norm() > 1e-12 * a.norm() * b.norm())
     rot =
         Eigen::AngleAxisd(std::atan2(axis.norm(), a.dot(b)), axis.normalized()).toRotationMatrix();
+  const SurfaceCurve& start = near != nullptr ? *near : c;
   SurfaceCurve moved;
   for (std::size_t i = 0; i <= last; ++i) {
     const Vec3 y = new_end[1] + rot * ((c.xyz[i] - pn) * scale);
@@ -240,7 +241,7 @@ SurfaceCurve map_curve(const Context& cx, const SurfaceCurve& c, const Vec3& end
     else if (i == last)
       uv = new_uv[1];
     else
-      uv = project_near(face, y, c.uv[i]).uv;  // step 5: Newton projection
+      uv = project_near(face, y, start.uv[i]).uv;  // step 5: Newton projection
     moved.uv.push_back(uv);
     moved.xyz.push_back(face.point(uv[0], uv[1]));
   }

@@ -225,15 +225,17 @@ TEST(GuideLineScaling, RejectsBadInput) {
 TEST(TwoGuideLines, FlatRectangleGivesTheSquareGridAndItsDiagonals) {
   // 10 m x 6 m plate, guides = the left and the bottom edge, rods of 1000 mm:
   // the boundary vertices are every 1000 mm, the curves are the lines x = i and
-  // y = j (m), and their intersections the 11 x 7 nodes of 10 x 6 square quads.
+  // y = j (m) (the last ones, on the far edges, are the outline itself and end
+  // each family), and the cells between them and the outline are the 10 x 6
+  // square quads on the 11 x 7 nodes.
   const SurfaceFace f = rectangle(10000, 6000);
   TwoGuideLinesParams p;
   p.guide_a = {Vec3(0, 0, 0), Vec3(0, 6000, 0)};
   p.guide_b = {Vec3(0, 0, 0), Vec3(10000, 0, 0)};
   p.rod_length = 1000;
   const TwoGuideLinesResult r = two_guide_lines_curves(f, p);
-  EXPECT_EQ(r.curves_a.size(), 11u);
-  EXPECT_EQ(r.curves_b.size(), 7u);
+  EXPECT_EQ(r.curves_a.size(), 10u);
+  EXPECT_EQ(r.curves_b.size(), 6u);
   const PanelMesh& m = r.mesh;
   EXPECT_EQ(m.panels.size(), 60u);
   EXPECT_EQ(m.xyz.size(), 77u);

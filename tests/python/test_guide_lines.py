@@ -153,22 +153,40 @@ def two(freeform_face):
     return freeform_face, quads, tris
 
 
+def _polygon_area(v, poly):
+    """Area of a (nearly planar) 3D polygon: half the norm of its vector area."""
+    pts = v[list(poly)]
+    return 0.5 * np.linalg.norm(np.cross(pts, np.roll(pts, -1, axis=0)).sum(axis=0))
+
+
 def test_two_guide_lines_quads_lie_on_the_face(two):
     face, quads, tris = two
     size = face.BoundBox.DiagonalLength
-    assert len(quads.panels) > 30 and all(len(p) == 4 for p in quads.panels)
     worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*v)))[0] for v in quads.vertices)
     assert worst < 1e-6 * size
+    # Inside the face the cells are quads; only cells closed by the trim (the
+    # outline, the two holes) have another corner count.
+    on_trim = {i for i, x in enumerate(quads.vertices)
+               if min(e.distToShape(Part.Vertex(FreeCAD.Vector(*x)))[0] for e in face.Edges) < 1e-3}
+    interior = [p for p in quads.panels if not on_trim.intersection(p)]
+    assert len(interior) > 30 and all(len(p) == 4 for p in interior)
+    assert sum(len(p) == 4 for p in quads.panels) > 0.7 * len(quads.panels)  # 77% measured
     v = quads.vertices
     centroids = np.array([v[list(p)].mean(axis=0) for p in quads.panels])
     far = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*c)))[0] for c in centroids)
-    assert far < 0.05 * ROD  # no quad bridges a hole or leaves the outline
+    assert far < 0.05 * ROD  # no cell bridges a hole or leaves the outline
+    # The cells cover the face (holes and outline included): their area adds up
+    # to FreeCAD's face area (flat cells on a curved face: a little less).
+    area = sum(_polygon_area(v, p) for p in quads.panels)
+    assert 0.97 * face.Area < area < 1.005 * face.Area
     # Each quad node has 4 rods inside the grid; the median rod is near L1.
     lengths = quads.metrics["rod_length"]
     assert abs(np.median(lengths) - ROD) < 0.2 * ROD
-    # Triangulated: the same nodes, two triangles per quad, one more rod per quad.
-    assert len(tris.panels) == 2 * len(quads.panels)
-    assert len(tris.rods) == len(quads.rods) + len(quads.panels)
+    # Triangulated: the same nodes; a cell of n corners gives n - 2 triangles
+    # and n - 3 more rods.
+    assert all(len(t) == 3 for t in tris.panels)
+    assert len(tris.panels) == sum(len(p) - 2 for p in quads.panels)
+    assert len(tris.rods) == len(quads.rods) + sum(len(p) - 3 for p in quads.panels)
     assert np.allclose(tris.vertices, quads.vertices)
 
 
@@ -190,11 +208,11 @@ def test_two_guide_lines_document_object(freeform_face):
         p = tessella.make_panelization((surf, "Face1"), method="two_guide_lines",
                                        guides=[(ga, "Edge1"), (gb, "Edge1")], rod_length=ROD)
         assert [g[0] for g in p.Guides] == [ga, gb]
-        quads = p.PanelCount
-        assert quads > 30 and p.QuadShare == 1.0
+        cells = p.PanelCount
+        assert cells > 30 and p.QuadShare > 0.7
         p.Triangulate = True
         doc.recompute()
-        assert p.PanelCount == 2 * quads
+        assert p.PanelCount > 1.8 * cells
     finally:
         FreeCAD.closeDocument(doc.Name)
 
