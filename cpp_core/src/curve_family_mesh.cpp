@@ -60,14 +60,14 @@ PanelMesh mesh_curve_families(const SurfaceFace& face,
   cx.inside = guide_detail::UvInside(face, loops);
 
   // A curve piece whose end is within `on_trim` of a trim polyline ends on that
-  // trim (the pieces are cut at the exact trim, which the polylines follow to
-  // the deflection); a piece lying along the trim (a guide on a boundary edge)
+  // trim (the pieces are cut at the trim polylines; the trim nodes are snapped
+  // onto the exact trim below); a piece lying along the trim (a guide on a boundary edge)
   // adds nothing the trim does not already give, and would overlap it.
   const double on_trim = std::max(10.0 * deflection, 1e-3 * params.rod_length);
   std::vector<BdCurve> curves;
   for (const auto& family : families)
     for (const SurfaceCurve& c : family)
-      for (SurfaceCurve& run : guide_detail::inside_runs(cx, c)) {
+      for (SurfaceCurve& run : guide_detail::inside_runs(cx, c, false)) {
         if (guide_detail::polyline_length(run.xyz) < 1e-6 * size) continue;
         const std::size_t n = run.xyz.size();
         const Vec3 mid = n % 2 ? run.xyz[n / 2] : 0.5 * (run.xyz[n / 2 - 1] + run.xyz[n / 2]);

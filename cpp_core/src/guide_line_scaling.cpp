@@ -48,7 +48,7 @@ SurfaceCurve resample(const SurfaceFace& face, const SurfaceCurve& c, int count)
 // The fast test finds the crossing of the trim polyline; the last steps use
 // OCCT's classifier in a small bracket around it, so the point lies on the true
 // trim (the polyline is up to the trim deflection away from it).
-Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out) {
+Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out, bool exact = true) {
   const Vec2 in0 = in, out0 = out;
   for (int it = 0; it < 36; ++it) {
     const Vec2 mid = 0.5 * (in + out);
@@ -57,7 +57,7 @@ Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out) {
     else
       out = mid;
   }
-  if (!cx.inside.fast()) return in;
+  if (!exact || !cx.inside.fast()) return in;
   const Vec2 dir = out0 - in0;
   const double len = dir.norm();
   if (!(len > 0.0)) return in;
@@ -79,7 +79,7 @@ Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out) {
 }
 
 // The pieces of the curve inside the trimmed face, cut at the boundary.
-std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c) {
+std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c, bool exact) {
   const SurfaceFace& face = cx.face;
   std::vector<SurfaceCurve> runs;
   SurfaceCurve cur;
@@ -87,8 +87,8 @@ std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c) 
   for (std::size_t i = 0; i < c.uv.size(); ++i) {
     const bool in = cx.inside(c.uv[i][0], c.uv[i][1]);
     if (i > 0 && in != prev_in) {
-      const Vec2 b = in ? bisect_boundary(cx, c.uv[i], c.uv[i - 1])
-                        : bisect_boundary(cx, c.uv[i - 1], c.uv[i]);
+      const Vec2 b = in ? bisect_boundary(cx, c.uv[i], c.uv[i - 1], exact)
+                        : bisect_boundary(cx, c.uv[i - 1], c.uv[i], exact);
       cur.uv.push_back(b);
       cur.xyz.push_back(face.point(b[0], b[1]));
       if (!in) {
