@@ -87,6 +87,9 @@ PanelMesh mesh_curve_families(const SurfaceFace& face,
   BdNetworkParams np;
   np.corner_angle_deg = params.corner_angle;
   BdNetwork net = build_bd_network(face, boundary, curves, np);
+  if (std::none_of(net.nodes.begin(), net.nodes.end(), [](const BdNode& n) { return n.loop < 0; }))
+    throw InvalidParameter(
+        "guides: the curves do not cross on the face (are the guides parallel?)");
   if (params.min_edge_fraction > 0)
     collapse_short_edges(face, net, params.min_edge_fraction * params.rod_length);
 

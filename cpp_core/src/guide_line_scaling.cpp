@@ -267,12 +267,19 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
     Vec3 d = n.cross(tau);
     if (d.norm() < 1e-12) return false;
     d = side * d.normalized();  // eq. 19
-    const Projection dp = project_near(face, c.xyz[i] + cx.advance * d, c.uv[i]);
+    const Vec3 target = c.xyz[i] + cx.advance * d;
+    const Projection dp = project_near(face, target, c.uv[i]);
     const Vec3 n2 = face.normal(dp.uv[0], dp.uv[1]);
     const Vec3 t = d.cross(n2);  // eq. 20
     if (t.norm() < 1e-12) return false;
-    if (!nearest_boundary_point(cx.boundary, dp.point, t, 0.05, new_end[e], new_uv[e]))
-      return false;
+    // D' beyond the surface's border lands on the border (project_near clamps),
+    // which would put the new end where the border meets the line through the
+    // clamped point: on a plate with an oblique guide the end then advances
+    // L instead of L / cos(angle), and the curves turn and crowd into the
+    // corners. The line then goes through D itself (on the surface's
+    // continuation), which is where the offset curve meets the border.
+    const Vec3 anchor = dp.distance > 0.1 * cx.advance ? target : dp.point;
+    if (!nearest_boundary_point(cx.boundary, anchor, t, 0.05, new_end[e], new_uv[e])) return false;
   }
   const Vec3 p0 = c.xyz.front(), pn = c.xyz.back();
   // Stalled (both ends stayed): the face is covered on this side.

@@ -101,21 +101,23 @@ Walk walk(const Loop& loop, const LoopPos& from, int dir, double max_len, double
   return w;
 }
 
-// Length of the boundary curve through `at`: the loop between the corners
-// before and after it (the whole loop when it has no corner).
-double boundary_curve_length(const Loop& loop, const LoopPos& at) {
-  const std::size_t n = loop.size();
-  const double here = loop.s(at);
-  std::size_t ahead = (at.seg + 1) % n, behind = at.seg;
-  std::size_t steps = 0;
-  while (!loop.corner[ahead] && steps++ < n) ahead = (ahead + 1) % n;
-  steps = 0;
-  while (!loop.corner[behind] && steps++ < n) behind = (behind + n - 1) % n;
-  if (!loop.corner[ahead]) return loop.total();
-  double fwd = loop.cum[ahead] - here, back = here - loop.cum[behind];
-  if (fwd <= 0) fwd += loop.total();
-  if (back < 0) back += loop.total();
-  return std::min(fwd + back, loop.total());
+// Length of the boundary curve a walker starting at `at` in direction dir
+// walks along: from the corner behind it (or at it) to the next corner ahead;
+// the whole loop when it has no corner.
+double boundary_curve_length(const Loop& loop, const LoopPos& at, int dir) {
+  const double total = loop.total(), here = loop.s(at), eps = 1e-9 * total;
+  double ahead = total, behind = total;
+  bool any = false;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    if (!loop.corner[i]) continue;
+    any = true;
+    double d = dir * (loop.cum[i] - here);  // distance ahead along the walk, mod total
+    d = std::fmod(std::fmod(d, total) + total, total);
+    if (d > eps) ahead = std::min(ahead, d);
+    const double back = d <= eps ? 0.0 : total - d;
+    behind = std::min(behind, back);
+  }
+  return any ? std::min(ahead + behind, total) : total;
 }
 
 // One family: the guide moved through the vertex pairs on both sides, in order.
@@ -135,8 +137,8 @@ std::vector<SurfaceCurve> family(const Context& cx, const Loop& loop, const Surf
     const int dir = k == 0 ? 1 : -1;
     const double half = 0.5 * (k == 0 ? fwd : total - fwd);
     const Walk w0 = walk(loop, p0, dir, half, ext), w1 = walk(loop, p1, -dir, half, ext);
-    const double c0 = divisions > 0 ? boundary_curve_length(loop, p0) / divisions : cx.l1;
-    const double c1 = divisions > 0 ? boundary_curve_length(loop, p1) / divisions : cx.l1;
+    const double c0 = divisions > 0 ? boundary_curve_length(loop, p0, dir) / divisions : cx.l1;
+    const double c1 = divisions > 0 ? boundary_curve_length(loop, p1, -dir) / divisions : cx.l1;
     min_chord = std::min({min_chord, c0, c1});
     const std::vector<double> t0 = lay_chords(w0.pts, c0, max_curves + 1);
     const std::vector<double> t1 = lay_chords(w1.pts, c1, max_curves + 1);
