@@ -122,6 +122,9 @@ PARAM_INFO = {
     "tolerance": ("Tolerance", ""),
 }
 
+#: How many guide edges each guide-line method takes (its `guides` keyword).
+GUIDE_COUNT = {"guide_line_scaling": 1, "two_guide_lines": 2, "guide_line_diamond": 2}
+
 #: The methods, by name. A new method adds one entry here.
 METHODS = {
     "iso_grid": MethodSpec(
@@ -161,7 +164,7 @@ METHODS = {
          "trim_deflection": float, "max_panels": int},
         lambda: core.GuideLineScalingParams(),
         lambda surface, p: core.guide_line_scaling(surface, p),
-        converters={"guides": _guides(1)},
+        converters={"guides": _guides(GUIDE_COUNT["guide_line_scaling"])},
     ),
     # GSM run once per guide; the cells between the two curve sets (diamonds).
     "guide_line_diamond": MethodSpec(
@@ -170,7 +173,7 @@ METHODS = {
          "max_panels": int},
         lambda: core.GuideLineDiamondParams(),
         lambda surface, p: core.guide_line_diamond(surface, p),
-        converters={"guides": _guides(2)},
+        converters={"guides": _guides(GUIDE_COUNT["guide_line_diamond"])},
     ),
     "two_guide_lines": MethodSpec(
         {"rod_length": float, "triangulate": bool, "boundary_divisions": int, "map_in_uv": bool,
@@ -178,7 +181,7 @@ METHODS = {
          "max_panels": int},
         lambda: core.TwoGuideLinesParams(),
         lambda surface, p: core.two_guide_lines(surface, p),
-        converters={"guides": _guides(2)},
+        converters={"guides": _guides(GUIDE_COUNT["two_guide_lines"])},
     ),
     # Seed 000 (docs/walking_agent.md): adaptive quads with a hard deviation bound.
     "walking_agent": MethodSpec(

@@ -29,6 +29,8 @@ _PARAM_TO_PROPERTY = {
     "rod_length": "RodLength",
     "advance": "Advance",
     "triangulate": "Triangulate",
+    "boundary_divisions": "BoundaryDivisions",
+    "map_in_uv": "MapInUV",
     # walking_agent, gradient_descent, relaxed_grid (docs/walking_agent.md)
     "max_deviation": "DeviationBound",
     "max_size": "MaxSize",

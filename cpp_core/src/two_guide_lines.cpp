@@ -101,23 +101,44 @@ Walk walk(const Loop& loop, const LoopPos& from, int dir, double max_len, double
   return w;
 }
 
-// Length of the boundary curve a walker starting at `at` in direction dir
-// walks along: from the corner behind it (or at it) to the next corner ahead;
-// the whole loop when it has no corner.
-double boundary_curve_length(const Loop& loop, const LoopPos& at, int dir) {
+// The chord that divides the boundary curve a walker starting at `at` in
+// direction dir walks along (from the corner behind it, or at it, to the next
+// corner ahead; the whole loop when it has no corner) into `divisions` equal
+// chords: straight chords, as lay_chords lays them, found by bisection (arc
+// length / divisions would leave the last chord short on a curved boundary).
+double equal_boundary_chord(const Loop& loop, const LoopPos& at, int dir, int divisions) {
+  const std::size_t n = loop.size();
   const double total = loop.total(), here = loop.s(at), eps = 1e-9 * total;
-  double ahead = total, behind = total;
-  bool any = false;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
+  // Vertex indices of the corners behind and ahead.
+  std::size_t behind = n, ahead = n;
+  double d_behind = total, d_ahead = total;
+  for (std::size_t i = 0; i < n; ++i) {
     if (!loop.corner[i]) continue;
-    any = true;
-    double d = dir * (loop.cum[i] - here);  // distance ahead along the walk, mod total
+    double d = dir * (loop.cum[i] - here);
     d = std::fmod(std::fmod(d, total) + total, total);
-    if (d > eps) ahead = std::min(ahead, d);
+    if (d > eps && d < d_ahead) d_ahead = d, ahead = i;
     const double back = d <= eps ? 0.0 : total - d;
-    behind = std::min(behind, back);
+    if (back < d_behind) d_behind = back, behind = i;
   }
-  return any ? std::min(ahead + behind, total) : total;
+  std::vector<Vec3> pts;
+  if (ahead == n) {  // no corner: the whole loop from `at` round to it
+    for (std::size_t k = 0; k <= n; ++k)
+      pts.push_back(loop.b.xyz[(at.seg + (dir > 0 ? k + 1 : n - k)) % n]);
+    pts.insert(pts.begin(), loop.at(at));
+    pts.back() = loop.at(at);
+  } else {
+    for (std::size_t i = behind;; i = dir > 0 ? (i + 1) % n : (i + n - 1) % n) {
+      pts.push_back(loop.b.xyz[i]);
+      if (i == ahead || pts.size() > n + 1) break;
+    }
+  }
+  const double len = guide_detail::polyline_length(pts);
+  double lo = 0.5 * len / divisions, hi = len / divisions;  // chords fit at lo, not beyond hi
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (static_cast<int>(lay_chords(pts, mid, divisions).size()) > divisions ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 // One family: the guide moved through the vertex pairs on both sides, in order.
@@ -137,8 +158,8 @@ std::vector<SurfaceCurve> family(const Context& cx, const Loop& loop, const Surf
     const int dir = k == 0 ? 1 : -1;
     const double half = 0.5 * (k == 0 ? fwd : total - fwd);
     const Walk w0 = walk(loop, p0, dir, half, ext), w1 = walk(loop, p1, -dir, half, ext);
-    const double c0 = divisions > 0 ? boundary_curve_length(loop, p0, dir) / divisions : cx.l1;
-    const double c1 = divisions > 0 ? boundary_curve_length(loop, p1, -dir) / divisions : cx.l1;
+    const double c0 = divisions > 0 ? equal_boundary_chord(loop, p0, dir, divisions) : cx.l1;
+    const double c1 = divisions > 0 ? equal_boundary_chord(loop, p1, -dir, divisions) : cx.l1;
     min_chord = std::min({min_chord, c0, c1});
     const std::vector<double> t0 = lay_chords(w0.pts, c0, max_curves + 1);
     const std::vector<double> t1 = lay_chords(w1.pts, c1, max_curves + 1);

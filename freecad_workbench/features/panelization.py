@@ -54,10 +54,12 @@ METHOD_PROPERTIES = {
     "SmoothingIterations": ("boundary_driven",),
     "Quadrangulate": ("boundary_driven",),
     "SourceLoops": ("boundary_driven",),
-    "RodLength": ("guide_line_scaling", "two_guide_lines"),
-    "Advance": ("guide_line_scaling",),
-    "Triangulate": ("two_guide_lines",),
-    "Guides": ("guide_line_scaling", "two_guide_lines"),
+    "RodLength": ("guide_line_scaling", "two_guide_lines", "guide_line_diamond"),
+    "Advance": ("guide_line_scaling", "guide_line_diamond"),
+    "Triangulate": ("two_guide_lines", "guide_line_diamond"),
+    "BoundaryDivisions": ("two_guide_lines",),
+    "MapInUV": ("two_guide_lines",),
+    "Guides": ("guide_line_scaling", "two_guide_lines", "guide_line_diamond"),
 }
 #: The properties only boundary_driven uses.
 BD_PROPERTIES = tuple(n for n, m in METHOD_PROPERTIES.items() if m == ("boundary_driven",))
@@ -232,7 +234,8 @@ class Panelization(_StateMixin):
                      "iso_grid: panels across v; with UCount, replaces Size "
                      "(0 = use Size)", default=0)
         add_property(obj, "App::PropertyLinkSubList", "Guides", "Input",
-                     "Guide curves (edges): one for guide_line_scaling, two for two_guide_lines; "
+                     "Guide curves (edges): one for guide_line_scaling, two for two_guide_lines "
+                     "and guide_line_diamond; "
                      "an edit of a guide recomputes the grid")
         add_property(obj, "App::PropertyLength", "RodLength", "Guide lines",
                      "guide_line_scaling: target rod length L1 along the curves", default=0.0)
@@ -240,7 +243,14 @@ class Panelization(_StateMixin):
                      "guide_line_scaling: step L between curves (0 = RodLength x sqrt(3)/2)",
                      default=0.0)
         add_property(obj, "App::PropertyBool", "Triangulate", "Guide lines",
-                     "two_guide_lines: split every quad along one diagonal", default=False)
+                     "two_guide_lines, guide_line_diamond: split every cell along its "
+                     "shorter diagonal", default=False)
+        add_property(obj, "App::PropertyInteger", "BoundaryDivisions", "Guide lines",
+                     "two_guide_lines: divide each boundary curve into this many equal chords "
+                     "(0 = chords of RodLength)", default=0)
+        add_property(obj, "App::PropertyBool", "MapInUV", "Guide lines",
+                     "two_guide_lines: move the guide through the vertex pairs in (u,v) "
+                     "(false: the paper's 3D scale/rotate/project)", default=True)
         if "Method" in obj.PropertiesList:  # an older document: offer the new methods
             methods = list(api.METHODS)
             if list(obj.getEnumerationsOfProperty("Method")) != methods:
@@ -375,12 +385,15 @@ class Panelization(_StateMixin):
     def parameters(self, obj):
         """(method, keyword parameters for api.panelize) from the properties."""
         method = obj.Method
-        if method in ("guide_line_scaling", "two_guide_lines"):
+        if method in _api().GUIDE_COUNT:
             params = {"rod_length": value_of(obj.RodLength), "guides": self.guide_edges(obj)}
-            if method == "guide_line_scaling" and value_of(obj.Advance) > 0:
+            if method != "two_guide_lines" and value_of(obj.Advance) > 0:
                 params["advance"] = value_of(obj.Advance)
-            if method == "two_guide_lines":
+            if method != "guide_line_scaling":
                 params["triangulate"] = bool(obj.Triangulate)
+            if method == "two_guide_lines":
+                params["boundary_divisions"] = int(obj.BoundaryDivisions)
+                params["map_in_uv"] = bool(obj.MapInUV)
             params["min_angle"] = value_of(obj.MinAngle)
             params["max_panels"] = int(obj.MaxPanels)
             if value_of(obj.TrimDeflection) > 0:

@@ -14,7 +14,8 @@ UI_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.a
 
 #: Order of the method combo box on the page (stored as its index).
 METHOD_ORDER = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent",
-                "gradient_descent", "relaxed_grid", "guide_line_scaling", "two_guide_lines")
+                "gradient_descent", "relaxed_grid", "guide_line_scaling", "two_guide_lines",
+                "guide_line_diamond")
 
 
 def defaults():

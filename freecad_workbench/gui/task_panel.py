@@ -159,8 +159,9 @@ class PanelizationTaskPanel:
             return box
         if unit is None:  # a count
             box = QtGui.QSpinBox()
-            box.setRange(0 if name.endswith("_count") or name == "max_refinements" else 1,
-                         100000000)
+            # counts where 0 means "off" or "derive it" start at 0
+            zero_ok = name.endswith("_count") or name in ("max_refinements", "boundary_divisions")
+            box.setRange(0 if zero_ok else 1, 100000000)
             box.setValue(int(value))
             return box
         if unit == "":
@@ -206,7 +207,7 @@ class PanelizationTaskPanel:
     def guides_needed(self, method=None):
         """How many guide edges the method takes (0: none)."""
         method = method or self.method.currentText()
-        return {"guide_line_scaling": 1, "two_guide_lines": 2}.get(method, 0) \
+        return api.GUIDE_COUNT.get(method, 0) \
             if "guides" in api.METHODS[method].converters else 0
 
     def _add_guides_row(self, method):

