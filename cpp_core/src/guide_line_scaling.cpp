@@ -109,6 +109,14 @@ std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c, 
   return runs;
 }
 
+// On the border of the surface's (u,v) box (a closed direction has none):
+// where project_near leaves a point whose target lies beyond the surface.
+bool on_uv_border(const SurfaceFace& face, const Vec2& uv) {
+  const UvBounds b = face.bounds();
+  return (!face.u_periodic() && (uv[0] <= b.u_min || uv[0] >= b.u_max)) ||
+         (!face.v_periodic() && (uv[1] <= b.v_min || uv[1] >= b.v_max));
+}
+
 // Length of the curve on the face (sampled: the exact pieces come at the
 // division).
 double length_inside(const Context& cx, const SurfaceCurve& c) {
@@ -287,6 +295,10 @@ bool advance_curve(const Context& cx, const SurfaceCurve& c, double side, Surfac
     return false;
   const double l1 = (p0 - pn).norm(), l2 = (new_end[0] - new_end[1]).norm();
   if (l1 < cx.tol || l2 < 0.5 * cx.l1) return false;
+  // The new ends swapped sides (a short curve in a corner or on a bulge of
+  // the border, whose ends found each other's boundary points): the scaled
+  // curve would turn over and fold back across the ones before it.
+  if ((new_end[1] - new_end[0]).dot(pn - p0) <= 0.0) return false;
   next = map_curve(cx, c, new_end[0], new_uv[0], new_end[1], new_uv[1]);
   // No progress across the curve (it fell back onto the previous one, or slid
   // along the boundary): covered.
@@ -375,15 +387,10 @@ std::vector<Vec2> cut_self_crossings(std::vector<Vec2> pts) {
 bool offset_curve(const Context& cx, const SweepFront& front, const SweepFront& guide_front,
                   const SurfaceCurve& c, double side, SurfaceCurve& next) {
   const SurfaceFace& face = cx.face;
-  const UvBounds b = face.bounds();
   const std::size_t last = c.xyz.size() - 1;
   const std::size_t m = std::clamp<std::size_t>(
       static_cast<std::size_t>(0.5 * cx.l1 / std::max(polyline_length(c.xyz) / last, cx.tol)), 1,
       last / 4 + 1);
-  auto on_border = [&](const Vec2& uv) {
-    return (!face.u_periodic() && (uv[0] <= b.u_min || uv[0] >= b.u_max)) ||
-           (!face.v_periodic() && (uv[1] <= b.v_min || uv[1] >= b.v_max));
-  };
   std::vector<Vec2> uv(last + 1);
   std::vector<char> ok(last + 1, 0);
   for (std::size_t k = 0; k <= last; ++k) {
@@ -397,7 +404,7 @@ bool offset_curve(const Context& cx, const SweepFront& front, const SweepFront& 
     // On the surface, ahead of the GSM sweep, and not folded back (a
     // concave part of the curve that collapsed into a swallowtail).
     const Vec3 move = pr.point - c.xyz[k];
-    ok[k] = pr.distance <= 0.1 * cx.advance && !on_border(pr.uv) &&
+    ok[k] = pr.distance <= 0.1 * cx.advance && !on_uv_border(face, pr.uv) &&
             move.dot(d) > 0.5 * cx.advance && front.ahead(pr.uv) > 0.0 &&
             guide_front.ahead(pr.uv) > 0.0;
   }
@@ -443,6 +450,12 @@ SurfaceCurve initial_curve(const Context& cx, const std::vector<Vec3>& guide) {
   std::vector<double> s(guide.size(), 0.0);
   for (std::size_t i = 1; i < guide.size(); ++i) s[i] = s[i - 1] + (guide[i] - guide[i - 1]).norm();
   if (s.back() <= cx.tol) throw InvalidParameter("guides: the guide curve has no length");
+  // A loop has no ends to move along the boundary (seed 004 advances the two
+  // end points), so the method cannot start from it.
+  if ((guide.front() - guide.back()).norm() <= 1e-6 * s.back())
+    throw InvalidParameter(
+        "guides: the guide curve is closed (a loop); pick an open curve that runs across the "
+        "face from boundary to boundary");
   SurfaceCurve projected;
   std::size_t seg = 0;
   Vec2 start(0, 0);

@@ -245,6 +245,15 @@ def _plan_coverage(pts, res):
     return covered.mean()
 
 
+def test_a_closed_guide_is_refused_with_a_clear_message():
+    # GSM and 2G2VM move the guide's two ends along the boundary: a loop (the
+    # rim circle of a whole cylinder) has none.
+    face = Part.read(os.path.join(REPO, "examples", "full_cylinder.brep")).Faces[0]
+    rim = [e for e in face.Edges if e.isClosed() and not e.isSeam(face)][0]
+    with pytest.raises(ValueError, match="closed"):
+        tessella.panelize(face, method="guide_line_scaling", guides=[rim], rod_length=500.0)
+
+
 @pytest.fixture(scope="module")
 def roof():
     shape = Part.Shape()
@@ -254,22 +263,57 @@ def roof():
     return face, west
 
 
-def test_finished_sweep_covers_the_roof_without_overlap(roof):
-    # The rising roof makes the scaled curves lag in the middle: the paper's
-    # sweep alone leaves a strip along the far edge open; the finishing
-    # offsets cover it. Coverage measured on FreeCAD's own points of the face.
+def _panel_area(res):
+    v = res.vertices
+    tri = np.array(res.panels)
+    return 0.5 * np.linalg.norm(np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]]), axis=1).sum()
+
+
+def test_sweep_covers_the_roof_without_overlap(roof):
+    # Coverage measured on FreeCAD's own points of the face; overlap as the
+    # panels' area against FreeCAD's face area.
     face, west = roof
     kw = dict(guides=[west], rod_length=2000.0)
     full = tessella.panelize(face, method="guide_line_scaling", **kw)
-    paper = tessella.panelize(face, method="guide_line_scaling", finish_sweep=False, **kw)
     pts = _face_points(face)
     assert len(pts) > 300
-    cov_full, cov_paper = _plan_coverage(pts, full), _plan_coverage(pts, paper)
-    assert cov_full > 0.97
-    assert cov_paper < cov_full - 0.03
-    v = full.vertices
-    tri = np.array(full.panels)
-    area = 0.5 * np.linalg.norm(np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]]), axis=1).sum()
-    assert area < 1.005 * face.Area  # no overlapping rows
-    worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*p)))[0] for p in v[::37])
+    assert _plan_coverage(pts, full) > 0.98
+    assert _panel_area(full) < 1.005 * face.Area  # no overlapping rows
+    worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*p)))[0] for p in full.vertices[::37])
     assert worst < 1e-3
+
+
+@pytest.mark.parametrize("rod_length", [2000.0, 4900.0])
+def test_sweep_stops_where_the_curve_would_turn_over(roof, rod_length):
+    # Near the far edge the last curve is a short arc whose new ends swap
+    # sides; scaled onto them it turned over and the sweep (and the finishing
+    # offsets from it) ran back across the roof: 1.5 x the face area at 2 m
+    # rods, 7.2 x at 4.9 m.
+    face, west = roof
+    res = tessella.panelize(face, method="guide_line_scaling", guides=[west], rod_length=rod_length)
+    assert 0.97 * face.Area < _panel_area(res) < 1.005 * face.Area
+
+
+def _example_face(name):
+    return Part.read(os.path.join(REPO, "examples", name + ".brep")).Faces[0]
+
+
+def test_finishing_sweep_covers_what_the_papers_sweep_leaves_open():
+    # On the vault with openings, guide = its first edge, the paper's sweep
+    # stalls after a few curves; the finishing offsets cover the rest without
+    # overlapping it.
+    face = _example_face("vault_openings")
+    kw = dict(guides=[face.Edges[0]], rod_length=face.BoundBox.DiagonalLength / 25)
+    paper = tessella.panelize(face, method="guide_line_scaling", finish_sweep=False, **kw)
+    full = tessella.panelize(face, method="guide_line_scaling", **kw)
+    assert _panel_area(paper) < 0.3 * face.Area
+    assert 0.8 * face.Area < _panel_area(full) < 1.005 * face.Area
+
+
+def test_cone_facade_sweep_does_not_overlap_itself():
+    # Third edge as guide: the paper's sweep turned over at the far end and
+    # covered the face 1.5 x (1.9 x with finishing).
+    face = _example_face("cone_facade")
+    res = tessella.panelize(face, method="guide_line_scaling", guides=[face.Edges[2]],
+                            rod_length=face.BoundBox.DiagonalLength / 25)
+    assert 0.9 * face.Area < _panel_area(res) < 1.005 * face.Area
