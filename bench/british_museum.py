@@ -119,6 +119,19 @@ def plan_coverage(face, res, step=500.0):
     return (hits[on_face] >= 1).sum() / n, (hits[on_face] >= 2).sum() / n
 
 
+def polygon_area(v, poly):
+    """Area of a planar-ish polygon (vector area), for triangles, quads and the
+    n-gons along the trim alike."""
+    pts = v[list(poly)]
+    return 0.5 * np.linalg.norm(np.cross(pts, np.roll(pts, -1, axis=0)).sum(axis=0))
+
+
+def rod_lengths(res):
+    """Rod lengths from the returned coordinates (not the core's metrics)."""
+    rods = np.asarray(res.rods)
+    return np.linalg.norm(res.vertices[rods[:, 0]] - res.vertices[rods[:, 1]], axis=1)
+
+
 def run_gsm(face, guide_edge, rod_length, advance):
     t = time.perf_counter()
     res = tessella.panelize(face, method="guide_line_scaling", guides=[guide_edge],
@@ -150,12 +163,9 @@ def main(argv=None):
     for label, key, where in (("west edge", "west", dict(x=bb.XMin)), ("south edge", "south", dict(y=bb.YMin))):
         guide = edge_at(face, **where)
         res, curves, seconds, core_seconds = run_gsm(face, guide, args.rod_length, args.advance)
-        rl = res.metrics["rod_length"]
+        rl = rod_lengths(res)
         s = res.summary
-        v = res.vertices
-        tri = np.array(res.panels)
-        covered = 0.5 * np.linalg.norm(np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]]),
-                                       axis=1).sum() / face.Area
+        covered = sum(polygon_area(res.vertices, q) for q in res.panels) / face.Area
         rows.append((f"GSM, Tessella, guide = {label}", rl.mean(), rl.var(), s["node_count"], s["rod_count"],
                      s["irregular_count"] / max(1, s["panel_count"]), core_seconds, seconds, len(curves),
                      covered, plan_coverage(face, res)))
@@ -166,31 +176,49 @@ def main(argv=None):
              f"(variance {rl.var():,.0f} mm2); irregular cells shaded")
         pngs.append(png)
 
-    # 2G2VM: the west edge and the south edge as the two guide lines.
+    # 2G2VM: the west edge and the south edge as the two guide lines; and the
+    # diamond grid of the two GSM sets (seed 004 Fig. 19) from the same edges.
     guides = [edge_at(face, x=bb.XMin), edge_at(face, y=bb.YMin)]
-    t = time.perf_counter()
-    res = tessella.panelize(face, method="two_guide_lines", guides=guides, rod_length=args.rod_length)
-    seconds = time.perf_counter() - t
     sf = core.SurfaceFace.from_brep_string(face.exportBrepToString())
-    p = core.TwoGuideLinesParams()
-    p.guides = [tessella.api.edge_polyline(g) for g in guides]
-    p.rod_length = args.rod_length
-    t = time.perf_counter()
-    _, curves_a, curves_b = core.two_guide_lines_curves(sf, p)
-    core_seconds = time.perf_counter() - t
-    rl = res.metrics["rod_length"]
-    s = res.summary
-    v = res.vertices
-    covered = sum(0.5 * np.linalg.norm(np.cross(v[q[2]] - v[q[0]], v[q[3]] - v[q[1]])) for q in res.panels) / face.Area
-    rows.append(("2G2VM (quads), Tessella, west + south", rl.mean(), rl.var(), s["node_count"], s["rod_count"],
-                 s["irregular_count"] / max(1, s["panel_count"]), core_seconds, seconds,
-                 len(curves_a) + len(curves_b), covered, plan_coverage(face, res)))
-    png = os.path.join(args.out, "british_museum_2g2vm.png")
-    plot(face, res, None, png,
-         f"2G2VM on the British Museum roof: guides = west and south edges, L1 = {args.rod_length:.0f} mm\n"
-         f"{s['node_count']} nodes, {s['rod_count']} rods, rod length {rl.mean():.0f} mm "
-         f"(variance {rl.var():,.0f} mm2); irregular cells shaded")
-    pngs.append(png)
+    for label, key, method in (("2G2VM (quads), Tessella, west + south", "2g2vm", "two_guide_lines"),
+                               ("GSM diamond, Tessella, west + south", "diamond", "guide_line_diamond")):
+        kw = dict(guides=guides, rod_length=args.rod_length)
+        if method == "guide_line_diamond" and args.advance > 0:
+            kw["advance"] = args.advance
+        t = time.perf_counter()
+        res = tessella.panelize(face, method=method, **kw)
+        seconds = time.perf_counter() - t
+        if method == "two_guide_lines":
+            p = core.TwoGuideLinesParams()
+            p.guides = [tessella.api.edge_polyline(g) for g in guides]
+            p.rod_length = args.rod_length
+            t = time.perf_counter()
+            _, curves_a, curves_b = core.two_guide_lines_curves(sf, p)
+            core_seconds = time.perf_counter() - t
+            ncurves = len(curves_a) + len(curves_b)
+        else:  # the core's whole run: two GSM sets and their crossings
+            p = core.GuideLineDiamondParams()
+            p.guides = [tessella.api.edge_polyline(g) for g in guides]
+            p.rod_length = args.rod_length
+            if args.advance > 0:
+                p.advance = args.advance
+            t = time.perf_counter()
+            core.guide_line_diamond(sf, p)
+            core_seconds = (time.perf_counter() - t) / 2  # per guide-line set
+            ncurves = 0
+        rl = rod_lengths(res)
+        s = res.summary
+        covered = sum(polygon_area(res.vertices, q) for q in res.panels) / face.Area
+        rows.append((label, rl.mean(), rl.var(), s["node_count"], s["rod_count"],
+                     s["irregular_count"] / max(1, s["panel_count"]), core_seconds, seconds,
+                     ncurves, covered, plan_coverage(face, res)))
+        png = os.path.join(args.out, f"british_museum_{key}.png")
+        plot(face, res, None, png,
+             f"{label.split(',')[0]} on the British Museum roof: guides = west and south edges, "
+             f"L1 = {args.rod_length:.0f} mm\n"
+             f"{s['node_count']} nodes, {s['rod_count']} rods, rod length {rl.mean():.0f} mm "
+             f"(variance {rl.var():,.0f} mm2); irregular cells shaded")
+        pngs.append(png)
 
     lines = []
     lines.append(f"{'grid':40s} {'mean (mm)':>10s} {'var (mm2)':>11s} {'nodes':>6s} {'members':>8s} "

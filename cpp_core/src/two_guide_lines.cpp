@@ -141,6 +141,28 @@ double equal_boundary_chord(const Loop& loop, const LoopPos& at, int dir, int di
   return lo;
 }
 
+// (u,v) of the vertex at chord parameter t of walk w. On the boundary: its
+// projection. On the straight extension beyond the boundary's end (the
+// paper's boundary extension, Fig. 31), projecting would clamp it onto the
+// surface's border, i.e. onto the corner, and every curve through such
+// vertices would fan out of that corner; the extension is taken in (u,v)
+// instead, along the boundary's direction at its end, on the surface's
+// continuation (B-spline evaluation extrapolates), so the curves through it
+// keep their spacing and are cut by the trim.
+Vec2 vertex_uv(const SurfaceFace& face, const Walk& w, double t, const Vec2& start) {
+  const Vec3 v = polyline_point(w.pts, t);
+  if (t <= w.real_end + 1e-9 || w.pts.size() < 2) return project_near(face, v, start).uv;
+  const Vec3 e = polyline_point(w.pts, w.real_end);
+  const Vec2 uv_e = project_near(face, e, start).uv;
+  const SurfacePoint sp = face.derivatives(uv_e[0], uv_e[1]);
+  Eigen::Matrix<double, 3, 2> j;
+  j << sp.du, sp.dv;
+  const Vec3 d = (w.pts.back() - e).normalized();
+  const Vec2 duv = (j.transpose() * j).ldlt().solve(j.transpose() * d);
+  if (!duv.allFinite()) return project_near(face, v, start).uv;
+  return uv_e + (v - e).norm() * duv;
+}
+
 // One family: the guide moved through the vertex pairs on both sides, in order.
 // The vertex chord is cx.l1, or with `divisions` > 0 the length of each end's
 // boundary curve / divisions (the paper's equal division of the boundaries);
@@ -175,8 +197,8 @@ std::vector<SurfaceCurve> family(const Context& cx, const Loop& loop, const Surf
     for (int i = 1; i <= count; ++i) {
       const Vec3 v0 = polyline_point(w0.pts, t0[i]), v1 = polyline_point(w1.pts, t1[i]);
       if ((v0 - v1).norm() < 0.5 * std::min(c0, c1)) break;  // the pairs have met
-      const Vec2 uv0 = project_near(face, v0, cur.uv.front()).uv;
-      const Vec2 uv1 = project_near(face, v1, cur.uv.back()).uv;
+      const Vec2 uv0 = vertex_uv(face, w0, t0[i], cur.uv.front());
+      const Vec2 uv1 = vertex_uv(face, w1, t1[i], cur.uv.back());
       // "The original guide line is then advanced by moving the end points to
       // the next two vertices" (section 6.1): every curve is the guide itself
       // mapped (not the previous curve), so mapping errors do not add up from
