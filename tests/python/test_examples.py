@@ -29,6 +29,8 @@ EXPECTED = {
     "notched_shell": ("Part::GeomBSplineSurface", 3),
     "vault_openings": ("Part::GeomCylinder", 4),
     "british_museum_roof": ("Part::GeomBSplineSurface", 2),  # examples/make_british_museum.py
+    "sun_valley_funnel": ("Part::GeomBSplineSurface", 1),  # examples/make_grid_shells.py
+    "chen_shan_dome": ("Part::GeomBSplineSurface", 1),
 }
 METHODS = ("iso_grid", "equal_size_grid", "boundary_driven")
 TARGET_PANELS = 60  # coarse: keeps the whole file well under the time budget
