@@ -1,6 +1,8 @@
 // Diamond grids from two GSM guide-line sets (see the header).
 #include "tessella/guide_line_diamond.h"
 
+#include <cmath>
+
 #include "tessella/curve_family_mesh.h"
 #include "tessella/errors.h"
 #include "tessella/guide_lines.h"
@@ -23,10 +25,24 @@ PanelMesh guide_line_diamond(const SurfaceFace& face, const GuideLineDiamondPara
   gsm.trim_deflection = params.trim_deflection;
   gsm.max_panels = params.max_panels;
   std::vector<std::vector<SurfaceCurve>> families;
+  std::vector<SurfaceCurve> guides;
   for (const auto* guide : {&params.guide_a, &params.guide_b}) {
     gsm.guide = *guide;
-    families.push_back(guide_line_scaling_curves(face, gsm).curves);
+    GuideLineResult r = guide_line_scaling_curves(face, gsm);
+    guides.push_back(r.curves[r.guide_index]);
+    families.push_back(std::move(r.curves));
   }
+  // Sets from (near) parallel guides are (near) parallel curves: no diamonds,
+  // only the odd crossing where the sets bend. The guides need not cross
+  // each other (their sets do), so the test is on their directions: chords
+  // within 10 degrees of each other.
+  const Vec3 ca = guides[0].xyz.back() - guides[0].xyz.front();
+  const Vec3 cb = guides[1].xyz.back() - guides[1].xyz.front();
+  if (std::abs(ca.normalized().dot(cb.normalized())) >
+      std::cos(10.0 * 3.14159265358979323846 / 180.0))
+    throw InvalidParameter(
+        "guides: the two guide curves are (near) parallel, so their curve sets do not cross; "
+        "pick guides that cross at an angle");
   CurveFamilyMeshParams mp;
   mp.rod_length = advance;
   mp.triangulate = params.triangulate;

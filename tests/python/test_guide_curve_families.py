@@ -141,10 +141,18 @@ def test_diamond_and_divisions_in_the_document(freeform_face):
         doc.recompute()
         assert p.PanelCount > 1.8 * cells
         # Editing a guide recomputes the grid.
-        before = p.PanelCount
+        from freecad_workbench.features import panelization as feat
+        nodes = [k for k in feat.children_of(p) if k.Role == "Nodes"][0]
+        before = sorted((round(v.X), round(v.Y)) for v in nodes.Shape.Vertexes)
         gb.Shape = _guide_across(freeform_face, 5000.0)
         doc.recompute()
-        assert p.PanelCount > 0 and p.PanelCount != before
+        after = sorted((round(v.X), round(v.Y)) for v in nodes.Shape.Vertexes)
+        assert after != before
+        # ... and is the console API's grid for the edited guides.
+        direct = tessella.panelize(freeform_face, method="guide_line_diamond",
+                                   guides=[ga.Shape.Edges[0], gb.Shape.Edges[0]], rod_length=ROD,
+                                   triangulate=True)
+        assert p.PanelCount == len(direct.panels) and p.NodeCount == len(direct.nodes)
         # 2G2VM: BoundaryDivisions is a document property.
         q = tessella.make_panelization((surf, "Face1"), method="two_guide_lines",
                                        guides=[(ga, "Edge1"), (gb, "Edge1")], rod_length=ROD,

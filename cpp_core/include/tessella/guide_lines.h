@@ -77,6 +77,7 @@ struct GuideLineScalingParams {
 struct GuideLineResult {
   PanelMesh mesh;
   std::vector<SurfaceCurve> curves;
+  std::size_t guide_index = 0;  // curves[guide_index] is the guide, projected and extended
 };
 
 // The Two Guide Lines with Two End Vertices Method (seed 004 section 6): the
