@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 #include "guide_curves.h"
 #include "tessella/errors.h"
@@ -560,6 +561,126 @@ struct Row {
   std::vector<int> runs;  // which inside run of the curve each node is on
 };
 
+// Flips the shared edge of two triangles where the other diagonal of their
+// quad is shorter, for edges over `threshold`, longest first, until none
+// flips (or `passes`). Beyond seed 004: where a curve meets the far border
+// at a slant (the last strip of the roof), the 90-degree rule zips a thin
+// wedge into fans of rods 1.5-2.7 L1 long; the flips shorten them. The quad
+// must stay convex (both new triangles facing the same way as the old ones).
+int flip_long_edges(PanelMesh& mesh, double threshold, int passes) {
+  auto len = [&](int a, int b) { return (mesh.xyz[a] - mesh.xyz[b]).norm(); };
+  auto normal = [&](int a, int b, int c) {
+    return Vec3((mesh.xyz[b] - mesh.xyz[a]).cross(mesh.xyz[c] - mesh.xyz[a]));
+  };
+  int flips = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    // (edge a < b, triangle, corner of a in it), sorted: deterministic.
+    std::vector<std::tuple<int, int, int, int>> uses;
+    for (int t = 0; t < static_cast<int>(mesh.panels.size()); ++t) {
+      const auto& tri = mesh.panels[t];
+      for (int k = 0; k < 3; ++k) {
+        const int a = tri[k], b = tri[(k + 1) % 3];
+        uses.emplace_back(std::min(a, b), std::max(a, b), t, k);
+      }
+    }
+    std::sort(uses.begin(), uses.end());
+    std::vector<std::tuple<double, int, int>> edges;  // (-length, use index of the first)
+    for (std::size_t i = 0; i + 1 < uses.size(); ++i) {
+      const auto [a, b, t, k] = uses[i];
+      if (std::get<0>(uses[i + 1]) != a || std::get<1>(uses[i + 1]) != b) continue;
+      if (i + 2 < uses.size() && std::get<0>(uses[i + 2]) == a && std::get<1>(uses[i + 2]) == b)
+        continue;  // not manifold
+      if (len(a, b) > threshold) edges.emplace_back(-len(a, b), static_cast<int>(i), 0);
+    }
+    std::sort(edges.begin(), edges.end());
+    std::vector<char> touched(mesh.panels.size(), 0);
+    int done = 0;
+    for (const auto& e : edges) {
+      const int i = std::get<1>(e);
+      const int t1 = std::get<2>(uses[i]), t2 = std::get<2>(uses[i + 1]);
+      if (touched[t1] || touched[t2]) continue;
+      // t1 = (a, b, c) with the edge a -> b, t2 = (b, a, d).
+      const auto& p1 = mesh.panels[t1];
+      const int k1 = std::get<3>(uses[i]);
+      const int a = p1[k1], b = p1[(k1 + 1) % 3], c = p1[(k1 + 2) % 3];
+      const auto& p2 = mesh.panels[t2];
+      int d = -1;
+      for (int v : p2)
+        if (v != a && v != b) d = v;
+      if (d < 0 || c == d || len(c, d) >= len(a, b)) continue;
+      const Vec3 n = normal(a, b, c) + normal(b, a, d);
+      const Vec3 n1 = normal(a, d, c), n2 = normal(d, b, c);
+      const double tiny = 1e-3 * threshold * threshold;
+      if (n1.dot(n) <= 0 || n2.dot(n) <= 0 || n1.norm() < tiny || n2.norm() < tiny) continue;
+      mesh.panels[t1] = {a, d, c};
+      mesh.panels[t2] = {d, b, c};
+      touched[t1] = touched[t2] = 1;
+      ++done;
+    }
+    flips += done;
+    if (done == 0) break;
+  }
+  return flips;
+}
+
+// Splits the mesh's boundary edges (one triangle) that run along the trim and
+// are longer than 1.5 L1 into chords near L1, with the new nodes on the true
+// trim, fanning their triangle from its third corner. Beyond seed 004: the
+// ends of neighbouring curves that meet the trim at a slant are several L1
+// apart (up to 5.4 m on the roof's far edge, 3-4 m along the drum).
+void split_long_boundary_edges(const Context& cx, PanelMesh& mesh) {
+  std::vector<std::tuple<int, int, int>> uses;  // (a < b, triangle)
+  for (int t = 0; t < static_cast<int>(mesh.panels.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.panels[t][k], b = mesh.panels[t][(k + 1) % 3];
+      uses.emplace_back(std::min(a, b), std::max(a, b), t);
+    }
+  std::sort(uses.begin(), uses.end());
+  std::vector<std::pair<int, int>> single;  // (triangle, corner where the edge starts)
+  for (std::size_t i = 0; i < uses.size(); ++i) {
+    const auto [a, b, t] = uses[i];
+    const bool prev = i > 0 && std::get<0>(uses[i - 1]) == a && std::get<1>(uses[i - 1]) == b;
+    const bool next =
+        i + 1 < uses.size() && std::get<0>(uses[i + 1]) == a && std::get<1>(uses[i + 1]) == b;
+    if (prev || next) continue;
+    for (int k = 0; k < 3; ++k)
+      if (std::min(mesh.panels[t][k], mesh.panels[t][(k + 1) % 3]) == a &&
+          std::max(mesh.panels[t][k], mesh.panels[t][(k + 1) % 3]) == b)
+        single.emplace_back(t, k);
+  }
+  for (const auto& [t, k] : single) {
+    const std::vector<int> tri = mesh.panels[t];
+    const int a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
+    const double len = (mesh.xyz[a] - mesh.xyz[b]).norm();
+    const int n = static_cast<int>(std::lround(len / cx.l1));
+    if (len <= 1.5 * cx.l1 || n < 2) continue;
+    const Vec2 ua = mesh.uv[a], ub = mesh.uv[b], du = ub - ua;
+    const Vec2 across = Vec2(-du[1], du[0]) * 0.25;
+    std::vector<int> ids = {a};
+    bool ok = true;
+    for (int q = 1; q < n && ok; ++q) {
+      const Vec2 m = ua + (static_cast<double>(q) / n) * du;
+      const Vec2 x = m + across, y = m - across;
+      const bool in_x = cx.inside(x[0], x[1]), in_y = cx.inside(y[0], y[1]);
+      if (in_x == in_y) {  // not along the trim (an open gap between rows)
+        ok = false;
+        break;
+      }
+      const Vec2 on = in_x ? bisect_boundary(cx, x, y) : bisect_boundary(cx, y, x);
+      const Vec3 p = cx.face.point(on[0], on[1]);
+      const Vec3 chord = mesh.xyz[a] + (static_cast<double>(q) / n) * (mesh.xyz[b] - mesh.xyz[a]);
+      if ((p - chord).norm() > 0.25 * len) ok = false;
+      ids.push_back(static_cast<int>(mesh.uv.size()));
+      mesh.uv.push_back(on);
+      mesh.xyz.push_back(p);
+    }
+    if (!ok) continue;  // the nodes added stay unused and are removed later
+    ids.push_back(b);
+    mesh.panels[t] = {ids[0], ids[1], c};
+    for (std::size_t q = 1; q + 1 < ids.size(); ++q) mesh.panels.push_back({ids[q], ids[q + 1], c});
+  }
+}
+
 }  // namespace
 
 GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
@@ -764,6 +885,9 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
         throw LimitExceeded("guide_line_scaling: more panels than max_panels");
     }
   }
+  const double diagonal = std::sqrt(cx.advance * cx.advance + 0.25 * cx.l1 * cx.l1);
+  split_long_boundary_edges(cx, mesh);
+  flip_long_edges(mesh, 1.3 * std::max(cx.l1, diagonal), 10);
   mesh.nominal_area = 0.5 * cx.l1 * cx.advance;
   mesh.regular_corners = 3;
   weld_coincident_vertices(mesh, 1e-6 * size);

@@ -317,3 +317,21 @@ def test_cone_facade_sweep_does_not_overlap_itself():
     res = tessella.panelize(face, method="guide_line_scaling", guides=[face.Edges[2]],
                             rod_length=face.BoundBox.DiagonalLength / 25)
     assert 0.9 * face.Area < _panel_area(res) < 1.005 * face.Area
+
+
+@pytest.mark.parametrize("edge", ["west", "south"])
+def test_roof_rods_meet_the_issue_target(roof, edge):
+    # Rod lengths from the returned coordinates: mean 2000 +/- 100 mm and
+    # variance at most 60,000 mm^2 (half the paper's GSM, Table 3: 120,136),
+    # with either court edge as the guide; every node on FreeCAD's face.
+    face, west = roof
+    bb = face.BoundBox
+    guide = west if edge == "west" else [e for e in face.Edges if abs(e.BoundBox.YMax - bb.YMin) < 1][0]
+    res = tessella.panelize(face, method="guide_line_scaling", guides=[guide], rod_length=2000.0)
+    rods = np.asarray(res.rods)
+    lengths = np.linalg.norm(res.vertices[rods[:, 0]] - res.vertices[rods[:, 1]], axis=1)
+    assert abs(lengths.mean() - 2000.0) < 100.0
+    assert lengths.var() < 60000.0
+    assert 0.98 * face.Area < _panel_area(res) < 1.005 * face.Area
+    worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*p)))[0] for p in res.vertices[::7])
+    assert worst < 1e-3
