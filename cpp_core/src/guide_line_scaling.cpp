@@ -739,6 +739,29 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
     const bool closed_u = face.u_periodic() && fb.u_max - fb.u_min > 0.99 * face.u_period();
     const bool closed_v = face.v_periodic() && fb.v_max - fb.v_min > 0.99 * face.v_period();
     const bool finish = params.finish_sweep && !closed_u && !closed_v;
+    // On a closed face each side sweeps half way round (the rows are kept
+    // L apart, so half the perimeter through the guide's middle / L curves),
+    // where the other side's curves arrive.
+    std::size_t max_side = std::numeric_limits<std::size_t>::max();
+    if (closed_u || closed_v) {
+      const Vec2 mid = c0.uv[c0.uv.size() / 2];
+      double perimeter = std::numeric_limits<double>::infinity();
+      for (int dir = 0; dir < 2; ++dir) {
+        if (!(dir == 0 ? closed_u : closed_v)) continue;
+        const double period = dir == 0 ? face.u_period() : face.v_period();
+        double len = 0.0;
+        Vec3 prev = face.point(mid[0], mid[1]);
+        for (int i = 1; i <= 256; ++i) {
+          const double t = period * i / 256.0;
+          const Vec3 x = dir == 0 ? face.point(mid[0] + t, mid[1]) : face.point(mid[0], mid[1] + t);
+          len += (x - prev).norm();
+          prev = x;
+        }
+        perimeter = std::min(perimeter, len);
+      }
+      max_side =
+          static_cast<std::size_t>(std::max(0.0, std::floor(0.5 * perimeter / cx.advance + 0.5)));
+    }
     for (;;) {
       if (!finishing && !advance_curve(cx, cur, side, next)) {
         finishing = true;
@@ -747,6 +770,7 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
       }
       if (finishing && !finish) break;
       if (finishing && !offset_curve(cx, front, guide_front, cur, side, next)) break;
+      if (sides[k].size() >= max_side) break;
       sides[k].push_back(next);
       if (static_cast<int>(sides[0].size() + sides[1].size()) + 1 > params.max_curves)
         throw LimitExceeded("guide_line_scaling: more than max_curves curves; increase advance");

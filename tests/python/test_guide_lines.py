@@ -335,3 +335,14 @@ def test_roof_rods_meet_the_issue_target(roof, edge):
     assert 0.98 * face.Area < _panel_area(res) < 1.005 * face.Area
     worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*p)))[0] for p in res.vertices[::7])
     assert worst < 1e-3
+
+
+def test_closed_cylinder_is_swept_half_way_round_from_each_side():
+    # Guide = the seam line of a whole cylinder: each side sweeps half the
+    # circumference; the rows neither run round for ever (max_curves) nor
+    # overlap where the two sides meet.
+    face = _example_face("full_cylinder")
+    seam = [e for e in face.Edges if e.isSeam(face)][0]
+    res = tessella.panelize(face, method="guide_line_scaling", guides=[seam],
+                            rod_length=face.BoundBox.DiagonalLength / 25)
+    assert 0.95 * face.Area < _panel_area(res) < 1.005 * face.Area
