@@ -116,6 +116,15 @@ def funnel_area_estimate(n=2000):
     return math.pi * total * h / 3.0
 
 
+def check_area(face, estimate, problems):
+    """(area in m2, estimate, problems): the face's area within 0.5% of the
+    independent estimate (m2)."""
+    area_m2 = face.Area / 1e6
+    if abs(area_m2 / estimate - 1.0) > 5e-3:
+        problems.append(f"area {area_m2:.2f} m2, estimate {estimate:.2f} m2")
+    return area_m2, estimate, problems
+
+
 def check_funnel(face):
     problems = []
     if not face.isValid():
@@ -140,11 +149,7 @@ def check_funnel(face):
         d = face.distToShape(Part.Vertex(p))[0]
         if d > 1e-3:
             problems.append(f"profile point (theta {theta}, z {z} m) is {d:.4f} mm off the face")
-    area_m2 = face.Area / 1e6
-    estimate = funnel_area_estimate()
-    if abs(area_m2 / estimate - 1.0) > 5e-3:
-        problems.append(f"area {area_m2:.2f} m2, estimate {estimate:.2f} m2")
-    return area_m2, estimate, problems
+    return check_area(face, funnel_area_estimate(), problems)
 
 
 def to_plan(X, Y):
@@ -232,11 +237,7 @@ def check_dome(face):
                             (bb.YMin, outline[:, 1].min(), "YMin"), (bb.YMax, outline[:, 1].max(), "YMax")):
         if abs(got - want) > 50.0:
             problems.append(f"plan {name} {got:.0f} mm, analytic outline {want:.0f} mm")
-    area_m2 = face.Area / 1e6
-    estimate = dome_area_estimate()
-    if abs(area_m2 / estimate - 1.0) > 5e-3:
-        problems.append(f"area {area_m2:.2f} m2, estimate {estimate:.2f} m2")
-    return area_m2, estimate, problems
+    return check_area(face, dome_area_estimate(), problems)
 
 
 def report(name, face, area_m2, estimate, problems, path):

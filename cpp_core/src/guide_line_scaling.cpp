@@ -561,53 +561,61 @@ struct Row {
   std::vector<int> runs;  // which inside run of the curve each node is on
 };
 
+// Every triangle edge as (a < b, triangle, corner where it starts), sorted:
+// the uses of one edge are neighbours, in a deterministic order.
+struct EdgeUse {
+  int a, b, tri, corner;
+  bool operator<(const EdgeUse& o) const {
+    return std::tie(a, b, tri, corner) < std::tie(o.a, o.b, o.tri, o.corner);
+  }
+  bool same_edge(const EdgeUse& o) const { return a == o.a && b == o.b; }
+};
+
+std::vector<EdgeUse> edge_uses(const PanelMesh& mesh) {
+  std::vector<EdgeUse> uses;
+  for (int t = 0; t < static_cast<int>(mesh.panels.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.panels[t][k], b = mesh.panels[t][(k + 1) % 3];
+      uses.push_back({std::min(a, b), std::max(a, b), t, k});
+    }
+  std::sort(uses.begin(), uses.end());
+  return uses;
+}
+
 // Flips the shared edge of two triangles where the other diagonal of their
 // quad is shorter, for edges over `threshold`, longest first, until none
 // flips (or `passes`). Beyond seed 004: where a curve meets the far border
 // at a slant (the last strip of the roof), the 90-degree rule zips a thin
 // wedge into fans of rods 1.5-2.7 L1 long; the flips shorten them. The quad
 // must stay convex (both new triangles facing the same way as the old ones).
-int flip_long_edges(PanelMesh& mesh, double threshold, int passes) {
+void flip_long_edges(PanelMesh& mesh, double threshold, int passes) {
   auto len = [&](int a, int b) { return (mesh.xyz[a] - mesh.xyz[b]).norm(); };
   auto normal = [&](int a, int b, int c) {
     return Vec3((mesh.xyz[b] - mesh.xyz[a]).cross(mesh.xyz[c] - mesh.xyz[a]));
   };
-  int flips = 0;
   for (int pass = 0; pass < passes; ++pass) {
-    // (edge a < b, triangle, corner of a in it), sorted: deterministic.
-    std::vector<std::tuple<int, int, int, int>> uses;
-    for (int t = 0; t < static_cast<int>(mesh.panels.size()); ++t) {
-      const auto& tri = mesh.panels[t];
-      for (int k = 0; k < 3; ++k) {
-        const int a = tri[k], b = tri[(k + 1) % 3];
-        uses.emplace_back(std::min(a, b), std::max(a, b), t, k);
-      }
-    }
-    std::sort(uses.begin(), uses.end());
-    std::vector<std::tuple<double, int, int>> edges;  // (-length, use index of the first)
+    const std::vector<EdgeUse> uses = edge_uses(mesh);
+    std::vector<std::pair<double, std::size_t>> edges;  // (-length, first use), manifold edges
     for (std::size_t i = 0; i + 1 < uses.size(); ++i) {
-      const auto [a, b, t, k] = uses[i];
-      if (std::get<0>(uses[i + 1]) != a || std::get<1>(uses[i + 1]) != b) continue;
-      if (i + 2 < uses.size() && std::get<0>(uses[i + 2]) == a && std::get<1>(uses[i + 2]) == b)
-        continue;  // not manifold
-      if (len(a, b) > threshold) edges.emplace_back(-len(a, b), static_cast<int>(i), 0);
+      if (!uses[i].same_edge(uses[i + 1])) continue;
+      if (i + 2 < uses.size() && uses[i].same_edge(uses[i + 2])) continue;  // not manifold
+      const double l = len(uses[i].a, uses[i].b);
+      if (l > threshold) edges.emplace_back(-l, i);
     }
     std::sort(edges.begin(), edges.end());
     std::vector<char> touched(mesh.panels.size(), 0);
     int done = 0;
-    for (const auto& e : edges) {
-      const int i = std::get<1>(e);
-      const int t1 = std::get<2>(uses[i]), t2 = std::get<2>(uses[i + 1]);
+    for (const auto& [neg_len, i] : edges) {
+      const int t1 = uses[i].tri, t2 = uses[i + 1].tri;
       if (touched[t1] || touched[t2]) continue;
       // t1 = (a, b, c) with the edge a -> b, t2 = (b, a, d).
       const auto& p1 = mesh.panels[t1];
-      const int k1 = std::get<3>(uses[i]);
+      const int k1 = uses[i].corner;
       const int a = p1[k1], b = p1[(k1 + 1) % 3], c = p1[(k1 + 2) % 3];
-      const auto& p2 = mesh.panels[t2];
       int d = -1;
-      for (int v : p2)
+      for (int v : mesh.panels[t2])
         if (v != a && v != b) d = v;
-      if (d < 0 || c == d || len(c, d) >= len(a, b)) continue;
+      if (d < 0 || c == d || len(c, d) >= -neg_len) continue;
       const Vec3 n = normal(a, b, c) + normal(b, a, d);
       const Vec3 n1 = normal(a, d, c), n2 = normal(d, b, c);
       const double tiny = 1e-3 * threshold * threshold;
@@ -617,10 +625,8 @@ int flip_long_edges(PanelMesh& mesh, double threshold, int passes) {
       touched[t1] = touched[t2] = 1;
       ++done;
     }
-    flips += done;
     if (done == 0) break;
   }
-  return flips;
 }
 
 // Splits the mesh's boundary edges (one triangle) that run along the trim and
@@ -629,26 +635,12 @@ int flip_long_edges(PanelMesh& mesh, double threshold, int passes) {
 // ends of neighbouring curves that meet the trim at a slant are several L1
 // apart (up to 5.4 m on the roof's far edge, 3-4 m along the drum).
 void split_long_boundary_edges(const Context& cx, PanelMesh& mesh) {
-  std::vector<std::tuple<int, int, int>> uses;  // (a < b, triangle)
-  for (int t = 0; t < static_cast<int>(mesh.panels.size()); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.panels[t][k], b = mesh.panels[t][(k + 1) % 3];
-      uses.emplace_back(std::min(a, b), std::max(a, b), t);
-    }
-  std::sort(uses.begin(), uses.end());
-  std::vector<std::pair<int, int>> single;  // (triangle, corner where the edge starts)
+  const std::vector<EdgeUse> uses = edge_uses(mesh);
   for (std::size_t i = 0; i < uses.size(); ++i) {
-    const auto [a, b, t] = uses[i];
-    const bool prev = i > 0 && std::get<0>(uses[i - 1]) == a && std::get<1>(uses[i - 1]) == b;
-    const bool next =
-        i + 1 < uses.size() && std::get<0>(uses[i + 1]) == a && std::get<1>(uses[i + 1]) == b;
-    if (prev || next) continue;
-    for (int k = 0; k < 3; ++k)
-      if (std::min(mesh.panels[t][k], mesh.panels[t][(k + 1) % 3]) == a &&
-          std::max(mesh.panels[t][k], mesh.panels[t][(k + 1) % 3]) == b)
-        single.emplace_back(t, k);
-  }
-  for (const auto& [t, k] : single) {
+    if ((i > 0 && uses[i].same_edge(uses[i - 1])) ||
+        (i + 1 < uses.size() && uses[i].same_edge(uses[i + 1])))
+      continue;  // shared by two triangles: not on the boundary
+    const int t = uses[i].tri, k = uses[i].corner;
     const std::vector<int> tri = mesh.panels[t];
     const int a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
     const double len = (mesh.xyz[a] - mesh.xyz[b]).norm();
@@ -728,40 +720,40 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   // Advance to both sides (a guide on the boundary stalls at once on one side).
   GuideLineResult result;
   std::vector<SurfaceCurve> sides[2];
+  // Finishing offsets could wrap around a closed face (a full period in u
+  // or v) onto the curves already there: not on closed faces.
+  const UvBounds fb = face.bounds();
+  const bool closed_u = face.u_periodic() && fb.u_max - fb.u_min > 0.99 * face.u_period();
+  const bool closed_v = face.v_periodic() && fb.v_max - fb.v_min > 0.99 * face.v_period();
+  const bool finish = params.finish_sweep && !closed_u && !closed_v;
+  // On a closed face each side sweeps half way round (the rows are kept
+  // L apart, so half the perimeter through the guide's middle / L curves),
+  // where the other side's curves arrive.
+  std::size_t max_side = std::numeric_limits<std::size_t>::max();
+  if (closed_u || closed_v) {
+    const Vec2 mid = c0.uv[c0.uv.size() / 2];
+    double perimeter = std::numeric_limits<double>::infinity();
+    for (int dir = 0; dir < 2; ++dir) {
+      if (!(dir == 0 ? closed_u : closed_v)) continue;
+      const double period = dir == 0 ? face.u_period() : face.v_period();
+      double len = 0.0;
+      Vec3 prev = face.point(mid[0], mid[1]);
+      for (int i = 1; i <= 256; ++i) {
+        const double t = period * i / 256.0;
+        const Vec3 x = dir == 0 ? face.point(mid[0] + t, mid[1]) : face.point(mid[0], mid[1] + t);
+        len += (x - prev).norm();
+        prev = x;
+      }
+      perimeter = std::min(perimeter, len);
+    }
+    max_side =
+        static_cast<std::size_t>(std::max(0.0, std::floor(0.5 * perimeter / cx.advance + 0.5)));
+  }
   for (int k = 0; k < 2; ++k) {
     const double side = k == 0 ? 1.0 : -1.0;
     SurfaceCurve cur = c0, next;
     bool finishing = false;
     SweepFront front, guide_front;
-    // Finishing offsets could wrap around a closed face (a full period in u
-    // or v) onto the curves already there: not on closed faces.
-    const UvBounds fb = face.bounds();
-    const bool closed_u = face.u_periodic() && fb.u_max - fb.u_min > 0.99 * face.u_period();
-    const bool closed_v = face.v_periodic() && fb.v_max - fb.v_min > 0.99 * face.v_period();
-    const bool finish = params.finish_sweep && !closed_u && !closed_v;
-    // On a closed face each side sweeps half way round (the rows are kept
-    // L apart, so half the perimeter through the guide's middle / L curves),
-    // where the other side's curves arrive.
-    std::size_t max_side = std::numeric_limits<std::size_t>::max();
-    if (closed_u || closed_v) {
-      const Vec2 mid = c0.uv[c0.uv.size() / 2];
-      double perimeter = std::numeric_limits<double>::infinity();
-      for (int dir = 0; dir < 2; ++dir) {
-        if (!(dir == 0 ? closed_u : closed_v)) continue;
-        const double period = dir == 0 ? face.u_period() : face.v_period();
-        double len = 0.0;
-        Vec3 prev = face.point(mid[0], mid[1]);
-        for (int i = 1; i <= 256; ++i) {
-          const double t = period * i / 256.0;
-          const Vec3 x = dir == 0 ? face.point(mid[0] + t, mid[1]) : face.point(mid[0], mid[1] + t);
-          len += (x - prev).norm();
-          prev = x;
-        }
-        perimeter = std::min(perimeter, len);
-      }
-      max_side =
-          static_cast<std::size_t>(std::max(0.0, std::floor(0.5 * perimeter / cx.advance + 0.5)));
-    }
     for (;;) {
       if (!finishing && !advance_curve(cx, cur, side, next)) {
         finishing = true;

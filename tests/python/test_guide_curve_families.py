@@ -18,7 +18,7 @@ import Part  # noqa: E402
 import numpy as np  # noqa: E402
 
 import freecad_workbench as tessella  # noqa: E402
-from test_guide_lines import _guide_across, _guide_on  # noqa: E402
+from test_guide_lines import _document_with_two_guides, _guide_across, _guide_on  # noqa: E402
 
 ROD = 1000.0
 #: Seed 004 Table 3: the paper's 2G2VM on the British Museum roof (mm^2).
@@ -124,14 +124,8 @@ def test_diamond_rejects_bad_guides(freeform_face):
 
 
 def test_diamond_and_divisions_in_the_document(freeform_face):
-    doc = FreeCAD.newDocument("TessellaDiamondTest")
+    doc, surf, ga, gb = _document_with_two_guides("TessellaDiamondTest", freeform_face)
     try:
-        surf = doc.addObject("Part::Feature", "Shell")
-        surf.Shape = freeform_face
-        ga = doc.addObject("Part::Feature", "GuideA")
-        ga.Shape = _guide_on(freeform_face, 2000.0)
-        gb = doc.addObject("Part::Feature", "GuideB")
-        gb.Shape = _guide_across(freeform_face, 2600.0)
         p = tessella.make_panelization((surf, "Face1"), method="guide_line_diamond",
                                        guides=[(ga, "Edge1"), (gb, "Edge1")], rod_length=ROD)
         assert p.Method == "guide_line_diamond" and [g[0] for g in p.Guides] == [ga, gb]

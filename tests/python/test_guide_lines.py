@@ -196,15 +196,22 @@ def test_two_guide_lines_needs_two_guides(freeform_face):
                           guides=[_guide_on(freeform_face, 2000.0)], rod_length=ROD)
 
 
+def _document_with_two_guides(name, face):
+    """A new document with the face and two crossing guide objects (plan lines
+    x = 2000 and y = 2600 projected onto it): (doc, surface, guide_a, guide_b)."""
+    doc = FreeCAD.newDocument(name)
+    surf = doc.addObject("Part::Feature", "Shell")
+    surf.Shape = face
+    ga = doc.addObject("Part::Feature", "GuideA")
+    ga.Shape = _guide_on(face, 2000.0)
+    gb = doc.addObject("Part::Feature", "GuideB")
+    gb.Shape = _guide_across(face, 2600.0)
+    return doc, surf, ga, gb
+
+
 def test_two_guide_lines_document_object(freeform_face):
-    doc = FreeCAD.newDocument("TessellaTwoGuideTest")
+    doc, surf, ga, gb = _document_with_two_guides("TessellaTwoGuideTest", freeform_face)
     try:
-        surf = doc.addObject("Part::Feature", "Roof")
-        surf.Shape = freeform_face
-        ga = doc.addObject("Part::Feature", "GuideA")
-        ga.Shape = _guide_on(freeform_face, 2000.0)
-        gb = doc.addObject("Part::Feature", "GuideB")
-        gb.Shape = _guide_across(freeform_face, 2600.0)
         p = tessella.make_panelization((surf, "Face1"), method="two_guide_lines",
                                        guides=[(ga, "Edge1"), (gb, "Edge1")], rod_length=ROD)
         assert [g[0] for g in p.Guides] == [ga, gb]
