@@ -69,7 +69,7 @@ uninstall:
 	rm -f $(MOD_DIR)/Tessella
 
 format:
-	clang-format -i cpp_core/include/tessella/*.h cpp_core/src/*.cpp bindings/*.cpp tests/cpp/*.cpp bench/*.cpp
+	clang-format -i $$(git ls-files 'cpp_core/*.h' 'cpp_core/*.cpp' 'bindings/*.cpp' 'bindings/*.h' 'tests/cpp/*' 'bench/*.cpp')
 
 clean:
 	rm -rf $(BUILD) freecad_workbench/_core*.so out

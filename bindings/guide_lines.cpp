@@ -1,5 +1,6 @@
 // Bindings of the guide-line methods (seed 004): conversions only.
-#include "tessella/guide_lines.h"
+#include "tessella/guide_line_scaling.h"
+#include "tessella/two_guide_lines.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -141,14 +142,4 @@ void bind_guide_lines(py::module_& m) {
       curves.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
     return py::make_tuple(std::move(r.mesh), curves);
   });
-  m.def(
-      "divide_by_chords",
-      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& pts, double chord,
-         double merge_fraction) {
-        ChordDivisionParams p;
-        p.chord = chord;
-        p.merge_fraction = merge_fraction;
-        return divide_by_chords(to_points(pts), p);
-      },
-      py::arg("points"), py::arg("chord"), py::arg("merge_fraction") = 0.2);
 }

@@ -37,7 +37,6 @@ from ._core import (  # noqa: E402,F401
     boundary_driven,
     boundary_driven_stages,
     TwoGuideLinesParams,
-    divide_by_chords,
     guide_line_diamond,
     equal_size_grid,
     guide_line_scaling,

@@ -9,7 +9,7 @@
 #include "tessella/errors.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_metrics.h"
-#include "tessella/panel_model.h"
+#include "mesh/panel_model.h"
 #include "test_faces.h"
 
 using namespace tessella;

@@ -6,7 +6,10 @@
 #include <cmath>
 
 #include "tessella/errors.h"
-#include "tessella/guide_lines.h"
+#include "methods/guide_lines/chord_division.h"
+#include "methods/guide_lines/right_angle_rule.h"
+#include "tessella/guide_line_scaling.h"
+#include "tessella/two_guide_lines.h"
 #include "tessella/surface_face.h"
 #include "test_faces.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "tessella/panel_metrics.h"
-#include "tessella/panel_model.h"
+#include "mesh/panel_model.h"
 #include "tessella/shape_export.h"
 #include "test_faces.h"
 

@@ -8,7 +8,7 @@
 
 #include "tessella/errors.h"
 #include "tessella/panel_metrics.h"
-#include "tessella/panel_model.h"
+#include "mesh/panel_model.h"
 #include "tessella/relaxed_grid.h"
 #include "tessella/walking_agent.h"
 #include "test_faces.h"

@@ -3,13 +3,80 @@
 // bd_curves.h, bd_network.h and bd_refine.h in a row.
 #pragma once
 
+#include <array>
 #include <vector>
 
-#include "tessella/bd_network.h"
-#include "tessella/bd_refine.h"
 #include "tessella/panel_mesh.h"
+#include "tessella/surface_face.h"
+#include "tessella/vec.h"
 
 namespace tessella {
+
+// The data the stages pass on (their functions are private, next to their
+// sources in src/methods/boundary_driven/).
+
+// A polyline on the surface with its 3D arc length, parameterized by that
+// length s (mm). Closed polylines do not repeat their first point.
+struct BdPolyline {
+  std::vector<Vec2> uv;
+  std::vector<Vec3> xyz;
+  std::vector<double> arc;  // cumulative 3D length at each vertex (+ closing one)
+  bool closed = false;
+  int loop = -1;  // index of the trim loop it came from, -1 for an extra curve
+  bool outer = false;
+
+  double length() const { return arc.empty() ? 0.0 : arc.back(); }
+  int segment_count() const { return static_cast<int>(arc.size()) - 1; }
+  // Segment i runs from vertex i to vertex (i + 1) % n.
+  const Vec2& seg_end_uv(int i) const { return uv[(i + 1) % uv.size()]; }
+  // (u,v) at arc length s (wrapped when closed, clamped otherwise).
+  Vec2 uv_at(double s) const;
+  // Arc length of the point at fraction t of segment i.
+  double s_at(int i, double t) const { return arc[i] + t * (arc[i + 1] - arc[i]); }
+  // Segment holding arc length s (wrapped / clamped like uv_at) and s itself.
+  int segment_at(double& s) const;
+};
+
+struct BdSourceParams {
+  // Indices into the face's trim loops (SurfaceFace::trim_loops order) to use
+  // as sources; empty = all loops.
+  std::vector<int> loops;
+  // Extra source curves on the surface as (u,v) polylines (open, >= 2 points,
+  // every point inside the face).
+  std::vector<std::vector<Vec2>> extra_curves;
+};
+
+// Builds the arc lengths of a polyline (uv and xyz must be filled).
+void finish_polyline(BdPolyline& line);
+
+// Where a curve ends on the trim boundary: index into the boundary vector
+// (-1 = it does not end there) and the arc length along that loop.
+struct BdCurveEnd {
+  int loop = -1;
+  double s = 0.0;
+};
+
+struct BdCurve {
+  std::vector<Vec2> uv;
+  std::vector<Vec3> xyz;
+  bool closed = false;  // a loop (around a hole): last point joins the first
+  BdCurveEnd start, end;
+};
+
+struct BdNode {
+  Vec2 uv = Vec2::Zero();
+  Vec3 xyz = Vec3::Zero();
+  int loop = -1;        // trim loop (index into boundary) the node lies on, -1 inside
+  double s = 0.0;       // arc length along that loop
+  bool corner = false;  // a trim corner: never moved or removed
+};
+
+struct BdNetwork {
+  std::vector<BdNode> nodes;
+  std::vector<std::array<int, 2>> edges;  // after pruning
+  std::vector<std::vector<int>> panels;   // node cycles, counter-clockwise in (u,v)
+};
+
 
 struct BoundaryDrivenParams {
   double size = 0.0;        // target panel edge length, mm (required)

@@ -1,0 +1,454 @@
+// Cutting a tensor grid by the trim loops.
+//
+// Why Clipper (libpolyclipping): intersecting cells with a polygon-with-holes
+// is full of degenerate cases (trim curves running exactly along grid lines,
+// as the natural boundary of an untrimmed face always does; loops touching
+// grid nodes). Clipper works on integers with exact predicates and handles
+// them all. We map (u,v) affinely onto a 2^50 integer range, so the rounding
+// is ~1e-15 of the parameter span, far below any length tolerance here.
+//
+// Vertex sharing: a vertex is identified by its integer point, so the crossing
+// of a trim segment with a grid line, computed for both cells beside that line
+// from the same operands, becomes one vertex. Vertices on a grid line are then
+// inserted into every panel edge running along that line, so the mesh has no
+// T-junctions even where a hole forced a cell to be split.
+#include "mesh/grid_clipping.h"
+
+#include <algorithm>
+#include <clipper.hpp>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+#include "tessella/errors.h"
+#include "mesh/panel_model.h"
+#include "tessella/progress.h"
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+namespace {
+
+using ClipperLib::cInt;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+struct PointHash {
+  std::size_t operator()(const IntPoint& p) const {
+    return std::hash<long long>()(p.X * 1000003LL) ^ std::hash<long long>()(p.Y);
+  }
+};
+struct PointEq {
+  bool operator()(const IntPoint& a, const IntPoint& b) const { return a.X == b.X && a.Y == b.Y; }
+};
+
+constexpr double kIntRange = 1125899906842624.0;  // 2^50
+
+// Affine map between (u,v) and Clipper's integer plane.
+struct IntegerFrame {
+  double u0, v0, su, sv;
+  IntegerFrame(const std::vector<double>& u_lines, const std::vector<double>& v_lines)
+      : u0(u_lines.front()),
+        v0(v_lines.front()),
+        su(kIntRange / (u_lines.back() - u_lines.front())),
+        sv(kIntRange / (v_lines.back() - v_lines.front())) {}
+  IntPoint to_int(const Vec2& p) const {
+    return IntPoint(static_cast<cInt>(std::llround((p.x() - u0) * su)),
+                    static_cast<cInt>(std::llround((p.y() - v0) * sv)));
+  }
+  cInt u_to_int(double u) const { return static_cast<cInt>(std::llround((u - u0) * su)); }
+  cInt v_to_int(double v) const { return static_cast<cInt>(std::llround((v - v0) * sv)); }
+};
+
+Path rectangle(cInt x0, cInt y0, cInt x1, cInt y1) {
+  return {IntPoint(x0, y0), IntPoint(x1, y0), IntPoint(x1, y1), IntPoint(x0, y1)};
+}
+
+// Polygons of `subject` (closed, non-zero fill) inside the rectangle. Outer
+// contours that came out with holes (a hole lying wholly inside the cell) are
+// split in two at the middle of the hole and clipped again, so every result is
+// a simple polygon without holes.
+void clip_cell(const Paths& subject, cInt x0, cInt y0, cInt x1, cInt y1, int depth,
+               std::vector<Path>& out) {
+  ClipperLib::Clipper clipper(ClipperLib::ioPreserveCollinear | ClipperLib::ioStrictlySimple);
+  clipper.AddPaths(subject, ClipperLib::ptSubject, true);
+  clipper.AddPath(rectangle(x0, y0, x1, y1), ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  clipper.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  for (const ClipperLib::PolyNode* outer : tree.Childs) {
+    if (outer->Childs.empty() || depth > 16) {
+      out.push_back(outer->Contour);
+      continue;
+    }
+    // Split at the middle of the first hole, along whichever axis is wider.
+    const Path& hole = outer->Childs.front()->Contour;
+    cInt hx0 = hole[0].X, hx1 = hole[0].X, hy0 = hole[0].Y, hy1 = hole[0].Y;
+    for (const IntPoint& p : hole) {
+      hx0 = std::min(hx0, p.X), hx1 = std::max(hx1, p.X);
+      hy0 = std::min(hy0, p.Y), hy1 = std::max(hy1, p.Y);
+    }
+    Paths local{outer->Contour};
+    for (const ClipperLib::PolyNode* h : outer->Childs) local.push_back(h->Contour);
+    if (x1 - x0 >= y1 - y0) {
+      const cInt xm = hx0 + (hx1 - hx0) / 2;
+      clip_cell(local, x0, y0, xm, y1, depth + 1, out);
+      clip_cell(local, xm, y0, x1, y1, depth + 1, out);
+    } else {
+      const cInt ym = hy0 + (hy1 - hy0) / 2;
+      clip_cell(local, x0, y0, x1, ym, depth + 1, out);
+      clip_cell(local, x0, ym, x1, y1, depth + 1, out);
+    }
+  }
+}
+
+// Drops the points strictly inside an axis-parallel straight run of a closed
+// trim polyline (keeping trim corners). The natural boundary of an untrimmed
+// face is four such runs, discretized finely because the edges bend in 3D;
+// their inner points add nothing to the cut (a cell cut by the run gets its
+// crossings with the grid lines anyway, at the same integer points, and the
+// leftover boundary points are removed again by drop_straight_boundary_points)
+// but cost Clipper work in every strip and cell. The cells near the trim stay
+// the same (the union of the runs' pieces is the run).
+Path drop_axis_run_points(const Path& path,
+                          const std::unordered_map<IntPoint, char, PointHash, PointEq>& corner) {
+  Path cur = path;
+  for (bool changed = true; changed && cur.size() > 3;) {
+    changed = false;
+    Path kept;
+    const std::size_t n = cur.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const IntPoint& a = kept.empty() ? cur[n - 1] : kept.back();
+      const IntPoint& p = cur[k];
+      const IntPoint& b = cur[(k + 1) % n];
+      const bool on_x =
+          a.X == p.X && p.X == b.X && ((a.Y < p.Y && p.Y < b.Y) || (b.Y < p.Y && p.Y < a.Y));
+      const bool on_y =
+          a.Y == p.Y && p.Y == b.Y && ((a.X < p.X && p.X < b.X) || (b.X < p.X && p.X < a.X));
+      if ((on_x || on_y) && !corner.count(p) && n - (k - kept.size()) > 3) {
+        changed = true;
+        continue;
+      }
+      kept.push_back(p);
+    }
+    cur = std::move(kept);
+  }
+  return cur;
+}
+
+// Cells whose closed rectangle meets a trim segment's bounding box.
+std::vector<char> cells_near_trim(const Paths& domain, const std::vector<cInt>& X,
+                                  const std::vector<cInt>& Y) {
+  const std::size_t nu = X.size() - 1, nv = Y.size() - 1;
+  std::vector<char> near(nu * nv, 0);
+  // Columns [first, last] whose closed range [X[i], X[i+1]] meets [lo, hi].
+  auto range = [](const std::vector<cInt>& L, cInt lo, cInt hi) {
+    const long first = std::max<long>(
+        0, static_cast<long>(std::lower_bound(L.begin(), L.end(), lo) - L.begin()) - 1);
+    const long last =
+        std::min<long>(static_cast<long>(L.size()) - 2,
+                       static_cast<long>(std::upper_bound(L.begin(), L.end(), hi) - L.begin()) - 1);
+    return std::make_pair(first, last);
+  };
+  for (const Path& loop : domain) {
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const IntPoint& p = loop[k];
+      const IntPoint& q = loop[(k + 1) % loop.size()];
+      const auto [i0, i1] = range(X, std::min(p.X, q.X), std::max(p.X, q.X));
+      const auto [j0, j1] = range(Y, std::min(p.Y, q.Y), std::max(p.Y, q.Y));
+      for (long j = j0; j <= j1; ++j)
+        for (long i = i0; i <= i1; ++i) near[j * nu + i] = 1;
+    }
+  }
+  return near;
+}
+
+// Even-odd test of the cell centres of one row against the domain polylines.
+std::vector<char> row_inside(const Paths& domain, const std::vector<cInt>& X, double y) {
+  std::vector<double> crossings;
+  for (const Path& loop : domain) {
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const IntPoint& p = loop[k];
+      const IntPoint& q = loop[(k + 1) % loop.size()];
+      if ((p.Y > y) == (q.Y > y)) continue;
+      const double t = (y - p.Y) / double(q.Y - p.Y);
+      crossings.push_back(p.X + t * double(q.X - p.X));
+    }
+  }
+  std::sort(crossings.begin(), crossings.end());
+  std::vector<char> inside(X.size() - 1, 0);
+  std::size_t c = 0;
+  for (std::size_t i = 0; i + 1 < X.size(); ++i) {
+    const double xc = 0.5 * (double(X[i]) + double(X[i + 1]));
+    while (c < crossings.size() && crossings[c] < xc) ++c;
+    inside[i] = (c % 2) == 1;
+  }
+  return inside;
+}
+
+// Trim points where the trim runs straight in (u,v) - along an iso-line, as
+// the natural boundary of an untrimmed face does - add nothing: the panel edge
+// there is the same chord of an iso-curve as every inner rod. A point used by
+// one panel only, collinear in (u,v) with its two neighbours, is removed.
+void drop_straight_boundary_points(PanelMesh& mesh) {
+  std::vector<int> uses(mesh.vertex_count(), 0);
+  for (const auto& panel : mesh.panels)
+    for (int v : panel) ++uses[v];
+  for (auto& panel : mesh.panels) {
+    bool removed = true;
+    while (removed && panel.size() > 3) {
+      removed = false;
+      for (std::size_t k = 0; k < panel.size() && panel.size() > 3; ++k) {
+        const int v = panel[k];
+        if (uses[v] != 1) continue;
+        const Vec2& a = mesh.uv[panel[(k + panel.size() - 1) % panel.size()]];
+        const Vec2& b = mesh.uv[v];
+        const Vec2& c = mesh.uv[panel[(k + 1) % panel.size()]];
+        const Vec2 ab = b - a, ac = c - a;
+        const double cross = ab.x() * ac.y() - ab.y() * ac.x();
+        if (std::abs(cross) <= 1e-12 * ac.squaredNorm() && ab.dot(ac) > 0 &&
+            ab.squaredNorm() < ac.squaredNorm()) {
+          panel.erase(panel.begin() + static_cast<long>(k));
+          removed = true;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
+                    const std::vector<double>& v_lines, const GridClipParams& params) {
+  if (u_lines.size() < 2 || v_lines.size() < 2) {
+    throw InvalidParameter("a grid needs at least two lines in each direction");
+  }
+  const double cells = double(u_lines.size() - 1) * double(v_lines.size() - 1);
+  if (cells > double(params.max_panels)) {
+    throw LimitExceeded("the grid would have " + std::to_string(static_cast<long long>(cells)) +
+                        " panels, more than max_panels = " + std::to_string(params.max_panels) +
+                        ": choose a larger size or raise max_panels");
+  }
+  const double deflection =
+      params.trim_deflection > 0 ? params.trim_deflection : 1e-6 * face.model_size();
+  const std::vector<TrimLoop> loops = face.trim_loops(deflection);
+  if (loops.empty()) throw InvalidGeometry("the face has no usable trim loop");
+
+  const IntegerFrame frame(u_lines, v_lines);
+  std::vector<cInt> X, Y;
+  for (double u : u_lines) X.push_back(frame.u_to_int(u));
+  for (double v : v_lines) Y.push_back(frame.v_to_int(v));
+  for (std::size_t i = 1; i < X.size(); ++i)
+    if (X[i] <= X[i - 1]) throw InvalidParameter("grid u lines must be strictly increasing");
+  for (std::size_t j = 1; j < Y.size(); ++j)
+    if (Y[j] <= Y[j - 1]) throw InvalidParameter("grid v lines must be strictly increasing");
+
+  // Trim loops in integers; remember the exact (u,v) of every loop vertex.
+  Paths domain;
+  std::unordered_map<IntPoint, Vec2, PointHash, PointEq> exact_uv;
+  std::unordered_map<IntPoint, char, PointHash, PointEq> trim_corner;
+  for (const TrimLoop& loop : loops) {
+    Path path;
+    for (std::size_t k = 0; k < loop.uv.size(); ++k) {
+      const IntPoint p = frame.to_int(loop.uv[k]);
+      if (loop.corner[k]) trim_corner[p] = 1;
+      if (!path.empty() && p.X == path.back().X && p.Y == path.back().Y) continue;
+      path.push_back(p);
+      exact_uv.emplace(p, loop.uv[k]);
+    }
+    if (path.size() >= 3) domain.push_back(drop_axis_run_points(path, trim_corner));
+  }
+
+  const std::size_t nu = X.size() - 1, nv = Y.size() - 1;
+  const std::vector<char> near = cells_near_trim(domain, X, Y);
+
+  // Cell polygons, row by row (v), then column (u): a deterministic order.
+  std::vector<std::vector<Path>> cell_polys(nu * nv);
+  std::vector<char> full(nu * nv, 0);
+  for (std::size_t j = 0; j < nv; ++j) {
+    const std::vector<char> inside = row_inside(domain, X, 0.5 * (double(Y[j]) + double(Y[j + 1])));
+    for (std::size_t i = 0; i < nu; ++i) {
+      if (!near[j * nu + i] && inside[i]) {
+        full[j * nu + i] = 1;
+        cell_polys[j * nu + i].push_back(rectangle(X[i], Y[j], X[i + 1], Y[j + 1]));
+      }
+    }
+  }
+  // Boundary cells: clip the domain once per column strip, then per cell.
+  const cInt y_lo = Y.front() - 1, y_hi = Y.back() + 1;
+  for (std::size_t i = 0; i < nu; ++i) {
+    report_progress(double(i) / double(nu), "cutting the grid by the trim");
+    bool any = false;
+    for (std::size_t j = 0; j < nv && !any; ++j) any = near[j * nu + i];
+    if (!any) continue;
+    ClipperLib::Clipper strip_clipper(ClipperLib::ioPreserveCollinear);
+    strip_clipper.AddPaths(domain, ClipperLib::ptSubject, true);
+    strip_clipper.AddPath(rectangle(X[i], y_lo, X[i + 1], y_hi), ClipperLib::ptClip, true);
+    Paths strip;
+    strip_clipper.Execute(ClipperLib::ctIntersection, strip, ClipperLib::pftEvenOdd,
+                          ClipperLib::pftNonZero);
+    for (std::size_t j = 0; j < nv; ++j) {
+      if (!near[j * nu + i]) continue;
+      clip_cell(strip, X[i], Y[j], X[i + 1], Y[j + 1], 0, cell_polys[j * nu + i]);
+    }
+  }
+
+  // Weld vertices by integer point; exact (u,v) where the point is a grid line
+  // or a trim loop vertex.
+  PanelMesh mesh;
+  std::unordered_map<IntPoint, int, PointHash, PointEq> index_of;
+  std::map<cInt, std::size_t> x_line, y_line;
+  for (std::size_t i = 0; i < X.size(); ++i) x_line[X[i]] = i;
+  for (std::size_t j = 0; j < Y.size(); ++j) y_line[Y[j]] = j;
+  std::vector<IntPoint> int_points;
+  auto vertex = [&](const IntPoint& p) {
+    auto it = index_of.find(p);
+    if (it != index_of.end()) return it->second;
+    Vec2 q;
+    auto ex = exact_uv.find(p);
+    if (ex != exact_uv.end()) {
+      q = ex->second;
+    } else {
+      q = {frame.u0 + double(p.X) / frame.su, frame.v0 + double(p.Y) / frame.sv};
+    }
+    auto xl = x_line.find(p.X);
+    if (xl != x_line.end()) q.x() = u_lines[xl->second];
+    auto yl = y_line.find(p.Y);
+    if (yl != y_line.end()) q.y() = v_lines[yl->second];
+    const int id = static_cast<int>(mesh.uv.size());
+    mesh.uv.push_back(q);
+    mesh.xyz.push_back(face.point(q.x(), q.y()));
+    int_points.push_back(p);
+    index_of.emplace(p, id);
+    return id;
+  };
+  std::vector<char> panel_full;
+  std::vector<std::size_t> panel_cell;
+  for (std::size_t c = 0; c < cell_polys.size(); ++c) {
+    for (Path& poly : cell_polys[c]) {
+      if (!ClipperLib::Orientation(poly)) std::reverse(poly.begin(), poly.end());
+      std::vector<int> ids;
+      for (const IntPoint& p : poly) {
+        const int id = vertex(p);
+        if (ids.empty() || ids.back() != id) ids.push_back(id);
+      }
+      while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back();
+      if (ids.size() < 3) continue;
+      mesh.panels.push_back(std::move(ids));
+      panel_full.push_back(full[c]);
+      panel_cell.push_back(c);
+    }
+  }
+
+  // Remove T-junctions along grid lines: every vertex on a grid line goes into
+  // each panel edge that runs along that line past it.
+  std::map<cInt, std::vector<std::pair<cInt, int>>> on_x, on_y;
+  for (std::size_t k = 0; k < int_points.size(); ++k) {
+    const IntPoint& p = int_points[k];
+    if (x_line.count(p.X)) on_x[p.X].push_back({p.Y, int(k)});
+    if (y_line.count(p.Y)) on_y[p.Y].push_back({p.X, int(k)});
+  }
+  for (auto* lines : {&on_x, &on_y})
+    for (auto& [key, list] : *lines) std::sort(list.begin(), list.end());
+  auto insert_between = [](const std::vector<std::pair<cInt, int>>& list, cInt a, cInt b,
+                           std::vector<int>& out) {
+    const cInt lo = std::min(a, b), hi = std::max(a, b);
+    auto first = std::upper_bound(list.begin(), list.end(), std::make_pair(lo, INT32_MAX));
+    auto last = std::lower_bound(list.begin(), list.end(), std::make_pair(hi, INT32_MIN));
+    if (first >= last) return;
+    if (a < b) {
+      for (auto it = first; it != last; ++it) out.push_back(it->second);
+    } else {
+      for (auto it = last; it != first; --it) out.push_back((it - 1)->second);
+    }
+  };
+  for (std::vector<int>& panel : mesh.panels) {
+    std::vector<int> fixed;
+    for (std::size_t k = 0; k < panel.size(); ++k) {
+      const int a = panel[k], b = panel[(k + 1) % panel.size()];
+      fixed.push_back(a);
+      const IntPoint& pa = int_points[a];
+      const IntPoint& pb = int_points[b];
+      if (pa.X == pb.X && on_x.count(pa.X))
+        insert_between(on_x[pa.X], pa.Y, pb.Y, fixed);
+      else if (pa.Y == pb.Y && on_y.count(pa.Y))
+        insert_between(on_y[pa.Y], pa.X, pb.X, fixed);
+    }
+    panel = std::move(fixed);
+  }
+
+  // Crossings of a grid line (or a hole's split line) with a trim lie on the
+  // trim polyline's chord; move them onto the trim edges' own curves, so every
+  // boundary vertex is on the true trim (the polyline's own points already are).
+  for (std::size_t v = 0; v < int_points.size(); ++v) {
+    const IntPoint& p = int_points[v];
+    const bool grid_node = x_line.count(p.X) && y_line.count(p.Y);
+    if (grid_node || exact_uv.count(p)) continue;
+    const Vec2 q = mesh.uv[v];
+    int best_loop = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      const auto& uv = loops[l].uv;
+      for (std::size_t k = 0; k < uv.size(); ++k) {
+        const Vec2 a = uv[k], d = uv[(k + 1) % uv.size()] - a;
+        const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        const double dist = (a + t * d - q).squaredNorm();
+        if (dist < best) best = dist, best_loop = int(l);
+      }
+    }
+    if (best_loop < 0) continue;
+    const Vec2 snapped = face.snap_to_trim(best_loop, q);
+    mesh.uv[v] = snapped;
+    mesh.xyz[v] = face.point(snapped.x(), snapped.y());
+  }
+
+  // Nodes (rod ends): grid nodes and grid/trim crossings (on a grid line),
+  // trim corners, and any point two panels share (e.g. where a hole split a
+  // cell). The other trim points only shape the boundary panels' outlines.
+  {
+    std::vector<int> uses(mesh.uv.size(), 0);
+    for (const auto& panel : mesh.panels)
+      for (int v : panel) ++uses[v];
+    mesh.is_node.assign(mesh.uv.size(), 0);
+    for (std::size_t v = 0; v < int_points.size(); ++v) {
+      const IntPoint& p = int_points[v];
+      mesh.is_node[v] =
+          x_line.count(p.X) || y_line.count(p.Y) || trim_corner.count(p) || uses[v] >= 2;
+    }
+  }
+
+  // Nominal panel area: the mean full cell (all cells if none is full).
+  double sum = 0;
+  int n = 0;
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    if (!panel_full[k]) continue;
+    sum += panel_area(mesh, k);
+    ++n;
+  }
+  mesh.nominal_area = n > 0 ? sum / n : face.area() / std::max(cells, 1.0);
+
+  // A sliver is a cut piece much smaller than the cell it was cut from (cells
+  // differ in size, e.g. towards a pole, so compare with its own cell).
+  std::vector<double> cell_area(mesh.panels.size(), 0.0);
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    if (panel_full[k]) continue;
+    const std::size_t i = panel_cell[k] % nu, j = panel_cell[k] / nu;
+    const std::vector<Vec2> uv = {{u_lines[i], v_lines[j]},
+                                  {u_lines[i + 1], v_lines[j]},
+                                  {u_lines[i + 1], v_lines[j + 1]},
+                                  {u_lines[i], v_lines[j + 1]}};
+    std::vector<Vec3> xyz;
+    for (const Vec2& q : uv) xyz.push_back(face.point(q.x(), q.y()));
+    cell_area[k] = panel_model_area(xyz, uv);
+  }
+  drop_straight_boundary_points(mesh);
+  mesh.merged_slivers = merge_slivers(mesh, params.sliver_fraction, cell_area);
+  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  if (face.reversed()) reverse_panels(mesh);
+  remove_unused_vertices(mesh);
+  build_rods(mesh);
+  return mesh;
+}
+
+}  // namespace tessella

@@ -1,0 +1,170 @@
+#include "mesh/panel_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace tessella {
+
+namespace {
+
+constexpr double kPiDelaunay = 3.14159265358979323846;
+
+double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+bool inside_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
+}
+
+// Area of the bilinear patch by 4x4 Gauss-Legendre quadrature.
+double bilinear_area(const std::vector<Vec3>& p) {
+  static const double x[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281,
+                              0.9305681557970263};
+  static const double w[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731,
+                              0.1739274225687269};
+  double area = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const double s = x[i], t = x[j];
+      const Vec3 ds = (1 - t) * (p[1] - p[0]) + t * (p[2] - p[3]);
+      const Vec3 dt = (1 - s) * (p[3] - p[0]) + s * (p[2] - p[1]);
+      area += w[i] * w[j] * ds.cross(dt).norm();
+    }
+  }
+  return area;
+}
+
+// Angle at b in triangle (a, b, c).
+double angle_at(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 u = a - b, v = c - b;
+  return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v));
+}
+
+// Lawson flips: an inner edge whose two opposite angles sum to more than pi is
+// replaced by the other diagonal of its (convex) quad, until none is left.
+// Ear clipping alone leaves long slivers between two runs of close outline
+// points; mapped onto a curved surface such a sliver can even turn over.
+// The outline edges never flip, so the result is the constrained Delaunay
+// triangulation of the outline.
+void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>& tris) {
+  for (int pass = 0; pass < 64; ++pass) {
+    // Directed edge -> (tri, k), sorted by edge; of repeated edges the last
+    // triangle counts. (A sorted vector: the order of a std::map, without its
+    // allocations.)
+    using Edge = std::pair<std::pair<int, int>, std::pair<int, int>>;
+    std::vector<Edge> all;
+    all.reserve(3 * tris.size());
+    for (int t = 0; t < int(tris.size()); ++t)
+      for (int k = 0; k < 3; ++k) all.push_back({{tris[t][k], tris[t][(k + 1) % 3]}, {t, k}});
+    std::stable_sort(all.begin(), all.end(),
+                     [](const Edge& x, const Edge& y) { return x.first < y.first; });
+    std::vector<Edge> edge;
+    edge.reserve(all.size());
+    for (const Edge& x : all) {
+      if (!edge.empty() && edge.back().first == x.first)
+        edge.back() = x;
+      else
+        edge.push_back(x);
+    }
+    auto find = [&](const std::pair<int, int>& key) {
+      auto it =
+          std::lower_bound(edge.begin(), edge.end(), key,
+                           [](const Edge& x, const std::pair<int, int>& k) { return x.first < k; });
+      return it != edge.end() && it->first == key ? it : edge.end();
+    };
+    bool flipped = false;
+    std::vector<char> touched(tris.size(), 0);
+    for (const auto& [e, tk] : edge) {
+      auto other = find({e.second, e.first});
+      if (other == edge.end()) continue;  // an outline edge
+      const int t1 = tk.first, t2 = other->second.first;
+      if (touched[t1] || touched[t2]) continue;
+      const int a = e.first, b = e.second;
+      const int c = tris[t1][(tk.second + 2) % 3];             // opposite in t1
+      const int d = tris[t2][(other->second.second + 2) % 3];  // opposite in t2
+      if (angle_at(uv[a], uv[c], uv[b]) + angle_at(uv[b], uv[d], uv[a]) <= kPiDelaunay + 1e-12)
+        continue;
+      // The quad a-d-b-c must be convex for the flip (c and d on both sides of a-b
+      // is given; a and b must lie on both sides of c-d).
+      const double sa = cross2(uv[c], uv[d], uv[a]), sb = cross2(uv[c], uv[d], uv[b]);
+      if (!(sa * sb < 0)) continue;
+      const bool ccw = cross2(uv[a], uv[b], uv[c]) > 0;
+      tris[t1] = ccw ? std::array<int, 3>{c, a, d} : std::array<int, 3>{c, d, a};
+      tris[t2] = ccw ? std::array<int, 3>{d, b, c} : std::array<int, 3>{d, c, b};
+      touched[t1] = touched[t2] = 1;
+      flipped = true;
+    }
+    if (!flipped) break;
+  }
+}
+
+}  // namespace
+
+std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv) {
+  // A clockwise outline (a panel of a reversed face) is clipped as its
+  // mirror image; the triangles then keep the outline's own turning sense.
+  double area2 = 0;
+  for (std::size_t i = 0; i < uv.size(); ++i) {
+    const Vec2& p = uv[i];
+    const Vec2& q = uv[(i + 1) % uv.size()];
+    area2 += p.x() * q.y() - q.x() * p.y();
+  }
+  if (area2 < 0) {
+    std::vector<Vec2> mirrored;
+    for (const Vec2& q : uv) mirrored.emplace_back(q.x(), -q.y());
+    std::vector<std::array<int, 3>> triangles = triangulate_polygon(mirrored);
+    return triangles;  // same indices: clockwise again in the original plane
+  }
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> ring(uv.size());
+  std::iota(ring.begin(), ring.end(), 0);
+  // Ear clipping; the first convex corner whose triangle holds no other corner
+  // is cut. If rounding leaves no clean ear, the most convex corner is cut so
+  // the result always has n-2 triangles.
+  while (ring.size() > 3) {
+    const std::size_t n = ring.size();
+    std::size_t ear = n, best = 0;
+    double best_turn = -INFINITY;
+    for (std::size_t k = 0; k < n && ear == n; ++k) {
+      const Vec2& a = uv[ring[(k + n - 1) % n]];
+      const Vec2& b = uv[ring[k]];
+      const Vec2& c = uv[ring[(k + 1) % n]];
+      const double turn = cross2(a, b, c);
+      if (turn > best_turn) best_turn = turn, best = k;
+      if (turn <= 0) continue;
+      bool empty = true;
+      for (std::size_t m = 0; m < n && empty; ++m) {
+        const int q = ring[m];
+        if (q == ring[(k + n - 1) % n] || q == ring[k] || q == ring[(k + 1) % n]) continue;
+        if (uv[q] == a || uv[q] == b || uv[q] == c) continue;
+        if (inside_triangle(uv[q], a, b, c)) empty = false;
+      }
+      if (empty) ear = k;
+    }
+    if (ear == n) ear = best;
+    triangles.push_back({ring[(ear + n - 1) % n], ring[ear], ring[(ear + 1) % n]});
+    ring.erase(ring.begin() + static_cast<long>(ear));
+  }
+  if (ring.size() == 3) triangles.push_back({ring[0], ring[1], ring[2]});
+  make_delaunay(uv, triangles);
+  return triangles;
+}
+
+double panel_model_area(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv) {
+  if (xyz.size() == 4) return bilinear_area(xyz);
+  double area = 0;
+  for (const auto& t : triangulate_polygon(uv)) {
+    area += 0.5 * (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm();
+  }
+  return area;
+}
+
+double panel_area(const PanelMesh& mesh, std::size_t p) {
+  std::vector<Vec3> xyz;
+  for (int v : mesh.panels[p]) xyz.push_back(mesh.xyz[v]);
+  return panel_model_area(xyz, panel_corner_uv(mesh, p));
+}
+
+}  // namespace tessella

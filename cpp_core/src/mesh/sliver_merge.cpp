@@ -1,0 +1,105 @@
+// Merging boundary slivers into a neighbour: a tiny panel cut off by a trim
+// curve is worse for a workshop than a slightly larger neighbour.
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+#include "tessella/errors.h"
+#include "mesh/grid_clipping.h"
+#include "mesh/panel_model.h"
+
+namespace tessella {
+
+namespace {
+
+// Union of two panels sharing exactly one contiguous chain of edges (a walks
+// the chain one way, b the other). Returns false if they share none or more.
+bool merge_pair(const std::vector<int>& a, const std::vector<int>& b, std::vector<int>& out) {
+  const std::size_t na = a.size(), nb = b.size();
+  std::map<std::pair<int, int>, std::size_t> b_edge;  // directed edge of b -> index
+  for (std::size_t k = 0; k < nb; ++k) b_edge[{b[k], b[(k + 1) % nb]}] = k;
+  std::vector<char> shared(na, 0);  // edge k of a (a[k] -> a[k+1]) is shared
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < na; ++k) {
+    if (b_edge.count({a[(k + 1) % na], a[k]})) shared[k] = 1, ++count;
+  }
+  if (count == 0 || count == na || count == nb) return false;
+  // One contiguous run: exactly one place where "not shared" is followed by "shared".
+  std::size_t starts = 0, first = 0;
+  for (std::size_t k = 0; k < na; ++k) {
+    if (shared[k] && !shared[(k + na - 1) % na]) ++starts, first = k;
+  }
+  if (starts != 1) return false;
+  const std::size_t last = (first + count) % na;  // a[last] ends the chain
+  // a from the chain's end around to its start, then b from the chain's start
+  // (where b leaves it) around to just before the chain's end.
+  out.clear();
+  for (std::size_t k = last; k != first; k = (k + 1) % na) out.push_back(a[k]);
+  out.push_back(a[first]);
+  const std::size_t kb = b_edge.at({a[(first + 1) % na], a[first]});  // b edge into a[first]
+  for (std::size_t k = (kb + 2) % nb; b[k] != a[last]; k = (k + 1) % nb) out.push_back(b[k]);
+  // A polygon must not visit a vertex twice (the panels touched elsewhere).
+  std::vector<int> sorted = out;
+  std::sort(sorted.begin(), sorted.end());
+  return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() && out.size() >= 3;
+}
+
+}  // namespace
+
+int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& reference_area) {
+  require_in_range("sliver_fraction", fraction, 0.0, 1.0);
+  if (fraction <= 0) return 0;
+  std::vector<double> area(mesh.panels.size());
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) area[p] = panel_area(mesh, p);
+  // No sliver at all (the usual case): nothing to merge, skip the edge map.
+  bool any = false;
+  for (std::size_t p = 0; p < mesh.panels.size() && !any; ++p)
+    any = area[p] < fraction * reference_area[p];
+  if (!any) return 0;
+  std::vector<char> alive(mesh.panels.size(), 1);
+  // Directed edge -> panel, kept up to date as panels merge.
+  std::map<std::pair<int, int>, int> owner;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+    const auto& poly = mesh.panels[p];
+    for (std::size_t k = 0; k < poly.size(); ++k)
+      owner[{poly[k], poly[(k + 1) % poly.size()]}] = int(p);
+  }
+  std::vector<int> order(mesh.panels.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return area[a] < area[b]; });
+  int merged = 0;
+  for (int s : order) {
+    if (!alive[s] || area[s] >= fraction * reference_area[s]) continue;
+    // Neighbour with the longest shared boundary (3D length).
+    std::map<int, double> shared_length;
+    const auto& poly = mesh.panels[s];
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const int a = poly[k], b = poly[(k + 1) % poly.size()];
+      auto it = owner.find({b, a});
+      if (it != owner.end() && alive[it->second] && it->second != s) {
+        shared_length[it->second] += (mesh.xyz[a] - mesh.xyz[b]).norm();
+      }
+    }
+    std::vector<std::pair<double, int>> candidates;
+    for (auto& [p, len] : shared_length) candidates.push_back({-len, p});
+    std::sort(candidates.begin(), candidates.end());
+    for (auto& [neg_len, n] : candidates) {
+      std::vector<int> joined;
+      if (!merge_pair(mesh.panels[n], poly, joined)) continue;
+      mesh.panels[n] = joined;
+      for (std::size_t k = 0; k < joined.size(); ++k)
+        owner[{joined[k], joined[(k + 1) % joined.size()]}] = n;
+      area[n] += area[s];
+      alive[s] = 0;
+      ++merged;
+      break;
+    }
+  }
+  std::vector<std::vector<int>> kept;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p)
+    if (alive[p]) kept.push_back(std::move(mesh.panels[p]));
+  mesh.panels = std::move(kept);
+  return merged;
+}
+
+}  // namespace tessella

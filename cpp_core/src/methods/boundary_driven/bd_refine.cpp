@@ -1,0 +1,653 @@
+#include "methods/boundary_driven/bd_refine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "methods/boundary_driven/bd_geometry.h"
+#include "tessella/errors.h"
+
+namespace tessella {
+
+namespace {
+
+double corner_angle(const Vec3& prev, const Vec3& p, const Vec3& next) {
+  const Vec3 a = prev - p, b = next - p;
+  const double na = a.norm(), nb = b.norm();
+  if (na == 0 || nb == 0) return 0;
+  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0));
+}
+
+int rank(const BdNode& n) { return n.corner ? 2 : (n.loop >= 0 ? 1 : 0); }
+
+// Nodes per trim loop used by the panels (a loop keeps at least four).
+std::map<int, int> loop_node_counts(const BdNetwork& net) {
+  std::vector<char> used(net.nodes.size(), 0);
+  for (const auto& p : net.panels)
+    for (int v : p) used[v] = 1;
+  std::map<int, int> count;
+  for (std::size_t v = 0; v < net.nodes.size(); ++v)
+    if (used[v] && net.nodes[v].loop >= 0) ++count[net.nodes[v].loop];
+  return count;
+}
+constexpr int kMinLoopNodes = 4;
+
+// Whether replacing node v by w (w moved to w_uv) keeps every panel around v
+// and w unfolded in (u,v) (panels that vanish do not count).
+bool merge_keeps_panels(const BdNetwork& net, const std::vector<int>& panels, int v, int w,
+                        const Vec2& w_uv) {
+  for (int pi : panels) {
+    std::vector<int> q;
+    for (int x : net.panels[pi]) {
+      const int y = x == v ? w : x;
+      if (q.empty() || q.back() != y) q.push_back(y);
+    }
+    while (q.size() > 1 && q.front() == q.back()) q.pop_back();
+    if (q.size() < 3) continue;
+    double a = 0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      const Vec2 p0 = q[i] == w ? w_uv : net.nodes[q[i]].uv;
+      const Vec2 p1 = q[(i + 1) % q.size()] == w ? w_uv : net.nodes[q[(i + 1) % q.size()]].uv;
+      a += bd::cross2(p0, p1);
+    }
+    if (!(a > 0)) return false;
+  }
+  return true;
+}
+
+// Drops repeated consecutive corners and panels left with fewer than three.
+void clean_panels(std::vector<std::vector<int>>& panels) {
+  std::vector<std::vector<int>> out;
+  for (auto& p : panels) {
+    std::vector<int> q;
+    for (int v : p)
+      if (q.empty() || q.back() != v) q.push_back(v);
+    while (q.size() > 1 && q.front() == q.back()) q.pop_back();
+    if (q.size() >= 3) out.push_back(std::move(q));
+  }
+  panels = std::move(out);
+}
+
+double uv_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    a += bd::cross2(nodes[p[i]].uv, nodes[p[(i + 1) % p.size()]].uv);
+  return 0.5 * a;
+}
+
+// Splits p (counter-clockwise in (u,v)) along a diagonal from its first reflex
+// corner into two polygons (a, b) when one exists that stays inside p; the
+// diagonal chosen makes the two parts' corner counts closest to quads.
+bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<int>& p,
+                            std::vector<int>& a, std::vector<int>& b) {
+  const int n = static_cast<int>(p.size());
+  auto uv = [&](int i) { return nodes[p[((i % n) + n) % n]].uv; };
+  for (int r = 0; r < n; ++r) {
+    if (bd::cross2(uv(r) - uv(r - 1), uv(r + 1) - uv(r)) >= 0) continue;  // convex corner
+    int best = -1;
+    double best_score = 1e300;
+    for (int k = r + 2; k <= r + n - 2; ++k) {
+      // the diagonal r-k must not cross an edge of p and must leave both parts positive
+      bool crosses = false;
+      for (int e = 0; e < n && !crosses; ++e) {
+        const int e0 = e, e1 = (e + 1) % n;
+        if (e0 == r || e1 == r || e0 == k % n || e1 == k % n) continue;
+        double t, s;
+        if (bd::intersect_segments(uv(r), uv(k), uv(e0), uv(e1), t, s)) crosses = true;
+      }
+      if (crosses) continue;
+      std::vector<int> pa, pb;
+      for (int i = r; i <= k; ++i) pa.push_back(p[i % n]);
+      for (int i = k; i <= r + n; ++i) pb.push_back(p[i % n]);
+      auto area = [&](const std::vector<int>& q) {
+        double s2 = 0;
+        for (std::size_t i = 0; i < q.size(); ++i)
+          s2 += bd::cross2(nodes[q[i]].uv, nodes[q[(i + 1) % q.size()]].uv);
+        return s2;
+      };
+      if (area(pa) <= 0 || area(pb) <= 0) continue;
+      const double score = std::abs(double(pa.size()) - 4) + std::abs(double(pb.size()) - 4);
+      if (score < best_score) best_score = score, best = k, a = pa, b = pb;
+    }
+    if (best >= 0) return true;
+  }
+  return false;
+}
+
+// Splits a panel of six or more corners along its shortest diagonal (3D)
+// among those whose two parts are closest to quads. Centre + midpoint
+// quadrangulation of a big n-gon makes spokes about its radius long, twice
+// the other rods; two smaller parts have shorter spokes.
+bool split_big_panel(const std::vector<BdNode>& nodes, const std::vector<int>& p,
+                     std::vector<int>& a, std::vector<int>& b) {
+  const int n = static_cast<int>(p.size());
+  if (n < 6) return false;
+  double best_score = 1e300, best_len = 1e300;
+  bool found = false;
+  for (int r = 0; r < n; ++r)
+    for (int k = r + 3; k <= r + n - 3; ++k) {
+      std::vector<int> pa, pb;
+      for (int i = r; i <= k; ++i) pa.push_back(p[i % n]);
+      for (int i = k; i <= r + n; ++i) pb.push_back(p[i % n]);
+      if (!(uv_area(nodes, pa) > 0) || !(uv_area(nodes, pb) > 0)) continue;
+      bool crosses = false;
+      const Vec2 d0 = nodes[p[r]].uv, d1 = nodes[p[k % n]].uv;
+      for (int e = 0; e < n && !crosses; ++e) {
+        const int e0 = e, e1 = (e + 1) % n;
+        if (e0 == r || e1 == r || e0 == k % n || e1 == k % n) continue;
+        double t, s;
+        if (bd::intersect_segments(d0, d1, nodes[p[e0]].uv, nodes[p[e1]].uv, t, s)) crosses = true;
+      }
+      if (crosses) continue;
+      const double score = std::abs(double(pa.size()) - 4) + std::abs(double(pb.size()) - 4);
+      const double len = (nodes[p[r]].xyz - nodes[p[k % n]].xyz).norm();
+      if (score < best_score - 1e-9 || (score < best_score + 1e-9 && len < best_len)) {
+        best_score = score, best_len = len, a = pa, b = pb, found = true;
+      }
+    }
+  return found;
+}
+
+}  // namespace
+
+int remove_skewed_triangles(BdNetwork& net, double ratio) {
+  require_in_range("skew_ratio", ratio, 0.0, 1.0);
+  int removed = 0;
+  for (int pass = 0; pass < 20; ++pass) {
+    std::vector<int> rep(net.nodes.size());
+    std::iota(rep.begin(), rep.end(), 0);
+    std::vector<char> touched(net.nodes.size(), 0);
+    std::map<int, int> on_loop = loop_node_counts(net);
+    std::vector<std::vector<int>> incident(net.nodes.size());
+    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
+      for (int x : net.panels[pi]) incident[x].push_back(static_cast<int>(pi));
+    int merged = 0;
+    for (const auto& p : net.panels) {
+      if (p.size() != 3) continue;
+      if (touched[p[0]] || touched[p[1]] || touched[p[2]]) continue;  // next pass
+      double ang[3];
+      for (int i = 0; i < 3; ++i)
+        ang[i] = corner_angle(net.nodes[p[(i + 2) % 3]].xyz, net.nodes[p[i]].xyz,
+                              net.nodes[p[(i + 1) % 3]].xyz);
+      const int imax = static_cast<int>(std::max_element(ang, ang + 3) - ang);
+      const double amin = *std::min_element(ang, ang + 3);
+      if (ang[imax] <= 0 || amin / ang[imax] >= ratio) continue;
+      int v = p[imax];
+      const int a = p[(imax + 1) % 3], b = p[(imax + 2) % 3];
+      int w = (net.nodes[a].xyz - net.nodes[v].xyz).norm() <=
+                      (net.nodes[b].xyz - net.nodes[v].xyz).norm()
+                  ? a
+                  : b;
+      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);  // v is removed, w kept
+      if (rank(net.nodes[v]) == 2) continue;
+      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
+      if (!merge_keeps_panels(net, incident[v], v, w, net.nodes[w].uv)) continue;
+      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
+      rep[v] = w;
+      touched[v] = touched[w] = 1;
+      for (int pi : incident[v])
+        for (int x : net.panels[pi]) touched[x] = 1;
+      ++merged;
+    }
+    if (merged == 0) break;
+    removed += merged;
+    for (auto& p : net.panels)
+      for (int& v : p) v = rep[v];
+    clean_panels(net.panels);
+  }
+  return removed;
+}
+
+int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_length) {
+  require_in_range("min edge length (mm)", min_length, 0.0, face.model_size());
+  int merged_total = 0;
+  for (int pass = 0; pass < 20; ++pass) {
+    // candidate edges, shortest first
+    std::vector<std::pair<double, std::pair<int, int>>> cand;
+    for (const auto& p : net.panels)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const int a = p[i], b = p[(i + 1) % p.size()];
+        const double l = (net.nodes[a].xyz - net.nodes[b].xyz).norm();
+        if (a < b && l < min_length) cand.push_back({l, {a, b}});
+        if (b < a && l < min_length) cand.push_back({l, {b, a}});
+      }
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    std::vector<std::vector<int>> incident(net.nodes.size());
+    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
+      for (int v : net.panels[pi]) incident[v].push_back(static_cast<int>(pi));
+    std::vector<char> touched(net.nodes.size(), 0);
+    std::vector<int> rep(net.nodes.size());
+    std::iota(rep.begin(), rep.end(), 0);
+    std::map<int, int> on_loop = loop_node_counts(net);
+    int merged = 0;
+    for (const auto& [len, e] : cand) {
+      int v = e.first, w = e.second;  // v is removed, w kept
+      if (touched[v] || touched[w]) continue;
+      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);
+      if (rank(net.nodes[v]) == 2) continue;
+      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
+      // would a panel visit w twice?
+      bool bad = false;
+      for (int pi : incident[v]) {
+        const auto& p = net.panels[pi];
+        const std::size_t n = p.size();
+        for (std::size_t i = 0; i < n && !bad; ++i) {
+          if (p[i] != w) continue;
+          const bool adjacent = p[(i + 1) % n] == v || p[(i + n - 1) % n] == v;
+          if (!adjacent) bad = true;
+        }
+      }
+      if (bad) continue;
+      Projection moved;
+      const bool both_inside = rank(net.nodes[v]) == 0 && rank(net.nodes[w]) == 0;
+      if (both_inside) {
+        const BdNode& k = net.nodes[w];
+        moved = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
+      }
+      const Vec2 w_uv = both_inside ? moved.uv : net.nodes[w].uv;
+      std::vector<int> around = incident[v];
+      around.insert(around.end(), incident[w].begin(), incident[w].end());
+      if (!merge_keeps_panels(net, around, v, w, w_uv)) continue;
+      if (both_inside) net.nodes[w].uv = moved.uv, net.nodes[w].xyz = moved.point;
+      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
+      rep[v] = w;
+      touched[v] = touched[w] = 1;
+      for (int pi : incident[v])
+        for (int x : net.panels[pi]) touched[x] = 1;
+      ++merged;
+    }
+    if (merged == 0) break;
+    merged_total += merged;
+    for (auto& p : net.panels)
+      for (int& v : p) v = rep[v];
+    clean_panels(net.panels);
+  }
+  return merged_total;
+}
+
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                   BdNetwork& net) {
+  std::map<std::pair<int, int>, int> uses;
+  std::map<std::pair<int, int>, int> mid;
+  auto add = [&](const BdNode& n) {
+    net.nodes.push_back(n);
+    return static_cast<int>(net.nodes.size()) - 1;
+  };
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  auto is_in = [&](const Vec2& uv) { return boundary.empty() || inside.inside(uv); };
+  auto midpoint = [&](int a, int b, const Vec2& centre_uv) {
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    const BdNode na = net.nodes[a], nb = net.nodes[b];
+    BdNode m;
+    if (uses[key] == 1 && na.loop >= 0 && na.loop == nb.loop) {
+      // along the trim from a to b (panels run along their loop's orientation)
+      const BdPolyline& L = boundary[na.loop];
+      double ds = std::fmod(nb.s - na.s, L.length());
+      if (ds < 0) ds += L.length();
+      double s = na.s + 0.5 * ds;
+      L.segment_at(s);
+      m.loop = na.loop, m.s = s;
+      m.uv = L.uv_at(s);
+      m.xyz = face.point(m.uv.x(), m.uv.y());
+    } else {
+      const Projection pr = face.project(0.5 * (na.xyz + nb.xyz), 0.5 * (na.uv + nb.uv));
+      m.uv = pr.uv, m.xyz = pr.point;
+      // an edge between two trim nodes may chord across an opening: move its
+      // midpoint toward the panel's centre until it is on the face
+      for (int k = 1; k <= 4 && !is_in(m.uv); ++k) {
+        m.uv = 0.5 * (na.uv + nb.uv) + 0.25 * k * (centre_uv - 0.5 * (na.uv + nb.uv));
+        m.xyz = face.point(m.uv.x(), m.uv.y());
+      }
+    }
+    return mid[key] = add(m);
+  };
+  // A panel with a reflex corner (in (u,v)) has no centre that sees all its
+  // corners: cut it first along a diagonal from that corner.
+  std::vector<std::vector<int>> convex;
+  std::vector<std::vector<int>> todo = net.panels;
+  while (!todo.empty()) {
+    std::vector<int> p = std::move(todo.back());
+    todo.pop_back();
+    std::vector<int> a, b;
+    if (p.size() >= 4 && split_at_reflex_corner(net.nodes, p, a, b)) {
+      todo.push_back(std::move(a));
+      todo.push_back(std::move(b));
+    } else {
+      convex.push_back(std::move(p));
+    }
+  }
+  std::reverse(convex.begin(), convex.end());
+  // Network edges much longer than the median (curves stopped or joined
+  // leaving a wide gap) would give rods of half their length: subdivide them,
+  // then cut panels of six or more corners in two (shorter spokes).
+  {
+    std::map<std::pair<int, int>, int> edge_uses;
+    std::vector<double> lengths;
+    for (const auto& p : convex)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const int a = p[i], b = p[(i + 1) % p.size()];
+        if (edge_uses[{std::min(a, b), std::max(a, b)}]++ == 0)
+          lengths.push_back((net.nodes[a].xyz - net.nodes[b].xyz).norm());
+      }
+    std::map<std::pair<int, int>, std::vector<int>> inner;  // from min to max node
+    if (!lengths.empty()) {
+      std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+      const double median = lengths[lengths.size() / 2];
+      for (const auto& [key, count] : edge_uses) {
+        const BdNode na = net.nodes[key.first], nb = net.nodes[key.second];
+        const double len = (na.xyz - nb.xyz).norm();
+        if (!(median > 0) || len < 1.8 * median) continue;
+        const int k = static_cast<int>(std::lround(len / median));
+        if (k < 2) continue;
+        std::vector<BdNode> made;
+        bool ok = true;
+        for (int j = 1; j < k && ok; ++j) {
+          const double t = double(j) / k;
+          if (count != 2) {  // only interior edges (trim edges keep their trim midpoints)
+            ok = false;
+            break;
+          }
+          const Projection pr =
+              face.project((1 - t) * na.xyz + t * nb.xyz, (1 - t) * na.uv + t * nb.uv);
+          BdNode m;
+          m.uv = pr.uv, m.xyz = pr.point;
+          ok = is_in(m.uv);
+          made.push_back(m);
+        }
+        if (!ok) continue;
+        std::vector<int> ids;
+        for (const BdNode& m : made) ids.push_back(add(m));
+        inner[key] = ids;
+      }
+    }
+    std::vector<std::vector<int>> todo2;
+    for (const auto& p : convex) {
+      std::vector<int> q;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const int a = p[i], b = p[(i + 1) % p.size()];
+        q.push_back(a);
+        auto it = inner.find({std::min(a, b), std::max(a, b)});
+        if (it == inner.end()) continue;
+        if (a < b)
+          q.insert(q.end(), it->second.begin(), it->second.end());
+        else
+          q.insert(q.end(), it->second.rbegin(), it->second.rend());
+      }
+      todo2.push_back(std::move(q));
+    }
+    std::reverse(todo2.begin(), todo2.end());
+    convex.clear();
+    while (!todo2.empty()) {
+      std::vector<int> p = std::move(todo2.back());
+      todo2.pop_back();
+      std::vector<int> a, b;
+      if (split_big_panel(net.nodes, p, a, b)) {
+        todo2.push_back(std::move(a));
+        todo2.push_back(std::move(b));
+      } else {
+        convex.push_back(std::move(p));
+      }
+    }
+  }
+  net.panels = std::move(convex);
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::vector<int>> out;
+  for (const auto& p : net.panels) {
+    const std::size_t n = p.size();
+    Vec3 c3 = Vec3::Zero();
+    Vec2 c2 = Vec2::Zero();
+    for (int v : p) c3 += net.nodes[v].xyz, c2 += net.nodes[v].uv;
+    c3 /= double(n), c2 /= double(n);
+    BdNode c;
+    const Projection pr = face.project(c3, c2);
+    c.uv = pr.uv, c.xyz = pr.point;
+    if (!is_in(c.uv)) c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
+    const int ci = add(c);
+    std::vector<int> m(n);
+    for (std::size_t i = 0; i < n; ++i) m[i] = midpoint(p[i], p[(i + 1) % n], c.uv);
+    std::vector<std::vector<int>> quads;
+    bool folded = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      quads.push_back({p[i], m[i], ci, m[(i + n - 1) % n]});
+      folded = folded || !(uv_area(net.nodes, quads.back()) > 0);
+    }
+    if (!folded) {
+      out.insert(out.end(), quads.begin(), quads.end());
+    } else {  // no centre sees every corner: keep the panel, with its midpoints
+      std::vector<int> poly;
+      for (std::size_t i = 0; i < n; ++i) poly.push_back(p[i]), poly.push_back(m[i]);
+      out.push_back(std::move(poly));
+    }
+  }
+  net.panels = std::move(out);
+}
+
+namespace {
+
+// Who touches whom in the network: neighbours (sorted, unique), incident
+// panels, and the previous / next node along a trim loop through trim edges
+// (edges used by one panel whose ends lie on the same loop).
+struct NodeAdjacency {
+  std::vector<std::vector<int>> nbr, incident;
+  std::vector<int> prev, next;
+};
+
+NodeAdjacency node_adjacency(const BdNetwork& net) {
+  const std::size_t nn = net.nodes.size();
+  NodeAdjacency adj{std::vector<std::vector<int>>(nn), std::vector<std::vector<int>>(nn),
+                    std::vector<int>(nn, -1), std::vector<int>(nn, -1)};
+  std::map<std::pair<int, int>, int> uses;
+  for (std::size_t pi = 0; pi < net.panels.size(); ++pi) {
+    const auto& p = net.panels[pi];
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+      adj.nbr[a].push_back(b), adj.nbr[b].push_back(a);
+      adj.incident[a].push_back(static_cast<int>(pi));
+    }
+  }
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1 && net.nodes[a].loop >= 0 &&
+          net.nodes[a].loop == net.nodes[b].loop)
+        adj.next[a] = b, adj.prev[b] = a;
+    }
+  for (auto& v : adj.nbr) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+  return adj;
+}
+
+}  // namespace
+
+void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                    BdNetwork& net, int iterations, double factor) {
+  require_in_range("smoothing_iterations", iterations, 0, 1000);
+  require_in_range("smoothing factor", factor, 0.0, 1.0);
+  const std::size_t nn = net.nodes.size();
+  NodeAdjacency adj = node_adjacency(net);
+  auto& nbr = adj.nbr;
+  auto& incident = adj.incident;
+  auto& prev = adj.prev;
+  auto& next = adj.next;
+  auto folds = [&](int v) {
+    for (int pi : incident[v])
+      if (uv_area(net.nodes, net.panels[pi]) <= 0) return true;
+    return false;
+  };
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t v = 0; v < nn; ++v) {
+      BdNode& n = net.nodes[v];
+      if (n.corner || nbr[v].empty()) continue;
+      const BdNode old = n;
+      if (n.loop >= 0) {
+        if (prev[v] < 0 || next[v] < 0) continue;
+        const BdPolyline& L = boundary[n.loop];
+        const double len = L.length();
+        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len),
+               dn = std::fmod(net.nodes[next[v]].s - n.s, len);
+        if (dp < 0) dp += len;
+        if (dn < 0) dn += len;
+        double s = n.s + factor * 0.5 * (dn - dp);
+        L.segment_at(s);
+        n.s = s;
+        n.uv = L.uv_at(s);
+        n.xyz = face.point(n.uv.x(), n.uv.y());
+      } else {
+        Vec3 c = Vec3::Zero();
+        for (int w : nbr[v]) c += net.nodes[w].xyz;
+        c /= double(nbr[v].size());
+        const Projection pr = face.project(n.xyz + factor * (c - n.xyz), n.uv);
+        if (!inside.inside(pr.uv)) continue;
+        n.uv = pr.uv, n.xyz = pr.point;
+      }
+      if (folds(static_cast<int>(v))) n = old;
+    }
+  }
+}
+
+}  // namespace tessella
+
+namespace tessella {
+
+namespace {
+
+// Smallest corner angle (3D, radians) of panel p; an interior corner that is
+// reflex in (u,v) counts as 0 (a trim node may be reflex where its trim is
+// concave) and a panel folded in (u,v) as -1.
+double panel_quality(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
+  if (!(uv_area(nodes, p) > 0)) return -1.0;
+  const std::size_t n = p.size();
+  double q = 1e9;
+  for (std::size_t i = 0; i < n; ++i) {
+    const BdNode& a = nodes[p[(i + n - 1) % n]];
+    const BdNode& b = nodes[p[i]];
+    const BdNode& c = nodes[p[(i + 1) % n]];
+    if (b.loop < 0 && bd::cross2(b.uv - a.uv, c.uv - b.uv) < 0) return 0.0;
+    q = std::min(q, corner_angle(a.xyz, b.xyz, c.xyz));
+  }
+  return q;
+}
+
+}  // namespace
+
+int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                      BdNetwork& net, double target_deg, int passes) {
+  require_in_range("angle target (deg)", target_deg, 0.0, 90.0);
+  require_in_range("angle passes", passes, 0, 1000);
+  const double target = target_deg * 3.14159265358979323846 / 180.0;
+  const std::size_t nn = net.nodes.size();
+  NodeAdjacency adj = node_adjacency(net);
+  auto& nbr = adj.nbr;
+  auto& incident = adj.incident;
+  auto& prev = adj.prev;
+  auto& next = adj.next;
+  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  auto local = [&](int v) {
+    double q = 1e9;
+    for (int pi : incident[v]) q = std::min(q, panel_quality(net.nodes, net.panels[pi]));
+    return q;
+  };
+  // a move may not make an edge at v shorter than 0.3 x the median edge
+  // (unless it was already shorter and gets no shorter): no tiny rods
+  std::vector<double> lengths;
+  for (std::size_t v = 0; v < nn; ++v)
+    for (int w : nbr[v])
+      if (static_cast<int>(v) < w) lengths.push_back((net.nodes[v].xyz - net.nodes[w].xyz).norm());
+  if (lengths.empty()) return 0;
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const double min_edge = 0.3 * lengths[lengths.size() / 2];
+  auto short_edge = [&](int v, const BdNode& old) {
+    for (int w : nbr[v]) {
+      const double l = (net.nodes[v].xyz - net.nodes[w].xyz).norm();
+      if (l < min_edge && l < (old.xyz - net.nodes[w].xyz).norm()) return true;
+    }
+    return false;
+  };
+  static const double kSteps[] = {0.05, 0.1, 0.2, 0.3, 0.45};
+  int moves = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    // nodes of the panels with a corner under the target, in index order
+    std::vector<char> todo(nn, 0);
+    for (const auto& p : net.panels)
+      if (panel_quality(net.nodes, p) < target)
+        for (int v : p) todo[v] = 1;
+    int moved = 0;
+    for (std::size_t vi = 0; vi < nn; ++vi) {
+      if (!todo[vi]) continue;
+      const int v = static_cast<int>(vi);
+      BdNode& n = net.nodes[v];
+      if (n.corner || nbr[v].empty()) continue;
+      const BdNode old = n;
+      double best_q = local(v);
+      BdNode best = old;
+      auto try_node = [&](const BdNode& cand) {
+        n = cand;
+        const double q = short_edge(v, old) ? -2.0 : local(v);
+        if (q > best_q + 1e-9) best_q = q, best = cand;
+        n = old;
+      };
+      if (n.loop >= 0) {
+        if (prev[v] < 0 || next[v] < 0) continue;
+        const BdPolyline& L = boundary[n.loop];
+        const double len = L.length();
+        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len),
+               dn = std::fmod(net.nodes[next[v]].s - n.s, len);
+        if (dp < 0) dp += len;
+        if (dn < 0) dn += len;
+        for (double t : kSteps)
+          for (double ds : {t * dn, -t * dp}) {
+            BdNode c = old;
+            double s = old.s + ds;
+            L.segment_at(s);
+            c.s = s;
+            c.uv = L.uv_at(s);
+            c.xyz = face.point(c.uv.x(), c.uv.y());
+            try_node(c);
+          }
+      } else {
+        // toward / away from each neighbour and square to that edge, in the
+        // tangent plane (the (u,v) step solves the same move to first order)
+        const Vec3 nrm = face.normal(old.uv.x(), old.uv.y());
+        for (int w : nbr[v]) {
+          const BdNode& o = net.nodes[w];
+          const Vec3 d = o.xyz - old.xyz;
+          const Vec2 duv = o.uv - old.uv;
+          const Vec3 dp = nrm.cross(d);
+          const Vec2 duvp(-duv.y(), duv.x());  // a quarter turn in (u,v), same sense
+          for (double t : kSteps)
+            for (double sign : {1.0, -1.0})
+              for (int perp = 0; perp < 2; ++perp) {
+                const Vec3 x = old.xyz + sign * t * (perp ? dp : d);
+                const Vec2 g = old.uv + sign * t * (perp ? duvp : duv);
+                const Projection pr = face.project(x, g);
+                if (!inside.inside(pr.uv)) continue;
+                BdNode c = old;
+                c.uv = pr.uv, c.xyz = pr.point;
+                try_node(c);
+              }
+        }
+      }
+      n = best;
+      if (best.uv != old.uv) ++moved;
+    }
+    moves += moved;
+    if (moved == 0) break;
+  }
+  return moves;
+}
+
+}  // namespace tessella

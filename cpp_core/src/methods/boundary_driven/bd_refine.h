@@ -1,0 +1,61 @@
+// Boundary-driven meshing, stage 5: refinement of the network's faces (seed 001
+// section 3). Each step works on a BdNetwork's nodes and panels (its edges are
+// not updated).
+#pragma once
+
+#include <vector>
+
+#include "methods/boundary_driven/bd_network.h"
+
+namespace tessella {
+
+// Section 3.1: a triangle whose smallest / largest corner angle (3D) is under
+// `ratio` loses the corner with the largest angle, which is replaced by the
+// nearest other corner of the triangle. Trim corners are never removed; a node
+// on the trim only merges into a node on the same loop (an interior node
+// merging with a trim node keeps the trim node). Returns the number removed.
+int remove_skewed_triangles(BdNetwork& net, double ratio);
+
+// The same vertex replacement for the network's short edges (a generalization
+// of section 3.1 we add: curves that cross or meet the trim close to another
+// node leave tiny faces and sharp corners). Every panel edge shorter than
+// `min_length` (mm, 3D) merges its two ends, under the same rules (trim corners
+// stay, trim nodes merge only along their loop, an interior node merging with a
+// trim node keeps the trim node; two interior nodes meet half-way, projected
+// onto the surface). A merge that would make a panel visit a node twice is
+// skipped. Returns the number of merges.
+int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_length);
+
+// Section 3.2: every panel with n corners becomes n quads by its centre and its
+// edge midpoints (applied to all panels so neighbours stay conforming: a
+// midpoint shared by two panels splits both). Midpoints of edges along the trim
+// are placed on the trim polyline (half-way in arc length); other new nodes are
+// projected onto the surface.
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                   BdNetwork& net);
+
+// Section 3.3: Laplacian smoothing (eq. 3, equal weights, step `factor`).
+// Interior nodes move toward the centroid of their neighbours and are projected
+// back onto the surface; nodes on the trim move along their loop toward the
+// middle of their two trim neighbours (so they stay on the trim polyline);
+// corners stay fixed. A move that would fold a panel (in (u,v)) is skipped.
+void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                    BdNetwork& net, int iterations, double factor = 0.5);
+
+// Angle-aware node relocation (our addition after section 3.3): Laplacian
+// smoothing cannot open a sharp corner where two trims are closer than a panel
+// or where a triangle was quadrangulated (a quad with one flat corner). Every
+// node of a panel with a corner under `target_deg` (3D) is moved, by local
+// search, to the candidate position that maximizes the smallest corner angle
+// of the panels around it (a reflex corner in (u,v) counts as 0 unless it is
+// on a concave trim). Interior nodes try points toward and away from each
+// neighbour and square to that edge in the tangent plane, projected onto the
+// surface and inside the trim; trim nodes slide along their loop toward or
+// away from their trim neighbours (so they stay on the trim polyline); corners
+// stay fixed. A move is kept only when it raises that local minimum and makes
+// no edge at the node shorter than 0.3 x the median edge (unless it already
+// was and gets no shorter). Returns the number of moves.
+int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                      BdNetwork& net, double target_deg, int passes);
+
+}  // namespace tessella

@@ -1,0 +1,132 @@
+#include "tessella/boundary_driven.h"
+
+#include "methods/boundary_driven/bd_curves.h"
+#include "methods/boundary_driven/bd_network.h"
+#include "methods/boundary_driven/bd_refine.h"
+#include "methods/boundary_driven/bd_sources.h"
+#include "methods/boundary_driven/bd_tensor.h"
+
+#include <cmath>
+#include <string>
+
+#include "tessella/errors.h"
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+namespace {
+
+// Refuses a mesh that does not tile the face: a trim loop no panel reaches (an
+// opening swallowed by a panel), a panel folded over in (u,v), or panel areas
+// not adding up to the face's area. These happen when `size` is too coarse for
+// the openings and notches; a clear error beats a wrong mesh.
+void check_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                const BdNetwork& net, double size) {
+  const std::string hint =
+      " (size " + std::to_string(size) +
+      " mm is too coarse for this face's openings and notches: use a smaller size)";
+  std::vector<char> reached(boundary.size(), 0);
+  double area = 0;
+  for (const auto& p : net.panels) {
+    double uv_area = 0;
+    Vec3 a = Vec3::Zero();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const BdNode& n0 = net.nodes[p[i]];
+      const BdNode& n1 = net.nodes[p[(i + 1) % p.size()]];
+      uv_area += n0.uv.x() * n1.uv.y() - n1.uv.x() * n0.uv.y();
+      a += (n0.xyz - net.nodes[p[0]].xyz).cross(n1.xyz - net.nodes[p[0]].xyz);
+      if (n0.loop >= 0) reached[n0.loop] = 1;
+    }
+    if (!(uv_area > 0)) throw GeometryFailure("boundary-driven mesh: a panel folds over" + hint);
+    area += 0.5 * a.norm();
+  }
+  for (std::size_t k = 0; k < boundary.size(); ++k)
+    if (!reached[k])
+      throw GeometryFailure("boundary-driven mesh: trim loop " + std::to_string(k) +
+                            " is reached by no panel" + hint);
+  const double face_area = face.area();
+  if (std::abs(area - face_area) > 0.04 * face_area)
+    throw GeometryFailure("boundary-driven mesh: the panels cover " +
+                          std::to_string(area / face_area) + " of the face area" + hint);
+}
+
+}  // namespace
+
+BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
+                                            const BoundaryDrivenParams& params) {
+  const double ms = face.model_size();
+  require_in_range("size (mm)", params.size, 1e-4 * ms, ms);
+  require_in_range("rho", params.rho, 0.5, 8.0);
+  require_in_range("skew_ratio", params.skew_ratio, 0.0, 1.0);
+  require_in_range("smoothing_iterations", params.smoothing_iterations, 0, 1000);
+  require_in_range("trim_deflection (mm)", params.trim_deflection, 0.0, 0.01 * ms);
+  require_in_range("min_edge_fraction", params.min_edge_fraction, 0.0, 0.9);
+  require_in_range("angle_target", params.angle_target_deg, 0.0, 90.0);
+  require_in_range("angle_passes", params.angle_passes, 0, 1000);
+  require_in_range("max_panels", params.max_panels, 1, 1e8);
+  const double estimate = face.area() / (params.size * params.size);
+  if (estimate > params.max_panels)
+    throw LimitExceeded("about " + std::to_string(static_cast<long long>(estimate)) +
+                        " panels would exceed max_panels = " + std::to_string(params.max_panels) +
+                        ": raise size or max_panels");
+
+  BoundaryDrivenResult r;
+  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : 2.5e-7 * ms;
+  const BdSources src = select_bd_sources(face, face.trim_loops(deflection), params.sources);
+  r.boundary = src.boundary;
+  const double spacing = params.quadrangulate ? 2.0 * params.size : params.size;
+
+  BdTensorParams tp;
+  tp.rho = params.rho;
+  tp.sample_spacing = std::min(0.25 * spacing, ms);
+  const BdTensor tensor = build_bd_tensor(face, src.sources, tp);
+
+  BdCurveParams cp;
+  cp.spacing = std::min(spacing, ms);
+  cp.step_fraction = params.step_fraction;
+  cp.corner_angle_deg = params.corner_angle_deg;
+  r.curves = trace_bd_curves(face, tensor, r.boundary, cp);
+
+  BdNetworkParams np;
+  np.corner_angle_deg = params.corner_angle_deg;
+  r.network = build_bd_network(face, r.boundary, r.curves, np);
+  if (r.network.panels.empty())
+    throw GeometryFailure("the boundary-driven curve network has no faces");
+
+  BdNetwork net = r.network;
+  r.collapsed_edges = collapse_short_edges(face, net, params.min_edge_fraction * cp.spacing);
+  r.removed_triangles = remove_skewed_triangles(net, params.skew_ratio);
+  if (params.quadrangulate) quadrangulate(face, r.boundary, net);
+  smooth_bd_mesh(face, r.boundary, net, params.smoothing_iterations);
+  if (params.angle_target_deg > 0)
+    r.angle_moves =
+        improve_bd_angles(face, r.boundary, net, params.angle_target_deg, params.angle_passes);
+
+  check_mesh(face, r.boundary, net, params.size);
+
+  // Trim nodes sit on the trim polylines (chords within the deflection); move
+  // them onto the trims' own curves on the surface.
+  for (BdNode& n : net.nodes) {
+    if (n.loop < 0) continue;
+    n.uv = face.snap_to_trim(n.loop, n.uv);
+    n.xyz = face.point(n.uv.x(), n.uv.y());
+  }
+
+  PanelMesh& m = r.mesh;
+  for (const BdNode& n : net.nodes) m.uv.push_back(n.uv), m.xyz.push_back(n.xyz);
+  m.panels = net.panels;
+  if (static_cast<long long>(m.panels.size()) > params.max_panels)
+    throw LimitExceeded(std::to_string(m.panels.size()) +
+                        " panels exceed max_panels = " + std::to_string(params.max_panels));
+  remove_unused_vertices(m);
+  if (face.reversed()) reverse_panels(m);
+  build_rods(m);
+  m.nominal_area = params.size * params.size;
+  return r;
+}
+
+PanelMesh boundary_driven(const SurfaceFace& face, const BoundaryDrivenParams& params) {
+  return boundary_driven_stages(face, params).mesh;
+}
+
+}  // namespace tessella
