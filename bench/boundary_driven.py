@@ -26,7 +26,6 @@ import json
 import math
 import os
 import sys
-import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 for _p in ("/usr/lib/freecad-python3/lib", REPO):
@@ -78,15 +77,14 @@ def boundary_nodes(panels):
 
 
 def core_time(face, method, size):
+    """Fastest of 3 method stages of the C++ pipeline (no metrics), seconds."""
     surface = core.SurfaceFace.from_brep_string(api.face_to_brep(face))
-    params = api._method_params(method, {"size": size})
-    run = api.METHODS[method].run
+    values = api.core_values(method, {"size": size}, surface)
     best = float("inf")
     for _ in range(3):
-        t0 = time.perf_counter()
-        mesh = run(surface, params)
-        best = min(best, time.perf_counter() - t0)
-    return best, len(mesh.panels)
+        r = core.panelize(surface, method, values)
+        best = min(best, r.summary["core_seconds"])
+    return best, r.summary["panel_count"]
 
 
 def measure(face, method, size):

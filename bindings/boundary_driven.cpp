@@ -6,32 +6,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "numpy_convert.h"
 #include "tessella/errors.h"
 
 namespace py = pybind11;
 using namespace tessella;
-
-namespace {
-
-template <int N>
-py::array_t<double> rows_of(const std::vector<Eigen::Matrix<double, N, 1>>& v) {
-  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), static_cast<py::ssize_t>(N)});
-  auto m = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < N; ++k) m(i, k) = v[i][k];
-  return a;
-}
-
-std::vector<Vec2> uv_rows(const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
-  if (a.ndim() != 2 || a.shape(1) != 2)
-    throw InvalidParameter("an extra source curve must be an (N, 2) array of (u, v) points");
-  std::vector<Vec2> out;
-  auto r = a.unchecked<2>();
-  for (py::ssize_t i = 0; i < a.shape(0); ++i) out.emplace_back(r(i, 0), r(i, 1));
-  return out;
-}
-
-}  // namespace
+using bindings::rows;
 
 void bind_boundary_driven(py::module_& m) {
   py::class_<BoundaryDrivenParams>(m, "BoundaryDrivenParams")
@@ -55,14 +35,14 @@ void bind_boundary_driven(py::module_& m) {
           "extra_curves",
           [](const BoundaryDrivenParams& p) {
             py::list out;
-            for (const auto& c : p.sources.extra_curves) out.append(rows_of<2>(c));
+            for (const auto& c : p.sources.extra_curves) out.append(rows<2>(c));
             return out;
           },
           [](BoundaryDrivenParams& p, const py::list& curves) {
             p.sources.extra_curves.clear();
             for (const auto& c : curves)
-              p.sources.extra_curves.push_back(uv_rows(
-                  py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(c)));
+              p.sources.extra_curves.push_back(
+                  bindings::points<2>(bindings::DoubleArray::ensure(c), "an extra source curve"));
           });
 
   m.def("boundary_driven", [](const SurfaceFace& f, const BoundaryDrivenParams& p) {
@@ -80,8 +60,8 @@ void bind_boundary_driven(py::module_& m) {
     py::dict d;
     py::list curves_uv, curves_xyz, closed;
     for (const BdCurve& c : r.curves) {
-      curves_uv.append(rows_of<2>(c.uv));
-      curves_xyz.append(rows_of<3>(c.xyz));
+      curves_uv.append(rows<2>(c.uv));
+      curves_xyz.append(rows<3>(c.xyz));
       closed.append(c.closed);
     }
     d["curves_uv"] = curves_uv;
@@ -94,8 +74,8 @@ void bind_boundary_driven(py::module_& m) {
     for (const BdNode& n : r.network.nodes)
       nuv.push_back(n.uv), nxyz.push_back(n.xyz), nloop.push_back(n.loop),
           ncorner.push_back(n.corner);
-    d["network_uv"] = rows_of<2>(nuv);
-    d["network_xyz"] = rows_of<3>(nxyz);
+    d["network_uv"] = rows<2>(nuv);
+    d["network_xyz"] = rows<3>(nxyz);
     d["network_loop"] = nloop;
     d["network_corner"] = ncorner;
     d["network_edges"] = r.network.edges;

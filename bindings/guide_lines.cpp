@@ -1,53 +1,31 @@
 // Bindings of the guide-line methods (seed 004): conversions only.
-#include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
-
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "numpy_convert.h"
 #include "tessella/guide_line_diamond.h"
+#include "tessella/guide_line_scaling.h"
 #include "tessella/surface_face.h"
+#include "tessella/two_guide_lines.h"
 
 namespace py = pybind11;
 using namespace tessella;
+using bindings::DoubleArray;
+using bindings::rows;
 
 namespace {
-
-py::array_t<double> points3(const std::vector<Vec3>& v) {
-  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
-  auto m = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < 3; ++k) m(i, k) = v[i][k];
-  return a;
+std::vector<Vec3> to_points(const DoubleArray& a) {
+  return bindings::points<3>(a, "guides: a guide polyline");
 }
-
-py::array_t<double> points2(const std::vector<Vec2>& v) {
-  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t(2)});
-  auto m = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < 2; ++k) m(i, k) = v[i][k];
-  return a;
-}
-
-std::vector<Vec3> to_points(
-    const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
-  if (a.ndim() != 2 || a.shape(1) != 3)
-    throw py::value_error("guides: a guide polyline must be an (N, 3) array of points");
-  auto r = a.unchecked<2>();
-  std::vector<Vec3> out;
-  for (py::ssize_t i = 0; i < a.shape(0); ++i) out.emplace_back(r(i, 0), r(i, 1), r(i, 2));
-  return out;
-}
-
 }  // namespace
 
 void bind_guide_lines(py::module_& m) {
   py::class_<GuideLineScalingParams>(m, "GuideLineScalingParams")
       .def(py::init<>())
       .def_property(
-          "guide", [](const GuideLineScalingParams& p) { return points3(p.guide); },
+          "guide", [](const GuideLineScalingParams& p) { return rows<3>(p.guide); },
           [](GuideLineScalingParams& p,
              const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
             p.guide = to_points(a);
@@ -67,7 +45,7 @@ void bind_guide_lines(py::module_& m) {
       .def_property(
           "guides",
           [](const TwoGuideLinesParams& p) {
-            return py::make_tuple(points3(p.guide_a), points3(p.guide_b));
+            return py::make_tuple(rows<3>(p.guide_a), rows<3>(p.guide_b));
           },
           [](TwoGuideLinesParams& p,
              const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& g) {
@@ -96,9 +74,9 @@ void bind_guide_lines(py::module_& m) {
     }
     py::list a, b;
     for (const SurfaceCurve& c : r.curves_a)
-      a.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+      a.append(py::make_tuple(rows<2>(c.uv), rows<3>(c.xyz)));
     for (const SurfaceCurve& c : r.curves_b)
-      b.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+      b.append(py::make_tuple(rows<2>(c.uv), rows<3>(c.xyz)));
     return py::make_tuple(std::move(r.mesh), a, b);
   });
   py::class_<GuideLineDiamondParams>(m, "GuideLineDiamondParams")
@@ -106,7 +84,7 @@ void bind_guide_lines(py::module_& m) {
       .def_property(
           "guides",
           [](const GuideLineDiamondParams& p) {
-            return py::make_tuple(points3(p.guide_a), points3(p.guide_b));
+            return py::make_tuple(rows<3>(p.guide_a), rows<3>(p.guide_b));
           },
           [](GuideLineDiamondParams& p,
              const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& g) {
@@ -139,7 +117,7 @@ void bind_guide_lines(py::module_& m) {
     }
     py::list curves;
     for (const SurfaceCurve& c : r.curves)
-      curves.append(py::make_tuple(points2(c.uv), points3(c.xyz)));
+      curves.append(py::make_tuple(rows<2>(c.uv), rows<3>(c.xyz)));
     return py::make_tuple(std::move(r.mesh), curves);
   });
 }

@@ -6,6 +6,8 @@
 
 #include <Standard_Failure.hxx>
 
+#include "numpy_convert.h"
+#include "progress_bridge.h"
 #include "tessella/errors.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_mesh.h"
@@ -16,50 +18,16 @@
 
 namespace py = pybind11;
 using namespace tessella;
+using bindings::rows;
+using bindings::values;
 
 void bind_boundary_driven(py::module_& m);
 void bind_fabrication(py::module_& m);
 void bind_agents(py::module_& m);
+void bind_pipeline(py::module_& m);
 
-namespace {
-
-template <int N>
-py::array_t<double> rows(const std::vector<Eigen::Matrix<double, N, 1>>& v) {
-  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), static_cast<py::ssize_t>(N)});
-  auto m = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < N; ++k) m(i, k) = v[i][k];
-  return a;
-}
-
-py::array_t<double> values(const std::vector<double>& v) {
-  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
-}
-
-// Releases the GIL around long core calls.
-template <class F>
-auto nogil(F f) {
-  py::gil_scoped_release release;
-  return f();
-}
-
-// Runs a long core call without the GIL, reporting to `progress` (a Python
-// callable (fraction, stage) -> bool, False cancels; None: no reporting).
-template <class F>
-auto with_progress(const py::object& progress, F f) {
-  if (progress.is_none()) return nogil(f);
-  ProgressScope scope([progress](double fraction, const char* stage) {
-    py::gil_scoped_acquire gil;
-    try {
-      return py::bool_(progress(fraction, stage)).cast<bool>();
-    } catch (py::error_already_set&) {
-      return false;  // an error in the callback stops the work
-    }
-  });
-  return nogil(f);
-}
-
-}  // namespace
+using bindings::nogil;
+using bindings::with_progress;
 
 // Areas bound in their own files (bindings/<area>.cpp).
 void bind_guide_lines(py::module_& m);
@@ -92,7 +60,7 @@ PYBIND11_MODULE(_core, m) {
     }
   });
 
-  py::class_<SurfaceFace>(m, "SurfaceFace")
+  py::class_<SurfaceFace, std::shared_ptr<SurfaceFace>>(m, "SurfaceFace")
       .def_static("from_brep_string", &SurfaceFace::from_brep_string, py::arg("brep"))
       .def("bounds",
            [](const SurfaceFace& f) {
@@ -240,4 +208,5 @@ PYBIND11_MODULE(_core, m) {
   bind_boundary_driven(m);
   bind_guide_lines(m);
   bind_agents(m);
+  bind_pipeline(m);
 }

@@ -16,27 +16,7 @@ import numpy as np
 
 from . import core
 
-#: Keyword parameters every grid method accepts, with their types; they fill
-#: core.GridClipParams (the first three) or the measurement step.
-CLIP_PARAMS = {"sliver_fraction": float, "trim_deflection": float, "max_panels": int}
-COMMON_PARAMS = tuple(CLIP_PARAMS) + ("min_angle", "samples")
-
-
-@dataclass(frozen=True)
-class MethodSpec:
-    """How one method plugs in: its own keyword parameters (name -> type), the
-    factory of its core params struct, and the core function (face, params) -> PanelMesh.
-    A struct with a `clip` member gets the CLIP_PARAMS. `converters` holds the
-    non-numeric keyword parameters: name -> function(params_struct, value) that
-    checks the value and stores it (e.g. guide edges discretized into polylines)."""
-
-    params: dict
-    make_params: object
-    run: object
-    #: run accepts progress=callable(fraction, stage) -> bool (False cancels)
-    reports_progress: bool = False
-    converters: dict = field(default_factory=dict)
-
+from .methods import METHODS, Method, Param  # noqa: F401  (THE declarations, from the core)
 
 #: Points per guide edge handed to the core (which resamples and projects them).
 GUIDE_POINTS = 512
@@ -93,129 +73,14 @@ def _guides(count):
     return convert
 
 
-#: How a parameter is shown (task panel): label and unit ("mm", "deg", "" for a
-#: plain number; None for a count). A new method adds its parameters here.
-PARAM_INFO = {
-    "size": ("Size", "mm"),
-    "u_count": ("U count (0: use size)", None),
-    "v_count": ("V count (0: use size)", None),
-    "sliver_fraction": ("Sliver fraction", ""),
-    "min_angle": ("Min angle", "deg"),
-    "max_panels": ("Max panels", None),
-    "rho": ("Rho (IDW power)", ""),
-    "skew_ratio": ("Skew ratio (min/max angle)", ""),
-    "smoothing_iterations": ("Smoothing iterations", None),
-    "quadrangulate": ("Quadrangulate", bool),
-    "rod_length": ("Rod length", "mm"),
-    "advance": ("Advance (0: rod length)", "mm"),
-    "triangulate": ("Triangulate", bool),
-    "boundary_divisions": ("Boundary divisions (0: rod length)", None),
-    "map_in_uv": ("Map curves in (u,v)", bool),
-    "max_deviation": ("Deviation bound", "mm"),
-    "max_size": ("Max panel size", "mm"),
-    "diagonal_deviation": ("Diagonal bound (0: 2 x bound)", "mm"),
-    "sample_step": ("Sample step (of the span)", ""),
-    "max_refinements": ("Max refinements", None),
-    "edge_share": ("Edge share (0: try 1, 0.7, 0.5)", ""),
-    "max_step": ("Max step (of the span)", ""),
-    "max_iterations": ("Max iterations", None),
-    "tolerance": ("Tolerance", ""),
-}
-
 #: How many guide edges each guide-line method takes (its `guides` keyword).
-GUIDE_COUNT = {"guide_line_scaling": 1, "two_guide_lines": 2, "guide_line_diamond": 2}
-
-#: The methods, by name. A new method adds one entry here.
-METHODS = {
-    "iso_grid": MethodSpec(
-        {"size": float, "u_count": int, "v_count": int},
-        lambda: core.IsoGridParams(),
-        lambda surface, p, progress=None: core.iso_grid(surface, p, progress),
-        reports_progress=True,
-    ),
-    "equal_size_grid": MethodSpec(
-        {"size": float},
-        lambda: core.EqualSizeGridParams(),
-        lambda surface, p, progress=None: core.equal_size_grid(surface, p, progress),
-        reports_progress=True,
-    ),
-    # Seed 001: lines that follow the trims (docs/boundary_driven.md).
-    "boundary_driven": MethodSpec(
-        {
-            "size": float,
-            "rho": float,
-            "skew_ratio": float,
-            "smoothing_iterations": int,
-            "quadrangulate": bool,
-            "source_loops": list,
-            "extra_curves": list,
-            "corner_angle": float,
-            "min_edge_fraction": float,
-            "angle_target": float,
-            "trim_deflection": float,
-            "max_panels": int,
-        },
-        lambda: core.BoundaryDrivenParams(),
-        lambda surface, p: core.boundary_driven(surface, p),
-    ),
-    "guide_line_scaling": MethodSpec(
-        {"rod_length": float, "advance": float, "merge_fraction": float,
-         "guide_tolerance": float, "max_curves": int, "finish_sweep": bool, "stagger": bool,
-         "trim_deflection": float, "max_panels": int},
-        lambda: core.GuideLineScalingParams(),
-        lambda surface, p: core.guide_line_scaling(surface, p),
-        converters={"guides": _guides(GUIDE_COUNT["guide_line_scaling"])},
-    ),
-    # GSM run once per guide; the cells between the two curve sets (diamonds).
-    "guide_line_diamond": MethodSpec(
-        {"rod_length": float, "advance": float, "finish_sweep": bool, "triangulate": bool,
-         "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
-         "max_panels": int},
-        lambda: core.GuideLineDiamondParams(),
-        lambda surface, p: core.guide_line_diamond(surface, p),
-        converters={"guides": _guides(GUIDE_COUNT["guide_line_diamond"])},
-    ),
-    "two_guide_lines": MethodSpec(
-        {"rod_length": float, "triangulate": bool, "boundary_divisions": int, "map_in_uv": bool,
-         "corner_angle": float, "guide_tolerance": float, "max_curves": int, "trim_deflection": float,
-         "max_panels": int},
-        lambda: core.TwoGuideLinesParams(),
-        lambda surface, p: core.two_guide_lines(surface, p),
-        converters={"guides": _guides(GUIDE_COUNT["two_guide_lines"])},
-    ),
-    # Seed 000 (docs/walking_agent.md): adaptive quads with a hard deviation bound.
-    "walking_agent": MethodSpec(
-        {
-            "max_deviation": float,
-            "max_size": float,
-            "diagonal_deviation": float,
-            "sample_step": float,
-            "start": str,
-            "max_refinements": int,
-            "edge_share": float,
-        },
-        lambda: core.WalkingAgentParams(),
-        lambda surface, p: core.walking_agent(surface, p),
-    ),
-    # Its rivals from the thesis' comparison (section 5).
-    "gradient_descent": MethodSpec(
-        {"max_deviation": float, "sample_step": float, "max_step": float, "start": str},
-        lambda: core.GradientDescentParams(),
-        lambda surface, p: core.gradient_descent(surface, p),
-    ),
-    "relaxed_grid": MethodSpec(
-        {
-            "u_count": int,
-            "v_count": int,
-            "max_iterations": int,
-            "tolerance": float,
-            "weight": float,
-            "max_panels": int,
-        },
-        lambda: core.RelaxedGridParams(),
-        lambda surface, p: core.relaxed_grid(surface, p),
-    ),
+GUIDE_COUNT = {
+    name: int(m.params["guides"].minimum) for name, m in METHODS.items() if "guides" in m.params
 }
+
+#: Parameters every method accepts (the pipeline's own: clean-up and metrics).
+COMMON_PARAMS = tuple(p.name for p in next(iter(METHODS.values())).params.values() if p.shared)
+
 
 PANEL_ID_FORMAT = "P-{:04d}"
 ROD_ID_FORMAT = "R-{:04d}"
@@ -243,6 +108,13 @@ class PanelizeResult:
     #: into two flat triangles (walking_agent's hard bound); see metrics["fold_angle"].
     folds: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     _mesh: object = field(default=None, repr=False)
+    #: the core's result: keeps the parsed face (unfolding and flattening reuse it)
+    _core: object = field(default=None, repr=False)
+
+    @property
+    def surface(self):
+        """The core.SurfaceFace the panels were built on (None if not kept)."""
+        return getattr(self._core, "face", None)
 
     @property
     def panel_ids(self):
@@ -329,7 +201,7 @@ def face_to_shape(face):
 def _check_kwargs(method, params):
     if method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
-    allowed = set(METHODS[method].params) | set(METHODS[method].converters) | set(COMMON_PARAMS)
+    allowed = set(METHODS[method].params)
     unknown = sorted(set(params) - allowed)
     if unknown:
         raise ValueError(
@@ -337,59 +209,78 @@ def _check_kwargs(method, params):
         )
 
 
-def _set(struct, name, value, kind):
-    what = "a list" if kind is list else "a number"
+def _number(name, value, kind):
     try:
-        value = kind(value)
-        setattr(struct, name, value)
-    except (TypeError, ValueError) as exc:
-        if isinstance(exc, ValueError) and kind is list:
-            raise  # the core's own message (e.g. an unusable extra curve)
-        raise ValueError(f"{name} must be {what}, got {value!r}") from None
+        if isinstance(value, bool) or kind is bool:
+            return bool(value) if kind is bool else int(value)
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if kind is int and number.is_integer():
+        return int(number)
+    return number
 
 
-def _method_params(method, params):
-    spec = METHODS[method]
-    p = spec.make_params()
-    for name, kind in spec.params.items():
-        if name in params:
-            _set(p, name, params[name], kind)
-    for name, convert in spec.converters.items():
-        if name in params:
-            convert(p, params[name])
-    if hasattr(p, "clip"):
-        clip = core.GridClipParams()
-        for name, kind in CLIP_PARAMS.items():
-            if name in params:
-                _set(clip, name, params[name], kind)
-        p.clip = clip
-    return p
+def core_values(method, params, surface=None):
+    """The keyword parameters as the core takes them ({name: value}): numbers as
+    numbers, guide edges as (N,3) polylines, (u,v) curves as (N,2) arrays. Raises
+    ValueError naming the parameter when a value has the wrong kind; the ranges
+    are checked by the core (from the same declarations)."""
+    _check_kwargs(method, params)
+    declared = METHODS[method].params
+    values = {}
+    for name, value in params.items():
+        kind = declared[name].type
+        if kind == "float":
+            values[name] = _number(name, value, float)
+        elif kind == "int":
+            values[name] = _number(name, value, int)
+        elif kind == "bool":
+            values[name] = _number(name, value, bool)
+        elif kind == "choice":
+            values[name] = str(value)
+        elif kind == "int_list":
+            try:
+                values[name] = [int(k) for k in value]
+            except (TypeError, ValueError):
+                raise ValueError(f"{name} must be a list of whole numbers, got {value!r}") from None
+        elif kind == "curves":
+            values[name] = _curves(name, value, int(declared[name].minimum))
+        elif kind == "uv_curves":
+            values[name] = _uv_curves(name, value, surface)
+        else:  # pragma: no cover - a kind the core added without a converter here
+            raise ValueError(f"{name}: unsupported parameter kind {kind!r}")
+    return values
 
 
-def _fold_angles(vertices, panels, folds):
-    """Fold angle (degrees, 0 = flat) at each fold: the angle between the normals
-    of the two triangles that share the fold diagonal."""
-    if len(folds) == 0:
-        return np.zeros(0)
-    by_edge = {}
-    for k, p in enumerate(panels):
-        if len(p) != 3:
-            continue
-        for a, b in ((p[0], p[1]), (p[1], p[2]), (p[2], p[0])):
-            by_edge.setdefault((min(a, b), max(a, b)), []).append(k)
-    angles = []
-    for a, b in folds:
-        tris = by_edge.get((int(a), int(b)), [])
-        if len(tris) != 2:
-            angles.append(float("nan"))
-            continue
-        n = []
-        for k in tris:
-            p = vertices[list(panels[k])]
-            c = np.cross(p[1] - p[0], p[2] - p[0])
-            n.append(c / np.linalg.norm(c))
-        angles.append(float(np.degrees(np.arccos(np.clip(np.dot(n[0], n[1]), -1.0, 1.0)))))
-    return np.asarray(angles)
+def _curves(name, value, count):
+    """Exactly `count` edges -> (N,3) polylines (a selection pair is one edge)."""
+    if not isinstance(value, (list, tuple)):
+        value = [value]
+    if len(value) == 2 and isinstance(value[1], str):
+        value = [tuple(value)]
+    if len(value) != count:
+        raise ValueError(f"{name} must hold exactly {count} edge(s), got {len(value)}")
+    return [edge_polyline(e) for e in value]
+
+
+def _uv_curves(name, value, surface=None):
+    """(N,2) (u,v) arrays; edges lying on the face (Part shapes, (obj, 'EdgeN')
+    pairs: what a document links) are discretized and projected onto it."""
+    curves = []
+    for c in value:
+        if not isinstance(c, np.ndarray) and (
+                hasattr(c, "ShapeType") or hasattr(c, "Shape")
+                or (isinstance(c, tuple) and len(c) == 2 and isinstance(c[1], str))):
+            if surface is None:
+                raise ValueError(f"{name}: edges need the face to be projected on")
+            pts = edge_polyline(c, points=64)
+            c = [surface.project(p)[0] for p in pts]
+        a = np.asarray(c, dtype=np.float64)
+        if a.ndim != 2 or a.shape[1] != 2:
+            raise ValueError(f"{name}: each curve must be an (N, 2) array of (u, v) points")
+        curves.append(a)
+    return curves
 
 
 #: Raised when a progress callback asked to stop (a RuntimeError).
@@ -405,75 +296,47 @@ def panelize(face, method="iso_grid", progress=None, **params):
     Raises ValueError for a bad parameter or an unusable face (the message names
     the parameter and its accepted range), RuntimeError if the geometry kernel fails.
     """
+    return panelize_brep(face_to_brep(face), method, progress, **params)
+
+
+def panelize_brep(brep, method="iso_grid", progress=None, **params):
+    """panelize() on a face given as its BRep string (what a document recompute
+    already has: the face is serialized once)."""
     _check_kwargs(method, params)
-    brep = face_to_brep(face)
     surface = core.SurfaceFace.from_brep_string(brep)
-    spec = METHODS[method]
-    method_params = _method_params(method, params)
-    core.reset_surface_evaluations(surface)
-    started = time.perf_counter()
-    if spec.reports_progress:
-        mesh = spec.run(surface, method_params, progress=progress)
-    else:
-        mesh = spec.run(surface, method_params)
-    core_seconds = time.perf_counter() - started
-    evaluations = int(core.surface_evaluations(surface))
-    folds = np.asarray(core.mesh_folds(mesh), dtype=np.int64).reshape(-1, 2)
+    values = core_values(method, params, surface)
+    return panelize_surface(surface, method, values, params, progress)
 
-    mp = core.MetricsParams()
-    if "samples" in params:
-        _set(mp, "samples", params["samples"], int)
-    m = core.measure_panels(surface, mesh, mp, progress)
-    ip = core.IrregularParams()
-    if "min_angle" in params:
-        _set(ip, "min_angle_deg", params["min_angle"], float)
-    if "sliver_fraction" in params:
-        ip.min_area_fraction = float(params["sliver_fraction"])
-    irregular = np.asarray(core.irregular_panels(mesh, m, ip), dtype=bool)
-    nodes = core.node_data(surface, mesh)
+
+def panelize_surface(surface, method, values, params=None, progress=None):
+    """The core pipeline on an already parsed core.SurfaceFace (one core call)."""
+    r = core.panelize(surface, method, values, progress)
+    mesh = r.mesh
     node_index = np.asarray(mesh.nodes, dtype=np.int64)
-
-    verts = np.asarray(mesh.xyz)
+    m = r.metrics
     metrics = {
-        "fold_angle": _fold_angles(verts, mesh.panels, folds),
+        "fold_angle": np.asarray(r.fold_angle),
         "panel_deviation": np.asarray(m.deviation),
         "panel_planarity": np.asarray(m.planarity),
         "panel_area": np.asarray(m.area),
         "panel_min_angle": np.asarray(m.min_angle),
         "panel_max_angle": np.asarray(m.max_angle),
         "rod_length": np.asarray(m.rod_length),
-        "node_valence": np.asarray(nodes.valence)[node_index],
+        "node_valence": np.asarray(r.valence)[node_index],
     }
-    summary = {
-        "panel_count": len(mesh.panels),
-        "rod_count": int(mesh.rods.shape[0]),
-        "node_count": int(len(node_index)),
-        "merged_slivers": int(mesh.merged_slivers),
-        "irregular_count": int(irregular.sum()),
-        "quad_share": float(np.mean([len(p) == 4 for p in mesh.panels])) if mesh.panels else 0.0,
-        "nominal_area": float(mesh.nominal_area),
-        "face_area": float(surface.area()),
-        "model_size": float(surface.model_size()),
-        "fold_count": int(len(folds)),
-        # Cost of the method call alone (no metrics): surface evaluations
-        # (points, derivatives, projection steps) and wall time in seconds.
-        "surface_evaluations": evaluations,
-        "core_seconds": core_seconds,
-    }
-    for name in ("panel_deviation", "panel_planarity", "panel_area", "rod_length"):
-        summary[name] = core.summarize(metrics[name])
     return PanelizeResult(
         method=method,
-        params=dict(params),
+        params=dict(params if params is not None else values),
         vertices=np.asarray(mesh.xyz),
         uv=np.asarray(mesh.uv),
-        normals=np.asarray(nodes.normal),
+        normals=np.asarray(r.normals),
         panels=[tuple(p) for p in mesh.panels],
         rods=np.asarray(mesh.rods, dtype=np.int64),
         metrics=metrics,
-        irregular=irregular,
+        irregular=np.asarray(r.irregular, dtype=bool),
         nodes=node_index,
-        summary=summary,
-        folds=folds,
+        summary=dict(r.summary),
+        folds=np.asarray(core.mesh_folds(mesh), dtype=np.int64).reshape(-1, 2),
         _mesh=mesh,
+        _core=r,
     )

@@ -17,9 +17,9 @@ from . import api, core
 def boundary_driven_stages(face, **params):
     """Traced curves, preliminary network and final mesh of one face."""
     method = "boundary_driven"
-    api._check_kwargs(method, params)
+    values = api.core_values(method, params)
     surface = core.SurfaceFace.from_brep_string(api.face_to_brep(face))
-    d = core.boundary_driven_stages(surface, api._method_params(method, params))
+    d = core.boundary_driven_stages(surface, core.boundary_driven_params(values))
     mesh = d["mesh"]
     return {
         "curves_uv": [np.asarray(c) for c in d["curves_uv"]],

@@ -11,6 +11,9 @@ except ImportError as exc:  # pragma: no cover - message for a user without a bu
 
 from ._core import (  # noqa: E402,F401
     Cancelled,
+    method_declarations,
+    panelize,
+    PanelizeResult,
     BoundaryDrivenParams,
     EqualSizeGridParams,
     FlattenParams,
@@ -36,6 +39,7 @@ from ._core import (  # noqa: E402,F401
     SurfaceFace,
     boundary_driven,
     boundary_driven_stages,
+    boundary_driven_params,
     TwoGuideLinesParams,
     guide_line_diamond,
     equal_size_grid,

@@ -194,9 +194,9 @@ class FlatPatch:
         return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
 
 
-def flatten(result, face, subdivisions=8):
+def flatten(result, face=None, subdivisions=8):
     """Flatten every panel as the curved patch of `face` it covers (the face the
-    result was panelized from). Each patch is meshed with subdivisions^2 pieces per
+    result was panelized from; optional: the result keeps it). Each patch is meshed with subdivisions^2 pieces per
     triangle of its (u,v) outline, flattened by least-squares conformal maps and
     scaled to its 3D area. Returns one FlatPatch per panel, with the strain."""
     from .api import face_to_brep
@@ -206,7 +206,11 @@ def flatten(result, face, subdivisions=8):
         raise ValueError(f"subdivisions must be a whole number in [1, 64], got {subdivisions!r}")
     p = core.FlattenParams()
     p.subdivisions = int(n)
-    surface = core.SurfaceFace.from_brep_string(face_to_brep(face))
+    # The face the result was built on (no second parse); a face passed with a
+    # result made elsewhere is parsed.
+    surface = result.surface
+    if surface is None:
+        surface = core.SurfaceFace.from_brep_string(face_to_brep(face))
     patches = core.flatten_panels(surface, result._mesh, p)
     return [FlatPatch(pid, np.asarray(f.outline), list(f.corner_index), float(f.strain_max),
                       float(f.strain_mean), float(f.area_3d), tuple(f.u_direction))

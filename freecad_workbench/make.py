@@ -11,38 +11,11 @@ freecad_workbench.features.panelization.children_of(p).
 
 import FreeCAD
 
-#: make_panelization keyword -> Panelization property.
-_PARAM_TO_PROPERTY = {
-    "size": "Size",
-    "u_count": "UCount",
-    "v_count": "VCount",
-    "sliver_fraction": "SliverFraction",
-    "min_angle": "MinAngle",
-    "max_panels": "MaxPanels",
-    "trim_deflection": "TrimDeflection",
-    "samples": "Samples",
-    "rho": "Rho",
-    "skew_ratio": "SkewRatio",
-    "smoothing_iterations": "SmoothingIterations",
-    "quadrangulate": "Quadrangulate",
-    "source_loops": "SourceLoops",
-    "rod_length": "RodLength",
-    "advance": "Advance",
-    "triangulate": "Triangulate",
-    "boundary_divisions": "BoundaryDivisions",
-    "map_in_uv": "MapInUV",
-    # walking_agent, gradient_descent, relaxed_grid (docs/walking_agent.md)
-    "max_deviation": "DeviationBound",
-    "max_size": "MaxSize",
-    "diagonal_deviation": "DiagonalDeviation",
-    "sample_step": "SampleStep",
-    "start": "Start",
-    "max_refinements": "MaxRefinements",
-    "edge_share": "EdgeShare",
-    "max_step": "MaxStep",
-    "max_iterations": "MaxIterations",
-    "tolerance": "Tolerance",
-}
+def _param_to_property():
+    """make_panelization keyword -> Panelization property (from the declarations)."""
+    from .methods import METHODS
+
+    return {p.name: p.property for m in METHODS.values() for p in m}
 
 
 def _guide_links(guides):
@@ -127,7 +100,14 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
             f"the source {obj.Label!r} is in document {obj.Document.Name!r}, "
             f"not in {doc.Name!r}"
         )
-    guide_links = _guide_links(params["guides"]) if "guides" in params else None
+    from .methods import METHODS
+
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
+    to_property = _param_to_property()
+    # Curve parameters (guides, extra curves) are stored as links to document edges.
+    links = {p.property: _guide_links(params[p.name]) for p in METHODS[method]
+             if p.type in ("curves", "uv_curves") and p.name in params}
     # Validate everything (method, parameter names and ranges, the face) by
     # computing the result once; the new object starts from it (no second run).
     try:
@@ -136,9 +116,6 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         close = getattr(progress, "close", None)
         if close is not None:
             close()
-    unmapped = sorted(set(params) - set(_PARAM_TO_PROPERTY) - {"guides"})
-    if unmapped:  # the api accepts a parameter the feature has no property for
-        raise ValueError(f"parameter(s) {unmapped} cannot be stored on a Panelization yet")
 
     created = []
     doc.openTransaction("Panelize")
@@ -149,10 +126,10 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         parent.Source = (obj, [sub])
         parent.Method = method
         for key, value in params.items():
-            if key != "guides":
-                setattr(parent, _PARAM_TO_PROPERTY[key], value)
-        if guide_links is not None:
-            parent.Guides = [(o, [s]) if s else (o, []) for o, s in guide_links]
+            if to_property[key] not in links:
+                setattr(parent, to_property[key], value)
+        for prop, pairs in links.items():
+            setattr(parent, prop, [(o, [s]) if s else (o, []) for o, s in pairs])
         if FreeCAD.GuiUp:
             from .gui import preferences
 

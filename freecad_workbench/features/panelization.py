@@ -26,43 +26,43 @@ import json
 import FreeCAD
 
 #: Version of the properties layout; onDocumentRestored upgrades older documents.
-SCHEMA_VERSION = 1
+#: 2: Samples holds the sample count itself (schema 1 stored 0 for "the core's default").
+SCHEMA_VERSION = 2
 
 #: Methods of seed 000 and where the agents may start.
 AGENT_METHODS = ("walking_agent", "gradient_descent", "relaxed_grid")
 AGENT_STARTS = ("u_min_v_min", "u_max_v_min", "u_min_v_max", "u_max_v_max", "max_curvature")
 
-#: Which method uses which parameter property (others are hidden in the editor).
-_GRIDS = ("iso_grid", "equal_size_grid")
-#: Method-specific properties and the methods that use them (others hide them).
-METHOD_PROPERTIES = {
-    "Size": _GRIDS + ("boundary_driven",),
-    "UCount": ("iso_grid", "relaxed_grid"),
-    "VCount": ("iso_grid", "relaxed_grid"),
-    "DeviationBound": ("walking_agent", "gradient_descent"),
-    "MaxSize": ("walking_agent",),
-    "DiagonalDeviation": ("walking_agent",),
-    "SampleStep": ("walking_agent", "gradient_descent"),
-    "Start": ("walking_agent", "gradient_descent"),
-    "MaxRefinements": ("walking_agent",),
-    "EdgeShare": ("walking_agent",),
-    "MaxStep": ("gradient_descent",),
-    "MaxIterations": ("relaxed_grid",),
-    "Tolerance": ("relaxed_grid",),
-    "Rho": ("boundary_driven",),
-    "SkewRatio": ("boundary_driven",),
-    "SmoothingIterations": ("boundary_driven",),
-    "Quadrangulate": ("boundary_driven",),
-    "SourceLoops": ("boundary_driven",),
-    "RodLength": ("guide_line_scaling", "two_guide_lines", "guide_line_diamond"),
-    "Advance": ("guide_line_scaling", "guide_line_diamond"),
-    "Triangulate": ("two_guide_lines", "guide_line_diamond"),
-    "BoundaryDivisions": ("two_guide_lines",),
-    "MapInUV": ("two_guide_lines",),
-    "Guides": ("guide_line_scaling", "two_guide_lines", "guide_line_diamond"),
-}
-#: The properties only boundary_driven uses.
-BD_PROPERTIES = tuple(n for n, m in METHOD_PROPERTIES.items() if m == ("boundary_driven",))
+def _declared_properties():
+    """{property: [Param, ...]} of every method parameter (freecad_workbench.methods)."""
+    from ..methods import parameters_by_property
+
+    return parameters_by_property()
+
+
+def __getattr__(name):
+    """METHOD_PROPERTIES / BD_PROPERTIES, derived from the declarations on first use."""
+    if name == "METHOD_PROPERTIES":
+        return _method_properties()
+    if name == "BD_PROPERTIES":
+        return tuple(n for n, m in _method_properties().items() if m == ("boundary_driven",))
+    raise AttributeError(name)
+
+
+def _methods_of(params):
+    from ..methods import METHODS
+
+    return [m.name for m in METHODS.values() if any(p is q for p in params for q in m)]
+
+
+def _method_properties():
+    """Method-specific properties and the methods that use them (the editor
+    hides the others); the shared pipeline properties are always shown."""
+    from ..methods import methods_using
+
+    return {prop: methods_using(prop) for prop, params in _declared_properties().items()
+            if not all(p.shared for p in params)}
+
 
 #: Roles of the children, in tree order.
 ROLES = ("Panels", "Rods", "Nodes")
@@ -79,22 +79,6 @@ def _api():
     return api
 
 
-def _core_defaults():
-    """Defaults of the core's parameter structs (one source of truth)."""
-    from .. import core
-
-    clip = core.GridClipParams()
-    irregular = core.IrregularParams()
-    return {
-        "sliver_fraction": float(clip.sliver_fraction),
-        "max_panels": int(clip.max_panels),
-        "min_angle": float(irregular.min_angle_deg),
-    }
-
-
-#: Properties that only the boundary_driven method reads (shown only for it).
-
-
 def _upgrade_enumeration(obj, name, values):
     """Give an enumeration saved by an older version the values this one knows."""
     try:
@@ -106,18 +90,6 @@ def _upgrade_enumeration(obj, name, values):
         setattr(obj, name, values)
         if current in values:
             setattr(obj, name, current)
-
-
-def _bd_defaults():
-    from .. import core
-
-    p = core.BoundaryDrivenParams()
-    return {
-        "rho": float(p.rho),
-        "skew_ratio": float(p.skew_ratio),
-        "smoothing_iterations": int(p.smoothing_iterations),
-        "quadrangulate": bool(p.quadrangulate),
-    }
 
 
 def value_of(quantity):
@@ -216,83 +188,31 @@ class Panelization(_StateMixin):
     def setup_properties(self, obj):
         """Add every property this version knows (missing ones only)."""
         api = _api()
-        d = _core_defaults()
         add_property(obj, "App::PropertyLinkSub", "Source", "Input",
                      "The face to panelize: (object, ['FaceN'])")
+        methods = list(api.METHODS)
         add_property(obj, "App::PropertyEnumeration", "Method", "Panelization",
-                     "iso_grid: uniform in (u,v); equal_size_grid: lines spaced by arc length; "
-                     "boundary_driven: quad mesh whose lines follow the trims",
-                     default="iso_grid", enum=list(api.METHODS))
-        _upgrade_enumeration(obj, "Method", list(api.METHODS))
-        add_property(obj, "App::PropertyLength", "Size", "Panelization",
-                     "Target panel edge length (equal_size_grid; iso_grid when "
-                     "UCount and VCount are 0)", default=0.0)
-        add_property(obj, "App::PropertyInteger", "UCount", "Panelization",
-                     "iso_grid: panels across u; with VCount, replaces Size "
-                     "(0 = use Size)", default=0)
-        add_property(obj, "App::PropertyInteger", "VCount", "Panelization",
-                     "iso_grid: panels across v; with UCount, replaces Size "
-                     "(0 = use Size)", default=0)
-        add_property(obj, "App::PropertyLinkSubList", "Guides", "Input",
-                     "Guide curves (edges): one for guide_line_scaling, two for two_guide_lines "
-                     "and guide_line_diamond; "
-                     "an edit of a guide recomputes the grid")
-        add_property(obj, "App::PropertyLength", "RodLength", "Guide lines",
-                     "guide_line_scaling: target rod length L1 along the curves", default=0.0)
-        add_property(obj, "App::PropertyLength", "Advance", "Guide lines",
-                     "guide_line_scaling: step L between curves (0 = RodLength x sqrt(3)/2)",
-                     default=0.0)
-        add_property(obj, "App::PropertyBool", "Triangulate", "Guide lines",
-                     "two_guide_lines, guide_line_diamond: split every cell along its "
-                     "shorter diagonal", default=False)
-        add_property(obj, "App::PropertyInteger", "BoundaryDivisions", "Guide lines",
-                     "two_guide_lines: divide each boundary curve into this many equal chords "
-                     "(0 = chords of RodLength)", default=0)
-        add_property(obj, "App::PropertyBool", "MapInUV", "Guide lines",
-                     "two_guide_lines: move the guide through the vertex pairs in (u,v) "
-                     "(false: the paper's 3D scale/rotate/project)", default=True)
-        if "Method" in obj.PropertiesList:  # an older document: offer the new methods
-            methods = list(api.METHODS)
-            if list(obj.getEnumerationsOfProperty("Method")) != methods:
-                current = obj.Method
-                obj.Method = methods
-                if current in methods:
-                    obj.Method = current
-        add_property(obj, "App::PropertyFloat", "SliverFraction", "Panelization",
-                     "Boundary panels smaller than this fraction of a full panel are merged "
-                     "into a neighbour (also the area limit of an irregular panel)",
-                     default=d["sliver_fraction"])
-        add_property(obj, "App::PropertyAngle", "MinAngle", "Panelization",
-                     "A panel with a corner angle below this is irregular",
-                     default=d["min_angle"])
-        add_property(obj, "App::PropertyInteger", "MaxPanels", "Panelization",
-                     "Refuse to build more panels than this", default=d["max_panels"])
+                     "; ".join(f"{m.name}: {m.doc}" for m in api.METHODS.values()),
+                     default="iso_grid", enum=methods)
+        _upgrade_enumeration(obj, "Method", methods)
+        # One property per declared parameter (a property several methods share
+        # documents each method's meaning); added when missing, so older
+        # documents upgrade.
+        for prop, params in _declared_properties().items():
+            first = params[0]
+            docs = {}
+            for p in params:
+                docs.setdefault(p.doc, []).append(p)
+            doc = first.doc if len(docs) == 1 else "; ".join(
+                f"{', '.join(_methods_of(group))}: {text}" for text, group in docs.items())
+            default = None if first.type in ("curves", "uv_curves", "int_list") else first.default
+            add_property(obj, first.property_type, prop, first.group, doc, default=default,
+                         enum=list(first.choices) if first.type == "choice" else None)
+            if first.type == "choice":
+                _upgrade_enumeration(obj, prop, list(first.choices))
         add_property(obj, "App::PropertyString", "PanelIdFormat", "Output",
                      "Python format of the panel IDs from the panel number, e.g. P-{:04d}",
                      default="P-{:04d}")
-        # boundary_driven (seed 001, docs/boundary_driven.md)
-        bd = _bd_defaults()
-        add_property(obj, "App::PropertyFloat", "Rho", "Boundary driven",
-                     "Power of the inverse distance weighting of the direction field "
-                     "(higher: the nearest trim dominates)", default=bd["rho"])
-        add_property(obj, "App::PropertyFloat", "SkewRatio", "Boundary driven",
-                     "Triangles whose smallest / largest corner angle is under this are removed",
-                     default=bd["skew_ratio"])
-        add_property(obj, "App::PropertyInteger", "SmoothingIterations", "Boundary driven",
-                     "Laplacian smoothing passes (nodes stay on the surface and the trims)",
-                     default=bd["smoothing_iterations"])
-        add_property(obj, "App::PropertyBool", "Quadrangulate", "Boundary driven",
-                     "Split every panel by centre and edge midpoints (all quads; curves are "
-                     "then traced 2 x Size apart)", default=bd["quadrangulate"])
-        add_property(obj, "App::PropertyIntegerList", "SourceLoops", "Boundary driven",
-                     "Trim loops (0 = outer, then the holes) the direction field follows; "
-                     "empty = all")
-        self._setup_agent_properties(obj)
-        add_property(obj, "App::PropertyLength", "TrimDeflection", "Advanced",
-                     "Chord deflection of the trim polylines (0 = automatic)", default=0.0)
-        add_property(obj, "App::PropertyInteger", "Samples", "Advanced",
-                     "Samples per panel edge for the deviation measure (0 = core default)",
-                     default=0)
         ro = _READONLY_OUTPUT
         for name, type_name, doc in (
             ("PanelCount", "App::PropertyInteger", "Number of panels"),
@@ -310,49 +230,10 @@ class Panelization(_StateMixin):
             add_property(obj, type_name, name, "Summary", doc, attr=ro)
         self._update_editor_modes(obj)
 
-    def _setup_agent_properties(self, obj):
-        """Parameters of walking_agent, gradient_descent and relaxed_grid
-        (docs/walking_agent.md); added when missing, so older documents upgrade."""
-        from .. import core
-
-        wa = core.WalkingAgentParams()
-        gd = core.GradientDescentParams()
-        rg = core.RelaxedGridParams()
-        add_property(obj, "App::PropertyLength", "DeviationBound", "Agents",
-                     "walking_agent: no panel deviates more than this from the surface; "
-                     "gradient_descent: the target deviation", default=0.0)
-        add_property(obj, "App::PropertyLength", "MaxSize", "Agents",
-                     "walking_agent: longest panel edge (0 = no limit)", default=0.0)
-        add_property(obj, "App::PropertyLength", "DiagonalDeviation", "Agents",
-                     "walking_agent: bound of the diagonal walkers (0 = 2 x DeviationBound)",
-                     default=0.0)
-        add_property(obj, "App::PropertyFloat", "SampleStep", "Agents",
-                     "Agents' sample step as a fraction of the parameter span (0.05 = thesis)",
-                     default=float(wa.sample_step))
-        add_property(obj, "App::PropertyEnumeration", "Start", "Agents",
-                     "Where the agents start: a corner of the (u,v) domain or the point "
-                     "of largest curvature", default=wa.start, enum=list(AGENT_STARTS))
-        add_property(obj, "App::PropertyFloat", "EdgeShare", "Agents",
-                     "walking_agent: the agents' edge rule uses this share of DeviationBound "
-                     "(0 = try 1, 0.7, 0.5 and keep the fewest panels)",
-                     default=float(wa.edge_share))
-        add_property(obj, "App::PropertyInteger", "MaxRefinements", "Agents",
-                     "walking_agent: rounds of the hard-bound refinement",
-                     default=int(wa.max_refinements))
-        add_property(obj, "App::PropertyFloat", "MaxStep", "Agents",
-                     "gradient_descent: longest step, fraction of the parameter span",
-                     default=float(gd.max_step))
-        add_property(obj, "App::PropertyInteger", "MaxIterations", "Agents",
-                     "relaxed_grid: iteration limit (UCount x VCount panels)",
-                     default=int(rg.max_iterations))
-        add_property(obj, "App::PropertyFloat", "Tolerance", "Agents",
-                     "relaxed_grid: stop when no node moves more than this fraction "
-                     "of the parameter span", default=float(rg.tolerance))
-
     def _update_editor_modes(self, obj):
         if "Method" not in obj.PropertiesList:
             return
-        for name, methods in METHOD_PROPERTIES.items():
+        for name, methods in _method_properties().items():
             if name in obj.PropertiesList:
                 obj.setEditorMode(name, 0 if obj.Method in methods else 2)
 
@@ -362,6 +243,9 @@ class Panelization(_StateMixin):
 
     def onDocumentRestored(self, obj):
         self._ensure_runtime()
+        if getattr(self, "schema", SCHEMA_VERSION) < 2 and getattr(obj, "Samples", None) == 0:
+            obj.Samples = _api().METHODS[obj.Method].params["samples"].default
+        self.schema = SCHEMA_VERSION
         self.setup_properties(obj)
         _attach_view_provider(obj, "ViewProviderPanelization")
 
@@ -383,51 +267,49 @@ class Panelization(_StateMixin):
         return face_arg, label
 
     def parameters(self, obj):
-        """(method, keyword parameters for api.panelize) from the properties."""
+        """(method, keyword parameters for api.panelize) from the properties:
+        every declared parameter of the method whose property differs from the
+        declared default (at the default the core uses its own, the same value)."""
         method = obj.Method
-        if method in _api().GUIDE_COUNT:
-            params = {"rod_length": value_of(obj.RodLength), "guides": self.guide_edges(obj)}
-            if method != "two_guide_lines" and value_of(obj.Advance) > 0:
-                params["advance"] = value_of(obj.Advance)
-            if method != "guide_line_scaling":
-                params["triangulate"] = bool(obj.Triangulate)
-            if method == "two_guide_lines":
-                params["boundary_divisions"] = int(obj.BoundaryDivisions)
-                params["map_in_uv"] = bool(obj.MapInUV)
-            params["min_angle"] = value_of(obj.MinAngle)
-            params["max_panels"] = int(obj.MaxPanels)
-            if value_of(obj.TrimDeflection) > 0:
-                params["trim_deflection"] = value_of(obj.TrimDeflection)
-            if obj.Samples:
-                params["samples"] = int(obj.Samples)
-            return method, params
-        if method in AGENT_METHODS:
-            return method, self._agent_parameters(obj, method)
-        if method == "iso_grid" and (obj.UCount or obj.VCount):
-            # Counts replace the size (the core takes one or the other).
-            params = {"u_count": int(obj.UCount), "v_count": int(obj.VCount)}
-        else:
-            params = {"size": value_of(obj.Size)}
-        if method == "boundary_driven":
-            params["rho"] = float(obj.Rho)
-            params["skew_ratio"] = float(obj.SkewRatio)
-            params["smoothing_iterations"] = int(obj.SmoothingIterations)
-            params["quadrangulate"] = bool(obj.Quadrangulate)
-            if obj.SourceLoops:
-                params["source_loops"] = [int(k) for k in obj.SourceLoops]
-        params["sliver_fraction"] = float(obj.SliverFraction)
-        params["min_angle"] = value_of(obj.MinAngle)
-        params["max_panels"] = int(obj.MaxPanels)
-        if value_of(obj.TrimDeflection) > 0:
-            params["trim_deflection"] = value_of(obj.TrimDeflection)
-        if obj.Samples:
-            params["samples"] = int(obj.Samples)
+        params = {}
+        for p in _api().METHODS[method]:
+            if p.property not in obj.PropertiesList:
+                continue
+            if p.type in ("curves", "uv_curves"):
+                edges = self.linked_edges(obj, p.property)
+                if edges or p.type == "curves":
+                    params[p.name] = edges
+                continue
+            raw = getattr(obj, p.property)
+            if p.type == "float":
+                value = value_of(raw)
+            elif p.type == "int":
+                value = int(raw)
+            elif p.type == "bool":
+                value = bool(raw)
+            elif p.type == "int_list":
+                value = [int(k) for k in raw]
+            else:
+                value = str(raw)
+            if value != p.default:
+                params[p.name] = value
+        for p in _api().METHODS[method]:  # e.g. iso_grid's counts replace its size
+            if p.name in params:
+                for other in p.replaces:
+                    params.pop(other, None)
         return method, params
 
     def guide_edges(self, obj):
         """The linked guide edges (Part.Edge / Part.Wire shapes, in link order)."""
+        edges = self.linked_edges(obj, "Guides")
+        if not edges:
+            raise ValueError(f"{obj.Label}: {obj.Method} needs guide edges (set Guides)")
+        return edges
+
+    def linked_edges(self, obj, prop):
+        """The edges (Part.Edge / Part.Wire shapes, in link order) a link-list property names."""
         edges = []
-        for owner, subs in obj.Guides or []:
+        for owner, subs in getattr(obj, prop) or []:
             shape = getattr(owner, "Shape", None)
             if shape is None or shape.isNull():
                 raise ValueError(f"{obj.Label}: guide {owner.Label!r} has no shape")
@@ -438,53 +320,22 @@ class Panelization(_StateMixin):
                 if not sub.startswith("Edge"):
                     raise ValueError(f"{obj.Label}: guide {owner.Label}.{sub} is not an edge")
                 edges.append(shape.getElement(sub))
-        if not edges:
-            raise ValueError(f"{obj.Label}: {obj.Method} needs guide edges (set Guides)")
         return edges
-    def _agent_parameters(self, obj, method):
-        if method == "relaxed_grid":
-            params = {
-                "u_count": int(obj.UCount),
-                "v_count": int(obj.VCount),
-                "max_iterations": int(obj.MaxIterations),
-                "tolerance": float(obj.Tolerance),
-            }
-        else:
-            params = {
-                "max_deviation": value_of(obj.DeviationBound),
-                "sample_step": float(obj.SampleStep),
-                "start": str(obj.Start),
-            }
-            if method == "walking_agent":
-                params["max_size"] = value_of(obj.MaxSize)
-                params["diagonal_deviation"] = value_of(obj.DiagonalDeviation)
-                params["max_refinements"] = int(obj.MaxRefinements)
-                params["edge_share"] = float(obj.EdgeShare)
-            else:
-                params["max_step"] = float(obj.MaxStep)
-            params["sliver_fraction"] = float(obj.SliverFraction)
-            if value_of(obj.TrimDeflection) > 0:
-                params["trim_deflection"] = value_of(obj.TrimDeflection)
-        params["min_angle"] = value_of(obj.MinAngle)
-        params["max_panels"] = int(obj.MaxPanels)
-        if obj.Samples:
-            params["samples"] = int(obj.Samples)
-        return params
-
     def _signature(self, obj):
         api = _api()
         face_arg, _ = self.source_face(obj)
         brep = api.face_to_brep(face_arg)
         method, params = self.parameters(obj)
         digest = hashlib.sha1(brep.encode("utf-8", "surrogateescape")).hexdigest()
-        plain = {k: v for k, v in params.items() if k != "guides"}
-        if "guides" in params:  # shapes: keyed by their geometry
-            plain["guides"] = [
-                hashlib.sha1(e.exportBrepToString().encode("utf-8", "surrogateescape")).hexdigest()
-                for e in params["guides"]
-            ]
+        plain = {}
+        for k, v in params.items():
+            if isinstance(v, list) and v and hasattr(v[0], "exportBrepToString"):
+                # shapes (guide edges): keyed by their geometry
+                v = [hashlib.sha1(e.exportBrepToString().encode("utf-8", "surrogateescape"))
+                     .hexdigest() for e in v]
+            plain[k] = v
         key = json.dumps([method, sorted(plain.items()), digest])
-        return key, face_arg, method, params
+        return key, (face_arg, brep), method, params
 
     def result(self, obj):
         """The cached result for the current face and parameters (built if needed).
@@ -493,7 +344,7 @@ class Panelization(_StateMixin):
         panelization cannot be built.
         """
         api = _api()
-        signature, face_arg, method, params = self._signature(obj)
+        signature, (face_arg, brep), method, params = self._signature(obj)
         cache = getattr(self, "_cache", None)
         if cache is not None and cache.signature == signature:
             return cache
@@ -501,7 +352,8 @@ class Panelization(_StateMixin):
         if failed is not None and failed[0] == signature:
             raise failed[1](failed[2])
         try:
-            res = api.panelize(face_arg, method=method, **params)
+            # The face serialized once per recompute: the signature's BRep.
+            res = api.panelize_brep(brep, method=method, **params)
             shapes = self._shapes(res)
         except (ValueError, TypeError, RuntimeError) as exc:
             self._cache = None

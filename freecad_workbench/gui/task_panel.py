@@ -99,11 +99,11 @@ class PanelizationTaskPanel:
         self.guides_changed = False
         self._build_method_rows()
         self.method.currentIndexChanged.connect(self._method_changed)
-        self.sliver = self._make_widget("sliver_fraction", p["sliver_fraction"])
+        self.sliver = self._make_widget(api.METHODS["iso_grid"].params["sliver_fraction"], p["sliver_fraction"])
         form.addRow("Sliver fraction", self.sliver)
-        self.min_angle = self._make_widget("min_angle", p["min_angle"])
+        self.min_angle = self._make_widget(api.METHODS["iso_grid"].params["min_angle"], p["min_angle"])
         form.addRow("Min angle", self.min_angle)
-        self.max_panels = self._make_widget("max_panels", p["max_panels"])
+        self.max_panels = self._make_widget(api.METHODS["iso_grid"].params["max_panels"], p["max_panels"])
         form.addRow("Max panels", self.max_panels)
         self.live = QtGui.QCheckBox("Live preview")
         self.live.setChecked(True)
@@ -126,13 +126,13 @@ class PanelizationTaskPanel:
     # ----------------------------------------------------------------- values
     def _initial(self, size):
         """Values to show: the object's properties (edit) or the defaults (new)."""
-        from ..make import _PARAM_TO_PROPERTY
+        from ..make import _param_to_property
 
         values = {}
         if self.obj is not None:
             o = self.obj
-            for name, prop in _PARAM_TO_PROPERTY.items():
-                if hasattr(o, prop):
+            for name, prop in _param_to_property().items():
+                if hasattr(o, prop) and not isinstance(getattr(o, prop), list):
                     v = getattr(o, prop)
                     values[name] = float(v.Value) if hasattr(v, "Value") else v
             return {"method": o.Method, "values": values,
@@ -149,66 +149,79 @@ class PanelizationTaskPanel:
                 "max_panels": prefs["max_panels"]}
 
     # ------------------------------------------------------ parameter widgets
-    def _make_widget(self, name, value):
+    def _make_widget(self, p, value):
+        """The input of declared parameter p (its kind, unit, range and tooltip)."""
         from PySide import QtGui
 
-        label, unit = api.PARAM_INFO.get(name, (name, ""))
-        if unit is bool:
+        if p.type == "bool":
             box = QtGui.QCheckBox()
             box.setChecked(bool(value))
-            return box
-        if unit is None:  # a count
+        elif p.type == "choice":
+            box = QtGui.QComboBox()
+            box.addItems(list(p.choices))
+            if value in p.choices:
+                box.setCurrentIndex(list(p.choices).index(value))
+        elif p.type == "int_list":
+            box = QtGui.QLineEdit(", ".join(str(int(k)) for k in (value or [])))
+            box.setPlaceholderText("e.g. 0, 2 (empty: all)")
+        elif p.type == "int":
             box = QtGui.QSpinBox()
-            # counts where 0 means "off" or "derive it" start at 0
-            zero_ok = name.endswith("_count") or name in ("max_refinements", "boundary_divisions")
-            box.setRange(0 if zero_ok else 1, 100000000)
+            box.setRange(int(p.minimum), int(min(p.maximum, 2**31 - 1)))
             box.setValue(int(value))
-            return box
-        if unit == "":
+        elif p.unit == "":
             box = QtGui.QDoubleSpinBox()
-            box.setRange(0.0, 1e9)
-            box.setDecimals(6 if name == "tolerance" else 4)
+            box.setRange(p.minimum, p.maximum)
+            box.setDecimals(6 if p.maximum <= 1.0 else 4)
             box.setSingleStep(0.05)
             box.setValue(float(value))
-            return box
-        return _quantity_box(unit, value, 0.0, 180.0 if unit == "deg" else 1e9)
+        else:
+            box = _quantity_box(p.unit, value, p.minimum, p.maximum)
+        box.setToolTip(p.doc)
+        return box
 
     def _connect(self, box):
-        sig = getattr(box, "valueChanged", None) or getattr(box, "toggled", None)
+        sig = (getattr(box, "valueChanged", None) or getattr(box, "toggled", None)
+               or getattr(box, "currentIndexChanged", None) or getattr(box, "editingFinished", None))
         if sig is not None:
             sig.connect(self.schedule_preview)
 
     def _default_of(self, method, name):
-        """The core's default for a parameter (from the method's params struct)."""
-        struct = api.METHODS[method].make_params()
-        return getattr(struct, name, 0)
+        """The core's default for a parameter (from the method declarations)."""
+        return api.METHODS[method].params[name].default
 
     def _build_method_rows(self):
-        """One row per numeric or yes/no parameter of the chosen method that the
-        Panelization stores (the common ones have their own rows below)."""
-        from ..make import _PARAM_TO_PROPERTY
+        """One row per declared parameter of the chosen method (the shared
+        sliver fraction, min angle and panel cap have their own rows below;
+        guide edges are picked; linked curves are listed)."""
+        from PySide import QtGui
 
         while self.method_form.rowCount():
             self.method_form.removeRow(0)
         self.widgets = {}
         method = self.method.currentText()
-        common = ("sliver_fraction", "min_angle", "max_panels", "trim_deflection", "samples")
+        own_rows = ("sliver_fraction", "min_angle", "max_panels")
         self._add_guides_row(method)
-        for name, kind in api.METHODS[method].params.items():
-            if kind not in (int, float, bool) or name in common or name not in _PARAM_TO_PROPERTY:
-                continue  # e.g. guide curves: picked, not typed
-            value = self.values.get(name, self._default_of(method, name))
-            box = self._make_widget(name, value)
+        for p in api.METHODS[method]:
+            if p.name in own_rows or p.type == "curves":
+                continue
+            if p.type == "uv_curves":
+                linked = len(getattr(self.obj, p.property, None) or []) if self.obj else 0
+                note = QtGui.QLabel(f"{linked} linked edge(s): set {p.property} in the "
+                                    "property editor")
+                note.setToolTip(p.doc)
+                self.method_form.addRow(p.label, note)
+                continue
+            value = self.values.get(p.name, p.default)
+            box = self._make_widget(p, value)
             self._connect(box)
-            self.widgets[name] = box
-            self.method_form.addRow(api.PARAM_INFO.get(name, (name, ""))[0], box)
+            self.widgets[p.name] = box
+            self.method_form.addRow(p.label, box)
 
     # ------------------------------------------------------------ guide edges
     def guides_needed(self, method=None):
         """How many guide edges the method takes (0: none)."""
         method = method or self.method.currentText()
-        return api.GUIDE_COUNT.get(method, 0) \
-            if "guides" in api.METHODS[method].converters else 0
+        return api.GUIDE_COUNT.get(method, 0)
 
     def _add_guides_row(self, method):
         from PySide import QtGui
@@ -276,8 +289,14 @@ class PanelizationTaskPanel:
 
     @staticmethod
     def _read(box):
-        if hasattr(box, "isChecked") and not hasattr(box, "value"):
+        from PySide import QtGui
+
+        if isinstance(box, QtGui.QCheckBox):
             return bool(box.isChecked())
+        if isinstance(box, QtGui.QComboBox):
+            return str(box.currentText())
+        if isinstance(box, QtGui.QLineEdit):  # a list of whole numbers
+            return [int(k) for k in box.text().replace(",", " ").split()]
         return _value(box) if box.property("rawValue") is not None or \
             hasattr(box, "decimals") else int(box.value())
 
@@ -376,9 +395,7 @@ class PanelizationTaskPanel:
         params.update(sliver_fraction=float(self.sliver.value()),
                       min_angle=_value(self.min_angle), max_panels=int(self.max_panels.value()))
         for name in list(params):  # only what this method takes
-            spec = api.METHODS[method]
-            if name not in spec.params and name not in spec.converters \
-                    and name not in api.COMMON_PARAMS:
+            if name not in api.METHODS[method].params:
                 params.pop(name)
         return method, params
 
@@ -408,7 +425,8 @@ class PanelizationTaskPanel:
                 if estimate > COARSE_ABOVE:
                     coarse = dict(params, size=math.sqrt(area / COARSE_PANELS), samples=2)
                     self._draw(api.panelize(face, method=method, **coarse), coarse=True)
-            result = api.panelize(face, method=method, samples=PREVIEW_SAMPLES, **params)
+            # The preview measures with fewer samples than the final result.
+            result = api.panelize(face, method=method, **dict(params, samples=PREVIEW_SAMPLES))
         except Exception as exc:  # shown in the panel, never raised into the GUI
             self.last_result, self.last_error = None, str(exc)
             self.remove_preview()
@@ -541,8 +559,9 @@ class PanelizationTaskPanel:
         doc = obj.Document
         doc.openTransaction("Edit panelization")
         try:
-            from ..make import _PARAM_TO_PROPERTY
+            from ..make import _param_to_property
 
+            to_property = _param_to_property()
             if self.picked is not None:
                 obj.Source = (self.picked[0], [self.picked[1]])
             obj.Method = method
@@ -554,7 +573,7 @@ class PanelizationTaskPanel:
                     obj.Guides = [(g[0], [g[1]]) if isinstance(g, tuple) else (g, [])
                                   for g in value]
                     continue
-                setattr(obj, _PARAM_TO_PROPERTY[name], value)
+                setattr(obj, to_property[name], value)
             obj.Proxy.seed(obj, result)
             doc.recompute()
         except Exception:

@@ -9,13 +9,12 @@
 #include <gp_Circ.hxx>
 #include <set>
 
-#include "tessella/boundary_driven.h"
-
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
 #include "methods/boundary_driven/bd_sources.h"
 #include "methods/boundary_driven/bd_tensor.h"
+#include "tessella/boundary_driven.h"
 #include "tessella/errors.h"
 #include "test_faces.h"
 

@@ -416,11 +416,14 @@ def test_task_panel_edit():
         parent.ViewObject.Proxy.doubleClicked(parent.ViewObject)
         panel = task_panel.active()
         if check("rows: panel active", panel is not None):
-            check("rows: equal_size_grid shows size only", sorted(panel.widgets) == ["size"],
+            # its own parameter and the shared ones without a row of their own
+            check("rows: equal_size_grid shows size only",
+                  sorted(panel.widgets) == ["samples", "size", "trim_deflection"],
                   str(sorted(panel.widgets)))
             panel.method.setCurrentIndex(list(tessella.METHODS).index("iso_grid"))
             check("rows: iso_grid shows size and counts",
-                  sorted(panel.widgets) == ["size", "u_count", "v_count"], str(sorted(panel.widgets)))
+                  sorted(panel.widgets) == ["samples", "size", "trim_deflection", "u_count", "v_count"],
+                  str(sorted(panel.widgets)))
             check("rows: the size carried over",
                   abs(task_panel._value(panel.widget("size")) - parent.Size.Value) < 1e-9)
             panel.widget("u_count").setValue(5)

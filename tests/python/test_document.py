@@ -331,7 +331,9 @@ def test_reopen_upgrades_missing_properties(doc, source, tmp_path):
     d2 = FreeCAD.openDocument(path)
     try:
         p2, panels2 = d2.getObject(names[0]), d2.getObject(names[1])
-        assert "Samples" in p2.PropertiesList and p2.Samples == 0
+        # re-added with its declared default (the core's sample count)
+        assert "Samples" in p2.PropertiesList
+        assert p2.Samples == tessella.METHODS["iso_grid"].params["samples"].default == 8
         assert "QuadShare" in p2.PropertiesList
         assert "PanelIds" in panels2.PropertiesList
         assert sorted(p2.getEnumerationsOfProperty("Method")) == sorted(tessella.METHODS)

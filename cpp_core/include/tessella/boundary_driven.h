@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "tessella/methods.h"
 #include "tessella/panel_mesh.h"
 #include "tessella/surface_face.h"
 #include "tessella/vec.h"
@@ -77,7 +78,6 @@ struct BdNetwork {
   std::vector<std::vector<int>> panels;   // node cycles, counter-clockwise in (u,v)
 };
 
-
 struct BoundaryDrivenParams {
   double size = 0.0;        // target panel edge length, mm (required)
   double rho = 2.0;         // IDW power of the BDTensor (eq. 2)
@@ -96,7 +96,7 @@ struct BoundaryDrivenParams {
   // relocated to open it (improve_bd_angles); 0 switches the step off.
   double angle_target_deg = 30.0;
   int angle_passes = 30;
-  int max_panels = 200000;
+  int max_panels = kDefaultMaxPanels;
 };
 
 // Everything the stages produced (the curve network for display, the mesh).
@@ -109,6 +109,10 @@ struct BoundaryDrivenResult {
   int angle_moves = 0;  // node moves made by improve_bd_angles
   PanelMesh mesh;
 };
+
+// The params struct from checked declaration values (tessella/methods.h), for
+// boundary_driven_stages called with the console's keywords.
+BoundaryDrivenParams boundary_driven_params(const ParamValues& values);
 
 BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
                                             const BoundaryDrivenParams& params);

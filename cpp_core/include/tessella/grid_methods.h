@@ -17,7 +17,7 @@ struct GridClipParams {
   // boundary node lies within 1e-6 of the model size of the true trim curve.
   double trim_deflection = 0.0;
   // Refuse grids with more panels than this.
-  int max_panels = 200000;
+  int max_panels = kDefaultMaxPanels;
 };
 
 // Uniform in u and v: by counts (u_count, v_count > 0), or, when size > 0, by a

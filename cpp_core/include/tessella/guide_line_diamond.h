@@ -25,7 +25,7 @@ struct GuideLineDiamondParams {
   double guide_tolerance = 0.0;  // as for GSM; 0 = 5% of the model size
   int max_curves = 2000;
   double trim_deflection = 0.0;
-  int max_panels = 200000;
+  int max_panels = kDefaultMaxPanels;
 };
 
 PanelMesh guide_line_diamond(const SurfaceFace& face, const GuideLineDiamondParams& params);

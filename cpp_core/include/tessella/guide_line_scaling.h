@@ -41,7 +41,7 @@ struct GuideLineScalingParams {
   // the paper's equal chords on every curve.
   bool stagger = true;
   double trim_deflection = 0.0;  // chord deflection of the trim polylines; 0 = automatic
-  int max_panels = 200000;
+  int max_panels = kDefaultMaxPanels;
 };
 
 // What the method produced besides the mesh: the advanced curves in sweep order

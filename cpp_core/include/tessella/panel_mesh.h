@@ -12,6 +12,10 @@ namespace tessella {
 
 class SurfaceFace;
 
+// The default cap on the panel count of every method (one place: a larger
+// request is refused with a clear message instead of exhausting memory).
+constexpr int kDefaultMaxPanels = 200000;
+
 struct PanelMesh {
   std::vector<Vec2> uv;
   std::vector<Vec3> xyz;

@@ -31,4 +31,8 @@ class ProgressScope {
 // Cheap when no sink is installed or the last report was under 50 ms ago.
 void report_progress(double fraction, const char* stage);
 
+// Forwards at once (no 50 ms wait): the pipeline calls it between stages, so
+// cancel works for every method, however short its own loops are.
+void report_stage(double fraction, const char* stage);
+
 }  // namespace tessella

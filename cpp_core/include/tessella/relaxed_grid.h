@@ -30,7 +30,7 @@ struct RelaxedGridParams {
   double tolerance = 1e-4;
   // Step of one iteration: a node moves at most weight x its mean rod length.
   double weight = 0.2;
-  int max_panels = 200000;
+  int max_panels = kDefaultMaxPanels;
 };
 
 struct RelaxedGridReport {

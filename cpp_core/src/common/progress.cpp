@@ -25,4 +25,10 @@ void report_progress(double fraction, const char* stage) {
   if (!current_sink(fraction, stage)) throw Cancelled();
 }
 
+void report_stage(double fraction, const char* stage) {
+  if (!current_sink) return;
+  last_report = Clock::now();
+  if (!current_sink(fraction, stage)) throw Cancelled();
+}
+
 }  // namespace tessella

@@ -34,7 +34,7 @@ struct CurveFamilyMeshParams {
   bool triangulate = false;
   double corner_angle = 30.0;    // deg: a sharper turn of a trim loop is a node
   double trim_deflection = 0.0;  // chord deflection of the trim polylines; 0 = automatic
-  int max_panels = 200000;
+  int max_panels = kDefaultMaxPanels;
 };
 
 // `families`: the curves of each family (any number of families; curves may

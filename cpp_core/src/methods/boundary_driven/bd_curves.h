@@ -29,8 +29,6 @@ struct BdCurveParams {
   int max_curves = 20000;
 };
 
-
-
 std::vector<BdCurve> trace_bd_curves(const SurfaceFace& face, const BdTensor& tensor,
                                      const std::vector<BdPolyline>& boundary,
                                      const BdCurveParams& params);

@@ -26,11 +26,9 @@
 
 namespace tessella {
 
-
 struct BdNetworkParams {
   double corner_angle_deg = 30.0;  // trim vertices turning more than this are nodes
 };
-
 
 BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
                            const std::vector<BdCurve>& curves, const BdNetworkParams& params);

@@ -12,9 +12,6 @@
 
 namespace tessella {
 
-
-
-
 struct BdSources {
   std::vector<BdPolyline> boundary;  // every trim loop (for clipping and nodes)
   std::vector<BdPolyline> sources;   // the selected ones (+ extra curves)

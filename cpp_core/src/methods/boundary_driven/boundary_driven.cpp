@@ -1,14 +1,13 @@
 #include "tessella/boundary_driven.h"
 
+#include <cmath>
+#include <string>
+
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
 #include "methods/boundary_driven/bd_sources.h"
 #include "methods/boundary_driven/bd_tensor.h"
-
-#include <cmath>
-#include <string>
-
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 

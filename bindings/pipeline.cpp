@@ -1,0 +1,131 @@
+// Bindings of the pipeline entry point and the method declarations
+// (tessella/panelize.h, tessella/methods.h): conversions only.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "numpy_convert.h"
+#include "progress_bridge.h"
+#include "tessella/boundary_driven.h"
+#include "tessella/methods.h"
+#include "tessella/panelize.h"
+#include "tessella/surface_face.h"
+
+namespace py = pybind11;
+using namespace tessella;
+
+namespace {
+
+py::object to_python(const ParamValue& v) {
+  return std::visit(
+      [](const auto& x) -> py::object {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, Polylines> || std::is_same_v<T, UvPolylines>) {
+          return py::list();  // curve parameters default to none
+        } else {
+          return py::cast(x);
+        }
+      },
+      v);
+}
+
+py::dict declaration(const ParamDeclaration& d) {
+  py::dict out;
+  out["name"] = d.name;
+  out["type"] = kind_name(d.kind);
+  out["unit"] = d.unit;
+  out["default"] = to_python(d.default_value);
+  out["minimum"] = d.minimum;
+  out["maximum"] = d.maximum;
+  out["label"] = d.label;
+  out["doc"] = d.doc;
+  out["group"] = d.group;
+  out["property"] = d.property;
+  out["choices"] = d.choices;
+  out["shared"] = d.shared;
+  out["replaces"] = d.replaces;
+  return out;
+}
+
+py::dict stats(const SummaryStats& s) {
+  py::dict d;
+  d["count"] = s.count;
+  d["mean"] = s.mean;
+  d["variance"] = s.variance;
+  d["min"] = s.min;
+  d["max"] = s.max;
+  return d;
+}
+
+}  // namespace
+
+void bind_pipeline(py::module_& m) {
+  m.def(
+      "method_declarations",
+      [] {
+        py::list out;
+        for (const MethodDeclaration& method : method_declarations()) {
+          py::dict d;
+          d["name"] = method.name;
+          d["label"] = method.label;
+          d["doc"] = method.doc;
+          py::list params;
+          for (const ParamDeclaration& p : method.params) params.append(declaration(p));
+          d["params"] = params;
+          out.append(d);
+        }
+        return out;
+      },
+      "Every method with its parameters (name, type, unit, default, minimum, maximum, label, "
+      "doc, group, property, choices, shared), from the C++ declarations");
+
+  py::class_<PanelizeResult>(m, "PanelizeResult")
+      .def_property_readonly(
+          "face",
+          [](const PanelizeResult& r) { return std::const_pointer_cast<SurfaceFace>(r.face); })
+      .def_readonly("method", &PanelizeResult::method)
+      .def_readonly("mesh", &PanelizeResult::mesh)
+      .def_readonly("metrics", &PanelizeResult::metrics)
+      .def_property_readonly("irregular",
+                             [](const PanelizeResult& r) { return bindings::flags(r.irregular); })
+      .def_property_readonly(
+          "valence", [](const PanelizeResult& r) { return bindings::integers(r.nodes.valence); })
+      .def_property_readonly(
+          "normals", [](const PanelizeResult& r) { return bindings::rows<3>(r.nodes.normal); })
+      .def_property_readonly("fold_angle",
+                             [](const PanelizeResult& r) { return bindings::values(r.fold_angle); })
+      .def_property_readonly("summary", [](const PanelizeResult& r) {
+        const PanelizeSummary& s = r.summary;
+        py::dict d;
+        d["panel_count"] = s.panel_count;
+        d["rod_count"] = s.rod_count;
+        d["node_count"] = s.node_count;
+        d["merged_slivers"] = s.merged_slivers;
+        d["irregular_count"] = s.irregular_count;
+        d["quad_share"] = s.quad_share;
+        d["nominal_area"] = s.nominal_area;
+        d["face_area"] = s.face_area;
+        d["model_size"] = s.model_size;
+        d["fold_count"] = s.fold_count;
+        d["surface_evaluations"] = s.surface_evaluations;
+        d["core_seconds"] = s.core_seconds;
+        d["panel_deviation"] = stats(s.deviation);
+        d["panel_planarity"] = stats(s.planarity);
+        d["panel_area"] = stats(s.area);
+        d["rod_length"] = stats(s.rod_length);
+        return d;
+      });
+
+  // Stage-by-stage callers (boundary_driven_stages) build the struct the same way.
+  m.def("boundary_driven_params", &boundary_driven_params, py::arg("values"),
+        "BoundaryDrivenParams from the declared keyword values (checked)");
+  m.def(
+      "panelize",
+      [](std::shared_ptr<SurfaceFace> face, const std::string& method, const ParamValues& values,
+         py::object progress) {
+        return bindings::with_progress(progress, [&] { return panelize(face, method, values); });
+      },
+      py::arg("face"), py::arg("method"), py::arg("values"), py::arg("progress") = py::none(),
+      "The whole pipeline (method, metrics, folds, summary) on one face");
+}

@@ -1,0 +1,51 @@
+// The whole pipeline in one call: method -> clean-up -> metrics -> folds ->
+// summary. Python, the C++ tests and the benchmarks all run it.
+//
+// Progress and cancel: install a ProgressScope (progress.h) on the calling
+// thread; every stage reports through it and a sink returning false throws
+// Cancelled between (and inside) stages, for every method.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessella/methods.h"
+#include "tessella/panel_mesh.h"
+#include "tessella/panel_metrics.h"
+
+namespace tessella {
+
+class SurfaceFace;
+
+struct PanelizeSummary {
+  int panel_count = 0, rod_count = 0, node_count = 0;
+  int merged_slivers = 0, irregular_count = 0, fold_count = 0;
+  double quad_share = 0.0;  // fraction of panels that are quads
+  double nominal_area = 0.0, face_area = 0.0, model_size = 0.0;
+  // Cost of the method call alone (no metrics).
+  std::uint64_t surface_evaluations = 0;
+  double core_seconds = 0.0;
+  SummaryStats deviation, planarity, area, rod_length;
+};
+
+struct PanelizeResult {
+  // The face the panels were built on: unfolding and flattening reuse it
+  // (no second BRep parse).
+  std::shared_ptr<const SurfaceFace> face;
+  std::string method;
+  PanelMesh mesh;
+  PanelMetrics metrics;
+  std::vector<bool> irregular;     // per panel
+  NodeData nodes;                  // per vertex
+  std::vector<double> fold_angle;  // degrees, one per mesh.folds entry (0 = flat)
+  PanelizeSummary summary;
+};
+
+// Runs `method` (method_declarations()) with `values` on `face`. Throws
+// InvalidParameter for a bad parameter, InvalidGeometry for an unusable face,
+// LimitExceeded above max_panels, Cancelled when the progress sink says stop.
+PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::string& method,
+                        const ParamValues& values = {});
+
+}  // namespace tessella

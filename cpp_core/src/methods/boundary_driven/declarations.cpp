@@ -1,0 +1,79 @@
+// Declaration of the boundary-driven method (see tessella/methods.h).
+#include "pipeline/declaration_builder.h"
+#include "tessella/boundary_driven.h"
+
+namespace tessella::declare {
+
+namespace {
+std::vector<int>& source_loops(BoundaryDrivenParams& p) { return p.sources.loops; }
+UvPolylines& extra_curves(BoundaryDrivenParams& p) { return p.sources.extra_curves; }
+}  // namespace
+
+namespace {
+MethodBuilder<BoundaryDrivenParams> builder() {
+  using P = BoundaryDrivenParams;
+  const char* group = "Boundary driven";
+  MethodBuilder<P> b("boundary_driven", "Boundary-driven",
+                     "quad mesh whose lines follow the trims (seed 001)");
+  b.param(&P::size, decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size",
+                         "Target panel edge length", "Panelization", "Size"))
+      .param(&P::rho, decl("rho", ParamKind::Real, "", 0.5, 8.0, "Rho (IDW power)",
+                           "Power of the inverse distance weighting of the direction field "
+                           "(higher: the nearest trim dominates)",
+                           group, "Rho"))
+      .param(&P::skew_ratio,
+             decl("skew_ratio", ParamKind::Real, "", 0.0, 1.0, "Skew ratio (min/max angle)",
+                  "Triangles whose smallest / largest corner angle is under this are removed",
+                  group, "SkewRatio"))
+      .param(&P::smoothing_iterations,
+             decl("smoothing_iterations", ParamKind::Integer, "", 0, 1000, "Smoothing iterations",
+                  "Laplacian smoothing passes (nodes stay on the surface and the trims)", group,
+                  "SmoothingIterations"))
+      .param(&P::quadrangulate,
+             decl("quadrangulate", ParamKind::Boolean, "", 0, 1, "Quadrangulate",
+                  "Split every panel by centre and edge midpoints (all quads; curves are then "
+                  "traced 2 x Size apart)",
+                  group, "Quadrangulate"))
+      .param(&source_loops,
+             decl("source_loops", ParamKind::IntegerList, "", 0, 1e6, "Source loops",
+                  "Trim loops (0 = outer, then the holes) the direction field follows; "
+                  "empty = all",
+                  group, "SourceLoops"))
+      .param(&extra_curves,
+             decl("extra_curves", ParamKind::UvCurves, "", 0, 1e4, "Extra curves",
+                  "Extra curves on the face the direction field also follows (edges lying "
+                  "on the surface)",
+                  group, "ExtraCurves"))
+      .param(&P::corner_angle_deg,
+             decl("corner_angle", ParamKind::Real, "deg", 1.0, 179.0, "Corner angle",
+                  "A sharper turn of a trim is a corner: a node no curve starts from", group,
+                  "CornerAngle"))
+      .param(&P::min_edge_fraction,
+             decl("min_edge_fraction", ParamKind::Real, "", 0.0, 0.9, "Min edge fraction",
+                  "Network edges shorter than this fraction of the curve spacing are collapsed",
+                  group, "MinEdgeFraction"))
+      .param(&P::angle_target_deg,
+             decl("angle_target", ParamKind::Real, "deg", 0.0, 90.0, "Angle target (0: off)",
+                  "After smoothing, nodes of panels with a corner under this angle are moved "
+                  "to open it (0 = off)",
+                  group, "AngleTarget"))
+      .shared("trim_deflection", &P::trim_deflection)
+      .shared("max_panels", &P::max_panels);
+  return b;
+}
+}  // namespace
+
+std::vector<MethodDeclaration> boundary_driven_methods() {
+  return {builder().build(&boundary_driven)};
+}
+
+}  // namespace tessella::declare
+
+namespace tessella {
+
+BoundaryDrivenParams boundary_driven_params(const ParamValues& values) {
+  check_param_values(method_declaration("boundary_driven"), values);
+  return declare::builder().filler()(values);
+}
+
+}  // namespace tessella
