@@ -44,6 +44,11 @@ MethodBuilder<BoundaryDrivenParams> builder() {
                   "Extra curves on the face the direction field also follows (edges lying "
                   "on the surface)",
                   group, "ExtraCurves"))
+      .param(&P::step_fraction,
+             decl("step_fraction", ParamKind::Real, "", 0.01, 0.5, "Tracing step (of the spacing)",
+                  "Step of the curve tracing as a fraction of the curve spacing (smaller: "
+                  "curves follow the field more closely, slower)",
+                  group, "StepFraction"))
       .param(&P::corner_angle_deg,
              decl("corner_angle", ParamKind::Real, "deg", 1.0, 179.0, "Corner angle",
                   "A sharper turn of a trim is a corner: a node no curve starts from", group,
