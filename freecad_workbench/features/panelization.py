@@ -25,8 +25,18 @@ import json
 
 import FreeCAD
 
-#: Version of the properties layout; onDocumentRestored upgrades older documents.
-SCHEMA_VERSION = 1
+# The shared helpers live in features/base.py; they stay importable from here
+# (other code imports them from this module).
+from .base import (  # noqa: F401
+    _PROP_OUTPUT,
+    _PROP_READONLY,
+    _READONLY_OUTPUT,
+    SCHEMA_VERSION,
+    _StateMixin,
+    _upgrade_enumeration,
+    add_property,
+    value_of,
+)
 
 #: Methods of seed 000 and where the agents may start.
 AGENT_METHODS = ("walking_agent", "gradient_descent", "relaxed_grid")
@@ -67,11 +77,6 @@ BD_PROPERTIES = tuple(n for n, m in METHOD_PROPERTIES.items() if m == ("boundary
 #: Roles of the children, in tree order.
 ROLES = ("Panels", "Rods", "Nodes")
 
-# Property status bits (App::PropertyType) for addProperty's `attr` argument.
-_PROP_READONLY = 1
-_PROP_OUTPUT = 8
-_READONLY_OUTPUT = _PROP_READONLY | _PROP_OUTPUT
-
 
 def _api():
     from .. import api
@@ -92,22 +97,6 @@ def _core_defaults():
     }
 
 
-#: Properties that only the boundary_driven method reads (shown only for it).
-
-
-def _upgrade_enumeration(obj, name, values):
-    """Give an enumeration saved by an older version the values this one knows."""
-    try:
-        known = list(obj.getEnumerationsOfProperty(name))
-    except Exception:  # pragma: no cover - very old FreeCAD
-        return
-    if known != values:
-        current = getattr(obj, name)
-        setattr(obj, name, values)
-        if current in values:
-            setattr(obj, name, current)
-
-
 def _bd_defaults():
     from .. import core
 
@@ -118,26 +107,6 @@ def _bd_defaults():
         "smoothing_iterations": int(p.smoothing_iterations),
         "quadrangulate": bool(p.quadrangulate),
     }
-
-
-def value_of(quantity):
-    """Float value of a property that may be a Base.Quantity (mm, deg) or a number."""
-    return float(getattr(quantity, "Value", quantity))
-
-
-def add_property(obj, type_name, name, group, doc, default=None, attr=0, enum=None):
-    """Add a property only if it is missing (so old documents can be upgraded).
-
-    Returns True when the property was added (and the default applied).
-    """
-    if name in obj.PropertiesList:
-        return False
-    obj.addProperty(type_name, name, group, doc, attr)
-    if enum is not None:
-        setattr(obj, name, list(enum))
-    if default is not None:
-        setattr(obj, name, default)
-    return True
 
 
 def is_panelization(obj):
@@ -167,41 +136,6 @@ class _Cache:
         self.signature = signature
         self.result = result
         self.shapes = shapes
-
-
-class _StateMixin:
-    """JSON-safe persistence for FreeCAD 0.20 on Python 3.11 (both protocols)."""
-
-    def _state(self):
-        return {"schema": SCHEMA_VERSION}
-
-    def _restore(self, state):
-        self._cache = None
-        self._failed = None
-        if isinstance(state, dict):
-            self.schema = int(state.get("schema", SCHEMA_VERSION))
-        else:
-            self.schema = SCHEMA_VERSION
-
-    def _ensure_runtime(self):
-        for name in ("_cache", "_failed"):
-            if not hasattr(self, name):
-                setattr(self, name, None)
-        if not hasattr(self, "schema"):
-            self.schema = SCHEMA_VERSION
-
-    def dumps(self):
-        return self._state()
-
-    def loads(self, state):
-        self._restore(state)
-        return None
-
-    def __getstate__(self):
-        return self._state()
-
-    def __setstate__(self, state):
-        self._restore(state)
 
 
 class Panelization(_StateMixin):
@@ -251,13 +185,6 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyBool", "MapInUV", "Guide lines",
                      "two_guide_lines: move the guide through the vertex pairs in (u,v) "
                      "(false: the paper's 3D scale/rotate/project)", default=True)
-        if "Method" in obj.PropertiesList:  # an older document: offer the new methods
-            methods = list(api.METHODS)
-            if list(obj.getEnumerationsOfProperty("Method")) != methods:
-                current = obj.Method
-                obj.Method = methods
-                if current in methods:
-                    obj.Method = current
         add_property(obj, "App::PropertyFloat", "SliverFraction", "Panelization",
                      "Boundary panels smaller than this fraction of a full panel are merged "
                      "into a neighbour (also the area limit of an irregular panel)",

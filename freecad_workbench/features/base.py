@@ -1,0 +1,85 @@
+"""What every Tessella App proxy shares: adding properties (so old documents
+upgrade), reading quantities, JSON-safe persistence and property status bits.
+"""
+
+import FreeCAD
+
+#: Version of the properties layout; onDocumentRestored upgrades older documents.
+SCHEMA_VERSION = 1
+
+# Property status bits (App::PropertyType) for addProperty's `attr` argument.
+PROP_READONLY = 1
+PROP_OUTPUT = 8
+READONLY_OUTPUT = PROP_READONLY | PROP_OUTPUT
+# The names the feature modules have always used.
+_PROP_READONLY = PROP_READONLY
+_PROP_OUTPUT = PROP_OUTPUT
+_READONLY_OUTPUT = READONLY_OUTPUT
+
+def value_of(quantity):
+    """Float value of a property that may be a Base.Quantity (mm, deg) or a number."""
+    return float(getattr(quantity, "Value", quantity))
+
+
+def add_property(obj, type_name, name, group, doc, default=None, attr=0, enum=None):
+    """Add a property only if it is missing (so old documents can be upgraded).
+
+    Returns True when the property was added (and the default applied).
+    """
+    if name in obj.PropertiesList:
+        return False
+    obj.addProperty(type_name, name, group, doc, attr)
+    if enum is not None:
+        setattr(obj, name, list(enum))
+    if default is not None:
+        setattr(obj, name, default)
+    return True
+
+
+def _upgrade_enumeration(obj, name, values):
+    """Give an enumeration saved by an older version the values this one knows."""
+    try:
+        known = list(obj.getEnumerationsOfProperty(name))
+    except Exception:  # pragma: no cover - very old FreeCAD
+        return
+    if known != values:
+        current = getattr(obj, name)
+        setattr(obj, name, values)
+        if current in values:
+            setattr(obj, name, current)
+
+
+class _StateMixin:
+    """JSON-safe persistence for FreeCAD 0.20 on Python 3.11 (both protocols)."""
+
+    def _state(self):
+        return {"schema": SCHEMA_VERSION}
+
+    def _restore(self, state):
+        self._cache = None
+        self._failed = None
+        if isinstance(state, dict):
+            self.schema = int(state.get("schema", SCHEMA_VERSION))
+        else:
+            self.schema = SCHEMA_VERSION
+
+    def _ensure_runtime(self):
+        for name in ("_cache", "_failed"):
+            if not hasattr(self, name):
+                setattr(self, name, None)
+        if not hasattr(self, "schema"):
+            self.schema = SCHEMA_VERSION
+
+    def dumps(self):
+        return self._state()
+
+    def loads(self, state):
+        self._restore(state)
+        return None
+
+    def __getstate__(self):
+        return self._state()
+
+    def __setstate__(self, state):
+        self._restore(state)
+
