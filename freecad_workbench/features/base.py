@@ -1,5 +1,12 @@
 """What every Tessella App proxy shares: adding properties (so old documents
-upgrade), reading quantities, JSON-safe persistence and property status bits.
+upgrade), reading quantities, JSON-safe persistence, property status bits, and
+the hook through which the GUI gives restored objects their view providers.
+
+No GUI imports here, nor anywhere in features/ (tests/python/test_layering.py
+checks it): the GUI package sets `view_provider_hook` when it is imported
+(freecad_workbench/gui/__init__.py; freecad_workbench/__init__.py imports it
+whenever FreeCAD's GUI is up, so documents opened before the workbench was
+activated get their view providers too).
 """
 
 import FreeCAD
@@ -15,6 +22,10 @@ READONLY_OUTPUT = PROP_READONLY | PROP_OUTPUT
 _PROP_READONLY = PROP_READONLY
 _PROP_OUTPUT = PROP_OUTPUT
 _READONLY_OUTPUT = READONLY_OUTPUT
+
+#: Set by the GUI package: callable(view_object, class_name) that attaches the
+#: named view provider class to the view object. None without the GUI.
+view_provider_hook = None
 
 def value_of(quantity):
     """Float value of a property that may be a Base.Quantity (mm, deg) or a number."""
@@ -83,3 +94,22 @@ class _StateMixin:
     def __setstate__(self, state):
         self._restore(state)
 
+
+
+def _attach_view_provider(obj, class_name):
+    """Give an object made without the GUI (or by an older version) its view
+    provider `class_name`, through view_provider_hook (set by the GUI package)."""
+    if not FreeCAD.GuiUp:
+        return
+    vobj = getattr(obj, "ViewObject", None)
+    if vobj is None or getattr(vobj, "Proxy", None) is not None:
+        return
+    hook = view_provider_hook
+    if hook is None:
+        FreeCAD.Console.PrintWarning(
+            f"Tessella: no view provider for {obj.Label}: the GUI package is not loaded\n")
+        return
+    try:
+        hook(vobj, class_name)
+    except Exception as exc:  # a missing icon must not stop a document from opening
+        FreeCAD.Console.PrintWarning(f"Tessella: no view provider for {obj.Label}: {exc}\n")

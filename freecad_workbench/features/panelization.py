@@ -32,6 +32,7 @@ from .base import (  # noqa: F401
     _PROP_READONLY,
     _READONLY_OUTPUT,
     SCHEMA_VERSION,
+    _attach_view_provider,
     _StateMixin,
     _upgrade_enumeration,
     add_property,
@@ -572,17 +573,3 @@ class PanelizationPart(_StateMixin):
             obj.NodeIds = list(res.node_ids)
             obj.Valence = [int(x) for x in res.metrics["node_valence"]]
 
-
-def _attach_view_provider(obj, class_name):
-    """Give an object made without the GUI (or by an older version) its view provider."""
-    if not FreeCAD.GuiUp:
-        return
-    vobj = getattr(obj, "ViewObject", None)
-    if vobj is None or getattr(vobj, "Proxy", None) is not None:
-        return
-    try:
-        from ..gui import view_providers
-
-        getattr(view_providers, class_name)(vobj)
-    except Exception as exc:  # a missing icon must not stop a document from opening
-        FreeCAD.Console.PrintWarning(f"Tessella: no view provider for {obj.Label}: {exc}\n")

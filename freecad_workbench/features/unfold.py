@@ -17,7 +17,14 @@ FROZEN: the module path `freecad_workbench.features.unfold` and the class name
 
 import FreeCAD
 
-from .base import _READONLY_OUTPUT, SCHEMA_VERSION, _StateMixin, add_property, value_of  # noqa: F401
+from .base import (  # noqa: F401
+    _READONLY_OUTPUT,
+    SCHEMA_VERSION,
+    _attach_view_provider,
+    _StateMixin,
+    add_property,
+    value_of,
+)
 from .panelization import is_panelization
 
 
@@ -69,14 +76,9 @@ class Unfold(_StateMixin):
                      "Panel area / sheet area over all sheets", attr=ro)
 
     def onDocumentRestored(self, obj):
+        self._ensure_runtime()
         self.setup_properties(obj)
-        if FreeCAD.GuiUp and getattr(obj.ViewObject, "Proxy", None) is None:
-            try:
-                from ..gui.unfold_view import ViewProviderUnfold
-
-                ViewProviderUnfold(obj.ViewObject)
-            except Exception as exc:
-                FreeCAD.Console.PrintWarning(f"Tessella: no view provider for {obj.Label}: {exc}\n")
+        _attach_view_provider(obj, "ViewProviderUnfold")
 
     def options(self, obj):
         return {
