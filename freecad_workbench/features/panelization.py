@@ -25,6 +25,8 @@ import json
 
 import FreeCAD
 
+from .. import selection
+
 # The shared helpers live in features/base.py; they stay importable from here
 # (other code imports them from this module).
 from .base import (  # noqa: F401
@@ -295,20 +297,14 @@ class Panelization(_StateMixin):
 
     # ------------------------------------------------------------ computation
     def source_face(self, obj):
-        """(Part.Face, label) of the linked face; ValueError when unusable."""
+        """((object, 'FaceN'), label) of the linked face; ValueError when unusable."""
         src = obj.Source
         if not src or src[0] is None:
             raise ValueError(f"{obj.Label}: no source face (set Source to a face)")
-        owner, subs = src[0], [s for s in (src[1] or []) if s]
-        if len(subs) > 1:
-            raise ValueError(f"{obj.Label}: Source must name exactly one face, got {subs}")
-        if subs:
-            face_arg = (owner, subs[0])
-            label = f"{owner.Label}.{subs[0]}"
-        else:
-            face_arg = owner.Shape
-            label = owner.Label
-        return face_arg, label
+        owner, sub = selection.face_link(src, context=f"{obj.Label}: Source")
+        named = [s for s in (src[1] or []) if s]
+        label = f"{owner.Label}.{sub}" if named else owner.Label
+        return (owner, sub), label
 
     def parameters(self, obj):
         """(method, keyword parameters for api.panelize) from the properties."""
@@ -354,21 +350,11 @@ class Panelization(_StateMixin):
 
     def guide_edges(self, obj):
         """The linked guide edges (Part.Edge / Part.Wire shapes, in link order)."""
-        edges = []
-        for owner, subs in obj.Guides or []:
-            shape = getattr(owner, "Shape", None)
-            if shape is None or shape.isNull():
-                raise ValueError(f"{obj.Label}: guide {owner.Label!r} has no shape")
-            subs = [x for x in (subs or []) if x]
-            if not subs:
-                edges.append(shape)
-            for sub in subs:
-                if not sub.startswith("Edge"):
-                    raise ValueError(f"{obj.Label}: guide {owner.Label}.{sub} is not an edge")
-                edges.append(shape.getElement(sub))
+        edges = selection.edges_of(obj.Guides or [], context=f"{obj.Label}: Guides")
         if not edges:
             raise ValueError(f"{obj.Label}: {obj.Method} needs guide edges (set Guides)")
         return edges
+
     def _agent_parameters(self, obj, method):
         if method == "relaxed_grid":
             params = {
