@@ -107,3 +107,17 @@ def export_unfold(*args, **kwargs):
     from .make_fabrication import export_unfold as _f
 
     return _f(*args, **kwargs)
+
+
+def _connect_gui():
+    """In a FreeCAD GUI session, import the GUI package: it registers the hook
+    through which restored features get their view providers (features never
+    import the GUI). Headless, nothing GUI is imported."""
+    import sys
+
+    app = sys.modules.get("FreeCAD")
+    if app is not None and getattr(app, "GuiUp", False):
+        from . import gui  # noqa: F401
+
+
+_connect_gui()

@@ -24,53 +24,13 @@ GUIDE_POINTS = 512
 
 def edge_polyline(edge, points=GUIDE_POINTS):
     """(N,3) float64 points along a Part.Edge (or a one-edge shape / wire), in mm."""
-    import Part  # FreeCAD's; imported late so `import FreeCAD` comes first
+    from .selection import one_edge
 
-    if isinstance(edge, (tuple, list)) and len(edge) == 2 and isinstance(edge[1], str):
-        obj, sub = edge
-        shape = getattr(obj, "Shape", None)
-        if shape is None or shape.isNull():
-            raise ValueError(f"guides: {getattr(obj, 'Label', obj)!r} has no shape")
-        try:
-            edge = shape.getElement(sub)
-        except Exception as exc:
-            raise ValueError(f"guides: {getattr(obj, 'Label', obj)} has no {sub}") from exc
-    if not isinstance(edge, Part.Shape) and hasattr(edge, "Shape"):  # a document object
-        edge = edge.Shape
-    if not isinstance(edge, Part.Shape) or edge.isNull():
-        raise ValueError(f"guides: expected Part.Edge objects, got {type(edge).__name__}")
-    if edge.ShapeType != "Edge":
-        wires = edge.Wires if edge.ShapeType != "Wire" else [edge]
-        if len(wires) == 1:
-            edge = wires[0]
-        elif len(edge.Edges) == 1:
-            edge = edge.Edges[0]
-        else:
-            raise ValueError("guides: each guide must be one edge or one wire")
+    edge = one_edge(edge, context="guides")
     if edge.Length <= 0:
         raise ValueError("guides: a guide edge has no length")
     pts = edge.discretize(Number=int(points))
     return np.array([[p.x, p.y, p.z] for p in pts], dtype=np.float64)
-
-
-def _guides(count):
-    """Converter of `guides`: exactly `count` edges -> polylines on the params struct."""
-
-    def convert(p, value):
-        if not isinstance(value, (list, tuple)):
-            value = [value]
-        # A selection pair (obj, "EdgeN") is one guide, not two.
-        if len(value) == 2 and isinstance(value[1], str):
-            value = [tuple(value)]
-        if len(value) != count:
-            raise ValueError(f"guides must hold exactly {count} edge(s), got {len(value)}")
-        polylines = [edge_polyline(e) for e in value]
-        if count == 1:
-            p.guide = polylines[0]
-        else:
-            p.guides = polylines
-
-    return convert
 
 
 #: How many guide edges each guide-line method takes (its `guides` keyword).
@@ -167,35 +127,11 @@ def face_to_brep(face):
 
 
 def face_to_shape(face):
-    """The Part.Face named by a Part.Face, a one-face shape or (obj, 'FaceN')."""
-    import Part  # FreeCAD's; imported late so `import FreeCAD` comes first
+    """The Part.Face named by a Part.Face, a one-face shape, a document object or
+    (obj, 'FaceN') (see freecad_workbench.selection)."""
+    from .selection import one_face
 
-    if isinstance(face, (tuple, list)) and len(face) == 2 and isinstance(face[1], str):
-        obj, sub = face
-        shape = getattr(obj, "Shape", None)
-        if shape is None or shape.isNull():
-            raise ValueError(f"{getattr(obj, 'Label', obj)!r} has no shape")
-        if not sub.startswith("Face"):
-            raise ValueError(f"{sub!r} is not a face: select a face, not an edge or a vertex")
-        try:
-            face = shape.getElement(sub)
-        except Exception as exc:
-            raise ValueError(f"{getattr(obj, 'Label', obj)} has no {sub}") from exc
-    if not isinstance(face, Part.Shape):
-        raise TypeError(
-            "face must be a Part.Face, a shape with one face or (object, 'FaceN'), "
-            f"not {type(face).__name__}"
-        )
-    if face.isNull():
-        raise ValueError("the shape is empty")
-    if face.ShapeType != "Face":
-        faces = face.Faces
-        if len(faces) != 1:
-            raise ValueError(
-                f"the shape has {len(faces)} faces: pass exactly one face (e.g. shape.Faces[0])"
-            )
-        face = faces[0]
-    return face
+    return one_face(face)
 
 
 def _check_kwargs(method, params):
@@ -255,10 +191,9 @@ def core_values(method, params, surface=None):
 
 def _curves(name, value, count):
     """Exactly `count` edges -> (N,3) polylines (a selection pair is one edge)."""
-    if not isinstance(value, (list, tuple)):
-        value = [value]
-    if len(value) == 2 and isinstance(value[1], str):
-        value = [tuple(value)]
+    from .selection import edges_of
+
+    value = edges_of(value, context=name)
     if len(value) != count:
         raise ValueError(f"{name} must hold exactly {count} edge(s), got {len(value)}")
     return [edge_polyline(e) for e in value]

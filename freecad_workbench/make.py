@@ -11,6 +11,9 @@ freecad_workbench.features.panelization.children_of(p).
 
 import FreeCAD
 
+from . import selection
+
+
 def _param_to_property():
     """make_panelization keyword -> Panelization property (from the declarations)."""
     from .methods import METHODS
@@ -18,62 +21,11 @@ def _param_to_property():
     return {p.name: p.property for m in METHODS.values() for p in m}
 
 
-def _guide_links(guides):
-    """[(object, 'EdgeN'), ...] for a Guides link list; guides must be document
-    edges (a loose Part.Edge cannot be linked, so it could not recompute)."""
-    if not isinstance(guides, (list, tuple)):
-        guides = [guides]
-    if len(guides) == 2 and isinstance(guides[1], str):
-        guides = [tuple(guides)]
-    links = []
-    for g in guides:
-        if isinstance(g, (tuple, list)) and len(g) == 2 and isinstance(g[0], FreeCAD.DocumentObject):
-            subs = [g[1]] if isinstance(g[1], str) else list(g[1])
-            links.extend((g[0], sub) for sub in subs)
-        elif isinstance(g, FreeCAD.DocumentObject):
-            links.append((g, ""))
-        else:
-            raise ValueError(
-                "guides: make_panelization links its guides, so pass (object, 'EdgeN') pairs "
-                f"or document objects, not {type(g).__name__}"
-            )
-    return links
-
 _VIEW_STYLE = {
     "Panels": {"ShapeColor": (0.80, 0.68, 0.42), "LineColor": (0.35, 0.30, 0.20), "LineWidth": 1.0},
     "Rods": {"LineColor": (0.15, 0.20, 0.35), "LineWidth": 3.0, "PointSize": 1.0},
     "Nodes": {"PointColor": (0.80, 0.10, 0.10), "PointSize": 6.0},
 }
-
-
-def _split_source(source):
-    """(document object, 'FaceN') from (obj, 'FaceN'), (obj, ['FaceN']) or a one-face obj."""
-    if isinstance(source, (tuple, list)) and len(source) == 2:
-        obj, sub = source
-        if isinstance(sub, (tuple, list)):
-            if len(sub) != 1:
-                raise ValueError(f"select exactly one face, got sub-elements {list(sub)}")
-            sub = sub[0]
-        if not isinstance(sub, str):
-            raise TypeError(f"the sub-element must be a name like 'Face1', not {sub!r}")
-    else:
-        obj, sub = source, None
-    if not isinstance(obj, FreeCAD.DocumentObject):
-        raise TypeError(
-            "source must be a document object or (object, 'FaceN'), "
-            f"not {type(obj).__name__}"
-        )
-    shape = getattr(obj, "Shape", None)
-    if shape is None or shape.isNull():
-        raise ValueError(f"{obj.Label!r} has no shape")
-    if sub is None:
-        if len(shape.Faces) != 1:
-            raise ValueError(
-                f"{obj.Label!r} has {len(shape.Faces)} faces: pass (object, 'FaceN') "
-                "to choose one"
-            )
-        sub = "Face1"
-    return obj, sub
 
 
 def make_panelization(source, method="iso_grid", doc=None, progress=None, **params):
@@ -92,7 +44,7 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
     from . import api
     from .features import panelization as feat
 
-    obj, sub = _split_source(source)
+    obj, sub = selection.face_link(source)
     if doc is None:
         doc = obj.Document
     elif doc is not obj.Document:
@@ -105,9 +57,10 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
     if method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
     to_property = _param_to_property()
-    # Curve parameters (guides, extra curves) are stored as links to document edges.
-    links = {p.property: _guide_links(params[p.name]) for p in METHODS[method]
-             if p.type in ("curves", "uv_curves") and p.name in params}
+    # Curve parameters (guides, extra curves) are stored as links to document
+    # edges (a loose Part.Edge could not recompute).
+    links = {p.property: selection.edge_links(params[p.name], context=p.name)
+             for p in METHODS[method] if p.type in ("curves", "uv_curves") and p.name in params}
     # Validate everything (method, parameter names and ranges, the face) by
     # computing the result once; the new object starts from it (no second run).
     try:
@@ -129,7 +82,7 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
             if to_property[key] not in links:
                 setattr(parent, to_property[key], value)
         for prop, pairs in links.items():
-            setattr(parent, prop, [(o, [s]) if s else (o, []) for o, s in pairs])
+            setattr(parent, prop, selection.link_sub_list(pairs))
         if FreeCAD.GuiUp:
             from .gui import preferences
 

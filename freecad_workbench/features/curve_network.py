@@ -11,7 +11,8 @@ name `CurveNetwork` are stored in every saved .FCStd.
 
 import FreeCAD
 
-from .panelization import _PROP_READONLY, _READONLY_OUTPUT, _StateMixin, add_property, is_panelization
+from .base import _PROP_READONLY, _READONLY_OUTPUT, _StateMixin, add_property
+from .panelization import is_panelization
 
 SHOW = ("Curves", "Network")
 

@@ -25,9 +25,21 @@ import json
 
 import FreeCAD
 
-#: Version of the properties layout; onDocumentRestored upgrades older documents.
-#: 2: Samples holds the sample count itself (schema 1 stored 0 for "the core's default").
-SCHEMA_VERSION = 2
+from .. import selection
+
+# The shared helpers live in features/base.py; they stay importable from here
+# (other code imports them from this module).
+from .base import (  # noqa: F401
+    _PROP_OUTPUT,
+    _PROP_READONLY,
+    _READONLY_OUTPUT,
+    SCHEMA_VERSION,
+    _attach_view_provider,
+    _StateMixin,
+    _upgrade_enumeration,
+    add_property,
+    value_of,
+)
 
 #: Methods of seed 000 and where the agents may start.
 AGENT_METHODS = ("walking_agent", "gradient_descent", "relaxed_grid")
@@ -67,11 +79,6 @@ def _method_properties():
 #: Roles of the children, in tree order.
 ROLES = ("Panels", "Rods", "Nodes")
 
-# Property status bits (App::PropertyType) for addProperty's `attr` argument.
-_PROP_READONLY = 1
-_PROP_OUTPUT = 8
-_READONLY_OUTPUT = _PROP_READONLY | _PROP_OUTPUT
-
 
 def _api():
     from .. import api
@@ -79,37 +86,6 @@ def _api():
     return api
 
 
-def _upgrade_enumeration(obj, name, values):
-    """Give an enumeration saved by an older version the values this one knows."""
-    try:
-        known = list(obj.getEnumerationsOfProperty(name))
-    except Exception:  # pragma: no cover - very old FreeCAD
-        return
-    if known != values:
-        current = getattr(obj, name)
-        setattr(obj, name, values)
-        if current in values:
-            setattr(obj, name, current)
-
-
-def value_of(quantity):
-    """Float value of a property that may be a Base.Quantity (mm, deg) or a number."""
-    return float(getattr(quantity, "Value", quantity))
-
-
-def add_property(obj, type_name, name, group, doc, default=None, attr=0, enum=None):
-    """Add a property only if it is missing (so old documents can be upgraded).
-
-    Returns True when the property was added (and the default applied).
-    """
-    if name in obj.PropertiesList:
-        return False
-    obj.addProperty(type_name, name, group, doc, attr)
-    if enum is not None:
-        setattr(obj, name, list(enum))
-    if default is not None:
-        setattr(obj, name, default)
-    return True
 
 
 def is_panelization(obj):
@@ -139,41 +115,6 @@ class _Cache:
         self.signature = signature
         self.result = result
         self.shapes = shapes
-
-
-class _StateMixin:
-    """JSON-safe persistence for FreeCAD 0.20 on Python 3.11 (both protocols)."""
-
-    def _state(self):
-        return {"schema": SCHEMA_VERSION}
-
-    def _restore(self, state):
-        self._cache = None
-        self._failed = None
-        if isinstance(state, dict):
-            self.schema = int(state.get("schema", SCHEMA_VERSION))
-        else:
-            self.schema = SCHEMA_VERSION
-
-    def _ensure_runtime(self):
-        for name in ("_cache", "_failed"):
-            if not hasattr(self, name):
-                setattr(self, name, None)
-        if not hasattr(self, "schema"):
-            self.schema = SCHEMA_VERSION
-
-    def dumps(self):
-        return self._state()
-
-    def loads(self, state):
-        self._restore(state)
-        return None
-
-    def __getstate__(self):
-        return self._state()
-
-    def __setstate__(self, state):
-        self._restore(state)
 
 
 class Panelization(_StateMixin):
@@ -251,20 +192,14 @@ class Panelization(_StateMixin):
 
     # ------------------------------------------------------------ computation
     def source_face(self, obj):
-        """(Part.Face, label) of the linked face; ValueError when unusable."""
+        """((object, 'FaceN'), label) of the linked face; ValueError when unusable."""
         src = obj.Source
         if not src or src[0] is None:
             raise ValueError(f"{obj.Label}: no source face (set Source to a face)")
-        owner, subs = src[0], [s for s in (src[1] or []) if s]
-        if len(subs) > 1:
-            raise ValueError(f"{obj.Label}: Source must name exactly one face, got {subs}")
-        if subs:
-            face_arg = (owner, subs[0])
-            label = f"{owner.Label}.{subs[0]}"
-        else:
-            face_arg = owner.Shape
-            label = owner.Label
-        return face_arg, label
+        owner, sub = selection.face_link(src, context=f"{obj.Label}: Source")
+        named = [s for s in (src[1] or []) if s]
+        label = f"{owner.Label}.{sub}" if named else owner.Label
+        return (owner, sub), label
 
     def parameters(self, obj):
         """(method, keyword parameters for api.panelize) from the properties:
@@ -308,19 +243,8 @@ class Panelization(_StateMixin):
 
     def linked_edges(self, obj, prop):
         """The edges (Part.Edge / Part.Wire shapes, in link order) a link-list property names."""
-        edges = []
-        for owner, subs in getattr(obj, prop) or []:
-            shape = getattr(owner, "Shape", None)
-            if shape is None or shape.isNull():
-                raise ValueError(f"{obj.Label}: guide {owner.Label!r} has no shape")
-            subs = [x for x in (subs or []) if x]
-            if not subs:
-                edges.append(shape)
-            for sub in subs:
-                if not sub.startswith("Edge"):
-                    raise ValueError(f"{obj.Label}: guide {owner.Label}.{sub} is not an edge")
-                edges.append(shape.getElement(sub))
-        return edges
+        return selection.edges_of(getattr(obj, prop) or [], context=f"{obj.Label}: {prop}")
+
     def _signature(self, obj):
         api = _api()
         face_arg, _ = self.source_face(obj)
@@ -497,17 +421,3 @@ class PanelizationPart(_StateMixin):
             obj.NodeIds = list(res.node_ids)
             obj.Valence = [int(x) for x in res.metrics["node_valence"]]
 
-
-def _attach_view_provider(obj, class_name):
-    """Give an object made without the GUI (or by an older version) its view provider."""
-    if not FreeCAD.GuiUp:
-        return
-    vobj = getattr(obj, "ViewObject", None)
-    if vobj is None or getattr(vobj, "Proxy", None) is not None:
-        return
-    try:
-        from ..gui import view_providers
-
-        getattr(view_providers, class_name)(vobj)
-    except Exception as exc:  # a missing icon must not stop a document from opening
-        FreeCAD.Console.PrintWarning(f"Tessella: no view provider for {obj.Label}: {exc}\n")

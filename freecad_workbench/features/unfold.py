@@ -17,35 +17,24 @@ FROZEN: the module path `freecad_workbench.features.unfold` and the class name
 
 import FreeCAD
 
-from .panelization import add_property, is_panelization, value_of
+from .base import (  # noqa: F401
+    _READONLY_OUTPUT,
+    SCHEMA_VERSION,
+    _attach_view_provider,
+    _StateMixin,
+    add_property,
+    value_of,
+)
+from .panelization import is_panelization
 
-SCHEMA_VERSION = 1
-_READONLY_OUTPUT = 1 | 8
 
-
-class Unfold:
+class Unfold(_StateMixin):
     def __init__(self, obj, base=None):
         self._restore(None)
         self.setup_properties(obj)
         if base is not None:
             obj.Base = base
         obj.Proxy = self
-
-    # persistence (FreeCAD 0.20 on Python 3.11 needs both protocols)
-    def _restore(self, state):
-        self.schema = (state or {}).get("schema", SCHEMA_VERSION)
-
-    def dumps(self):
-        return {"schema": SCHEMA_VERSION}
-
-    def loads(self, state):
-        self._restore(state)
-
-    def __getstate__(self):
-        return self.dumps()
-
-    def __setstate__(self, state):
-        self._restore(state)
 
     def setup_properties(self, obj):
         add_property(obj, "App::PropertyLink", "Base", "Unfold", "The Panelization to unfold")
@@ -87,14 +76,9 @@ class Unfold:
                      "Panel area / sheet area over all sheets", attr=ro)
 
     def onDocumentRestored(self, obj):
+        self._ensure_runtime()
         self.setup_properties(obj)
-        if FreeCAD.GuiUp and getattr(obj.ViewObject, "Proxy", None) is None:
-            try:
-                from ..gui.unfold_view import ViewProviderUnfold
-
-                ViewProviderUnfold(obj.ViewObject)
-            except Exception as exc:
-                FreeCAD.Console.PrintWarning(f"Tessella: no view provider for {obj.Label}: {exc}\n")
+        _attach_view_provider(obj, "ViewProviderUnfold")
 
     def options(self, obj):
         return {

@@ -14,15 +14,9 @@ _dialogs = []  # keep open dialogs alive
 
 def selected_panelization():
     """The Panelization selected (directly or through one of its children), or None."""
-    from ..features.panelization import is_panelization
+    from ..selection import panelization_of
 
-    for obj in Gui.Selection.getSelection():
-        if is_panelization(obj):
-            return obj
-        base = getattr(obj, "Base", None)
-        if base is not None and is_panelization(base):
-            return base
-    return None
+    return panelization_of(Gui.Selection.getSelection())
 
 
 def histogram_path(obj):

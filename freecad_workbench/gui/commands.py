@@ -47,20 +47,12 @@ def selected_face():
 
     A selected object without a sub-element counts when its shape has one face.
     """
-    picks = []
-    for sel in Gui.Selection.getSelectionEx():
-        names = [n for n in sel.SubElementNames if n]
-        if names:
-            picks.extend((sel.Object, n) for n in names)
-        else:
-            shape = getattr(sel.Object, "Shape", None)
-            if shape is not None and not shape.isNull() and len(shape.Faces) == 1:
-                picks.append((sel.Object, "Face1"))
-            else:
-                picks.append((sel.Object, None))
-    if len(picks) != 1 or not picks[0][1] or not picks[0][1].startswith("Face"):
+    from .. import selection
+
+    try:
+        return selection.face_link(Gui.Selection.getSelectionEx())
+    except (ValueError, TypeError):
         return None
-    return picks[0]
 
 
 def _warn(title, text):
@@ -95,9 +87,11 @@ class PanelizeCommand:
             _warn("Tessella: Panelize", SELECT_ONE_FACE)
             return
         obj, sub = pick
+        from .. import selection
+
         try:
-            face = obj.Shape.getElement(sub)
-        except Exception:
+            face = selection.one_face(pick)
+        except (ValueError, TypeError):
             _warn("Tessella: Panelize", f"{obj.Label} has no {sub}. " + SELECT_ONE_FACE)
             return
         if Gui.Control.activeDialog():

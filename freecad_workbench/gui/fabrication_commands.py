@@ -13,16 +13,9 @@ SELECT_PANELIZATION = (
 
 def selected_panelization():
     """The selected Panelization (a selected child counts as its parent), else None."""
-    from ..features.panelization import is_panelization, is_panelization_part
+    from ..selection import panelization_of
 
-    picks = []
-    for obj in Gui.Selection.getSelection():
-        if is_panelization(obj):
-            picks.append(obj)
-        elif is_panelization_part(obj) and obj.Base is not None:
-            picks.append(obj.Base)
-    picks = list({o.Name: o for o in picks}.values())
-    return picks[0] if len(picks) == 1 else None
+    return panelization_of(Gui.Selection.getSelection())
 
 
 class UnfoldCommand:
@@ -62,11 +55,9 @@ SELECT_UNFOLD = "Select one Unfold object in the tree, then run Export flat pane
 
 
 def selected_unfold():
-    from ..features.unfold import Unfold
+    from ..selection import unfold_of
 
-    picks = [o for o in Gui.Selection.getSelection()
-             if isinstance(getattr(o, "Proxy", None), Unfold)]
-    return picks[0] if len(picks) == 1 else None
+    return unfold_of(Gui.Selection.getSelection())
 
 
 def ask_path(obj):

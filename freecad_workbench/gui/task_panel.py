@@ -12,7 +12,7 @@ import time
 import FreeCAD
 import FreeCADGui as Gui
 
-from .. import api
+from .. import api, selection
 
 #: Debounce between the last change and the preview.
 PREVIEW_DELAY_MS = 250
@@ -253,13 +253,13 @@ class PanelizationTaskPanel:
 
         class EdgeGate:
             def allow(self, doc, obj, sub):
-                return bool(sub) and sub.startswith("Edge") and hasattr(obj, "Shape") \
+                return selection.is_element(sub, selection.EDGE) and hasattr(obj, "Shape") \
                     and not panel._is_own(obj)
 
         class Picker:
             def addSelection(self, doc, obj_name, sub, pnt):
                 obj = FreeCAD.getDocument(doc).getObject(obj_name)
-                if obj is not None and sub and sub.startswith("Edge"):
+                if obj is not None and selection.is_element(sub, selection.EDGE):
                     panel.add_guide(obj, sub)
 
         self._stop_picking()
@@ -303,11 +303,7 @@ class PanelizationTaskPanel:
     def _initial_guides(self):
         if self.obj is None or "Guides" not in self.obj.PropertiesList:
             return []
-        out = []
-        for owner, subs in self.obj.Guides or []:
-            subs = [x for x in (subs or []) if x]
-            out.extend((owner, x) for x in subs) if subs else out.append((owner, ""))
-        return out
+        return selection.links_of(self.obj.Guides or [])
 
     def _source_text(self):
         if self.obj is not None:
@@ -330,13 +326,13 @@ class PanelizationTaskPanel:
 
         class FaceGate:
             def allow(self, doc, obj, sub):
-                return bool(sub) and sub.startswith("Face") and hasattr(obj, "Shape") \
+                return selection.is_element(sub, selection.FACE) and hasattr(obj, "Shape") \
                     and not panel._is_own(obj)
 
         class Picker:
             def addSelection(self, doc, obj_name, sub, pnt):
                 obj = FreeCAD.getDocument(doc).getObject(obj_name)
-                if obj is not None and sub and sub.startswith("Face"):
+                if obj is not None and selection.is_element(sub, selection.FACE):
                     panel.use_face(obj, sub)
 
         self._stop_picking()
@@ -570,8 +566,7 @@ class PanelizationTaskPanel:
                 params.setdefault("v_count", 0)
             for name, value in params.items():
                 if name == "guides":
-                    obj.Guides = [(g[0], [g[1]]) if isinstance(g, tuple) else (g, [])
-                                  for g in value]
+                    obj.Guides = selection.link_sub_list(selection.edge_links(value))
                     continue
                 setattr(obj, to_property[name], value)
             obj.Proxy.seed(obj, result)
