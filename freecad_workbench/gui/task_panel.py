@@ -472,7 +472,7 @@ class PanelizationTaskPanel:
 
     def accept(self):
         """OK: create (new) or write the changed properties (edit); one undo step."""
-        from .commands import _warn
+        from .common import warn
 
         self.timer.stop()
         method, params = self.parameters()
@@ -482,7 +482,7 @@ class PanelizationTaskPanel:
             else:
                 self._apply(method, params)
         except Exception as exc:
-            _warn("Tessella: Panelize", f"Panelize failed: {exc}")
+            warn("Tessella: Panelize", f"Panelize failed: {exc}")
             return False  # keep the panel open to fix the values
         self._close()
         return True
