@@ -18,12 +18,12 @@ class TessellaWorkbench(FreeCADGui.Workbench):
         import FreeCAD
 
         try:
-            from freecad_workbench.gui import commands
+            from freecad_workbench.gui import register  # registers every command
         except ImportError as exc:
             FreeCAD.Console.PrintError(f"Tessella: the workbench cannot load: {exc}\n")
             return
-        self.appendToolbar("Tessella", list(commands.COMMANDS))
-        self.appendMenu("Tessella", list(commands.COMMANDS))
+        self.appendToolbar("Tessella", list(register.COMMANDS))
+        self.appendMenu("Tessella", list(register.COMMANDS))
         from freecad_workbench.gui import preferences, selection_feedback
 
         selection_feedback.install()
@@ -37,11 +37,11 @@ class TessellaWorkbench(FreeCADGui.Workbench):
 
     def ContextMenu(self, recipient):
         try:
-            from freecad_workbench.gui import commands
+            from freecad_workbench.gui import register
         except ImportError:
             return
         if recipient == "View":
-            self.appendContextMenu("Tessella", list(commands.COMMANDS))
+            self.appendContextMenu("Tessella", list(register.COMMANDS))
 
     def GetClassName(self):
         return "Gui::PythonWorkbench"

@@ -5,7 +5,7 @@ rod line index for the 3D view), for a few hundred to a few thousand panels.
     PYTHONPATH=/usr/lib/freecad-python3/lib:. /usr/bin/python3 bench/preview_latency.py
 
 Target (issue 7): under 200 ms for 1,000 panels. The debounce delay itself
-(250 ms, freecad_workbench/gui/task_panel.py) is not included.
+(250 ms, freecad_workbench/gui/preview.py) is not included.
 """
 import math
 import os

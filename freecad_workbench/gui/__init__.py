@@ -5,8 +5,11 @@ Importing this package connects the GUI to the App side: it sets
 features.base.view_provider_hook, through which a restored document object
 without a view provider (made headless, or by an older version) gets one. The
 features never import this package; freecad_workbench/__init__.py imports it
-whenever FreeCAD's GUI is up. The commands are registered when InitGui.py
-imports gui.commands (the workbench's first activation).
+whenever FreeCAD's GUI is up.
+
+The commands are registered by gui/register.py (InitGui.py imports it when the
+workbench is first activated); the command modules share gui/common.py and
+never import each other.
 """
 
 

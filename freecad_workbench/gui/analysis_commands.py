@@ -4,19 +4,11 @@ as a PNG file and in a FreeCAD dialog."""
 import os
 import tempfile
 
-import FreeCAD
 import FreeCADGui as Gui
 
-from .view_providers import icon_path
+from .common import DocumentCommand, echo, object_ref, selected_panelization, warn  # noqa: F401
 
 _dialogs = []  # keep open dialogs alive
-
-
-def selected_panelization():
-    """The Panelization selected (directly or through one of its children), or None."""
-    from ..selection import panelization_of
-
-    return panelization_of(Gui.Selection.getSelection())
 
 
 def histogram_path(obj):
@@ -43,38 +35,23 @@ def show_image(path, title):
     return dialog
 
 
-class HistogramsCommand:
+class HistogramsCommand(DocumentCommand):
     """Tessella_Histograms: histograms of the selected Panelization."""
 
-    def GetResources(self):
-        return {
-            "Pixmap": icon_path("Tessella_Histograms"),
-            "MenuText": "Histograms",
-            "ToolTip": "Histograms of panel deviation, rod length and panel area of the "
-                       "selected Panelization (PNG file and a dialog)",
-        }
-
-    def IsActive(self):
-        return FreeCAD.ActiveDocument is not None
+    ICON = "Tessella_Histograms"
+    MENU_TEXT = "Histograms"
+    TOOL_TIP = ("Histograms of panel deviation, rod length and panel area of the "
+                "selected Panelization (PNG file and a dialog)")
 
     def Activated(self):
         obj = selected_panelization()
         if obj is None:
-            from .commands import _warn
-
-            _warn("Tessella: Histograms", "Select a Panelization (or its Panels, Rods or Nodes) first.")
+            warn("Tessella: Histograms", "Select a Panelization (or its Panels, Rods or Nodes) first.")
             return
         path = histogram_path(obj)
-        try:
-            Gui.doCommand("import freecad_workbench as tessella")
-            Gui.doCommand(f"tessella.histograms(App.getDocument({obj.Document.Name!r})"
-                          f".getObject({obj.Name!r}), {path!r})")
-        except Exception as exc:
-            from .commands import _warn
-
-            _warn("Tessella: Histograms", f"Histograms failed: {exc}")
-            return
-        show_image(path, f"Tessella: {obj.Label} histograms")
+        if echo("Tessella: Histograms", f"tessella.histograms({object_ref(obj)}, {path!r})",
+                "Histograms"):
+            show_image(path, f"Tessella: {obj.Label} histograms")
 
 
 Gui.addCommand("Tessella_Histograms", HistogramsCommand())

@@ -1,4 +1,5 @@
-"""GUI commands. Importing this module registers them with FreeCADGui.
+"""Tessella_Panelize. Importing this module registers the command with FreeCADGui
+(gui/register.py imports every command module).
 
 Every command echoes the equivalent Python through Gui.doCommand, so a recorded
 macro replays it without the GUI.
@@ -6,10 +7,11 @@ macro replays it without the GUI.
 
 import math
 
-import FreeCAD
 import FreeCADGui as Gui
 
-from .view_providers import icon_path
+from .common import DocumentCommand, selected_face, warn  # noqa: F401  (selected_face: old name)
+
+_warn = warn  # the name other modules imported from here
 
 #: The message shown when the selection is not exactly one face.
 SELECT_ONE_FACE = (
@@ -42,49 +44,18 @@ def default_size(face, panels_across=8):
     return size or 1.0
 
 
-def selected_face():
-    """(object, 'FaceN') when exactly one face is selected, else None.
+class PanelizeCommand(DocumentCommand):
+    """Tessella_Panelize: panelize the selected face (task panel with a live preview)."""
 
-    A selected object without a sub-element counts when its shape has one face.
-    """
-    from .. import selection
-
-    try:
-        return selection.face_link(Gui.Selection.getSelectionEx())
-    except (ValueError, TypeError):
-        return None
-
-
-def _warn(title, text):
-    FreeCAD.Console.PrintWarning(f"Tessella: {text}\n")
-    try:
-        from PySide import QtGui
-
-        QtGui.QMessageBox.warning(Gui.getMainWindow(), title, text)
-    except ImportError:
-        pass
-
-
-class PanelizeCommand:
-    """Tessella_Panelize: panelize the selected face with an iso grid."""
-
-    def GetResources(self):
-        return {
-            "Pixmap": icon_path("Tessella_Panelize"),
-            "MenuText": "Panelize face",
-            "ToolTip": (
-                "Cut the selected face into panels, rods and nodes: a task panel "
-                "with a live preview sets the method and its parameters"
-            ),
-        }
-
-    def IsActive(self):
-        return FreeCAD.ActiveDocument is not None
+    ICON = "Tessella_Panelize"
+    MENU_TEXT = "Panelize face"
+    TOOL_TIP = ("Cut the selected face into panels, rods and nodes: a task panel "
+                "with a live preview sets the method and its parameters")
 
     def Activated(self):
         pick = selected_face()
         if pick is None:
-            _warn("Tessella: Panelize", SELECT_ONE_FACE)
+            warn("Tessella: Panelize", SELECT_ONE_FACE)
             return
         obj, sub = pick
         from .. import selection
@@ -92,10 +63,10 @@ class PanelizeCommand:
         try:
             face = selection.one_face(pick)
         except (ValueError, TypeError):
-            _warn("Tessella: Panelize", f"{obj.Label} has no {sub}. " + SELECT_ONE_FACE)
+            warn("Tessella: Panelize", f"{obj.Label} has no {sub}. " + SELECT_ONE_FACE)
             return
         if Gui.Control.activeDialog():
-            _warn("Tessella: Panelize", "Close the open task panel first.")
+            warn("Tessella: Panelize", "Close the open task panel first.")
             return
         from . import preferences, task_panel
 
@@ -107,11 +78,5 @@ class PanelizeCommand:
 
 Gui.addCommand("Tessella_Panelize", PanelizeCommand())
 
-from . import analysis_commands  # noqa: E402  (registers its commands)
-
-#: Command names, in toolbar order (used by InitGui.py).
-COMMANDS = ["Tessella_Panelize"] + analysis_commands.COMMANDS
-
-from . import fabrication_commands  # noqa: E402  (registers Tessella_Unfold)
-
-COMMANDS += fabrication_commands.COMMANDS
+#: This module's commands, in toolbar order (gui/register.py lists them all).
+COMMANDS = ["Tessella_Panelize"]

@@ -5,22 +5,28 @@ short pause (debounced) and draws its rods as a preview in the 3D view, with a
 summary line. Nothing touches the document before OK: OK creates the objects
 (one undo step, echoed as Python) or, when editing, writes the changed
 properties in one transaction; Cancel leaves the document exactly as it was.
+
+The panel is assembled from three parts: the form (gui/task_form.py: the
+widgets, built from task_form.rows_for(method)), picking (gui/picking.py: one
+selection gate class for the face and the guide edges) and the preview
+(gui/preview.py).
 """
 
-import time
-
-import FreeCAD
 import FreeCADGui as Gui
 
 from .. import api, selection
+from . import task_form
+from .common import object_ref
+from .picking import ElementGate
+from .preview import (  # noqa: F401  (the benchmark and tests read them here)
+    COARSE_ABOVE,
+    COARSE_PANELS,
+    PREVIEW_DELAY_MS,
+    PREVIEW_SAMPLES,
+    Preview,
+)
 
-#: Debounce between the last change and the preview.
-PREVIEW_DELAY_MS = 250
-#: Above this many estimated panels a coarse preview (about COARSE_PANELS) comes first.
-COARSE_ABOVE = 3000
-COARSE_PANELS = 800
-#: Samples per panel edge for the preview's deviation figure (the object uses 8).
-PREVIEW_SAMPLES = 3
+_value = task_form.value  # tests read the widgets through it
 
 _active = None
 
@@ -30,280 +36,71 @@ def active():
     return _active
 
 
-def _quantity_box(unit, value, minimum=0.0, maximum=1e9):
-    """A FreeCAD quantity spin box (parses '1.5 m'); a plain spin box as fallback."""
-    from PySide import QtGui
-
-    try:
-        box = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
-        box.setProperty("unit", unit)
-        box.setProperty("minimum", minimum)
-        box.setProperty("maximum", maximum)
-        box.setProperty("rawValue", float(value))
-        return box
-    except Exception:
-        box = QtGui.QDoubleSpinBox()
-        box.setRange(minimum, maximum)
-        box.setDecimals(3)
-        box.setSuffix(" " + unit)
-        box.setValue(float(value))
-        return box
-
-
-def _value(box):
-    raw = box.property("rawValue")
-    return float(raw) if raw is not None else float(box.value())
-
-
 class PanelizationTaskPanel:
     """source=(object, 'FaceN') to create; obj=<Panelization> to edit."""
 
     def __init__(self, source=None, obj=None, size=None):
-        from PySide import QtCore, QtGui
-
         global _active
         self.source, self.obj = source, obj
-        self.preview_node = None
-        self.last_result = None
-        self.last_error = None
-        self.preview_count = 0  # previews drawn (tests and the benchmark read it)
-        self.preview_seconds = 0.0
-        p = self._initial(size)
-
-        self.form = QtGui.QWidget()
-        self.form.setWindowTitle("Tessella: edit panelization" if obj else "Tessella: panelize")
-        form = QtGui.QFormLayout(self.form)
-        self.source_label = QtGui.QLabel(self._source_text())
-        self.pick = QtGui.QPushButton("Pick face...")
-        self.pick.setCheckable(True)
-        self.pick.setToolTip("Then click a face in the 3D view (only faces can be selected)")
-        self.pick.toggled.connect(self.set_picking)
-        row = QtGui.QHBoxLayout()
-        row.addWidget(self.source_label, 1)
-        row.addWidget(self.pick)
-        form.addRow("Face", row)
         self.picked = None  # a new source face chosen in the panel (edit mode)
-        self._gate = self._observer = None
-        self.method = QtGui.QComboBox()
-        self.method.addItems(list(api.METHODS))
-        self.method.setCurrentIndex(list(api.METHODS).index(p["method"]))
-        form.addRow("Method", self.method)
-        # The chosen method's own parameters, rebuilt when the method changes.
-        self.method_box = QtGui.QWidget()
-        self.method_form = QtGui.QFormLayout(self.method_box)
-        self.method_form.setContentsMargins(0, 0, 0, 0)
-        form.addRow(self.method_box)
-        self.widgets = {}
-        self.values = dict(p["values"])  # last value of every parameter seen
         self.guides = self._initial_guides()
         self.guides_changed = False
-        self._build_method_rows()
-        self.method.currentIndexChanged.connect(self._method_changed)
-        self.sliver = self._make_widget(api.METHODS["iso_grid"].params["sliver_fraction"], p["sliver_fraction"])
-        form.addRow("Sliver fraction", self.sliver)
-        self.min_angle = self._make_widget(api.METHODS["iso_grid"].params["min_angle"], p["min_angle"])
-        form.addRow("Min angle", self.min_angle)
-        self.max_panels = self._make_widget(api.METHODS["iso_grid"].params["max_panels"], p["max_panels"])
-        form.addRow("Max panels", self.max_panels)
-        self.live = QtGui.QCheckBox("Live preview")
-        self.live.setChecked(True)
-        form.addRow(self.live)
-        self.summary = QtGui.QLabel("")
-        self.summary.setWordWrap(True)
-        form.addRow(self.summary)
-
-        self.timer = QtCore.QTimer()
-        self.timer.setSingleShot(True)
-        self.timer.setInterval(PREVIEW_DELAY_MS)
-        self.timer.timeout.connect(self.update_preview)
-        for signal in (self.method.currentIndexChanged, self.live.toggled):
-            signal.connect(self.schedule_preview)
-        for box in (self.sliver, self.min_angle, self.max_panels):
-            self._connect(box)
+        self._picking = None  # the active ElementGate
+        self.preview = None
+        self.form_parts = task_form.ParameterForm(
+            "Tessella: edit panelization" if obj else "Tessella: panelize",
+            self._source_text(), task_form.initial_values(obj, size), self._guides_text,
+            self.schedule_preview, self.set_picking, self.set_picking_guides)
+        f = self.form_parts
+        self.form = f.widget
+        self.source_label, self.pick, self.method = f.source_label, f.pick, f.method
+        self.sliver, self.min_angle, self.max_panels = f.sliver, f.min_angle, f.max_panels
+        self.live, self.summary = f.live, f.summary
+        self.preview = Preview(self._preview_inputs, self.summary, self.live)
+        self.timer = self.preview.timer
         _active = self
         self.schedule_preview()
 
-    # ----------------------------------------------------------------- values
-    def _initial(self, size):
-        """Values to show: the object's properties (edit) or the defaults (new)."""
-        from ..make import _param_to_property
+    # ---------------------------------------------------------- form (views)
+    @property
+    def widgets(self):
+        """The inputs of the chosen method's rows, by parameter name."""
+        return self.form_parts.widgets
 
-        values = {}
-        if self.obj is not None:
-            o = self.obj
-            for name, prop in _param_to_property().items():
-                if hasattr(o, prop) and not isinstance(getattr(o, prop), list):
-                    v = getattr(o, prop)
-                    values[name] = float(v.Value) if hasattr(v, "Value") else v
-            return {"method": o.Method, "values": values,
-                    "sliver_fraction": float(o.SliverFraction),
-                    "min_angle": float(o.MinAngle.Value), "max_panels": int(o.MaxPanels)}
-        from . import preferences
+    @property
+    def values(self):
+        return self.form_parts.values
 
-        prefs = preferences.defaults()
-        values["size"] = size or 1000.0
-        if prefs["max_deviation"] > 0:
-            values["max_deviation"] = prefs["max_deviation"]
-        return {"method": prefs["method"], "values": values,
-                "sliver_fraction": prefs["sliver_fraction"], "min_angle": prefs["min_angle"],
-                "max_panels": prefs["max_panels"]}
+    @property
+    def guides_label(self):
+        return self.form_parts.guides_label
 
-    # ------------------------------------------------------ parameter widgets
-    def _make_widget(self, p, value):
-        """The input of declared parameter p (its kind, unit, range and tooltip)."""
-        from PySide import QtGui
+    @property
+    def guides_pick(self):
+        return self.form_parts.guides_pick
 
-        if p.type == "bool":
-            box = QtGui.QCheckBox()
-            box.setChecked(bool(value))
-        elif p.type == "choice":
-            box = QtGui.QComboBox()
-            box.addItems(list(p.choices))
-            if value in p.choices:
-                box.setCurrentIndex(list(p.choices).index(value))
-        elif p.type == "int_list":
-            box = QtGui.QLineEdit(", ".join(str(int(k)) for k in (value or [])))
-            box.setPlaceholderText("e.g. 0, 2 (empty: all)")
-        elif p.type == "int":
-            box = QtGui.QSpinBox()
-            box.setRange(int(p.minimum), int(min(p.maximum, 2**31 - 1)))
-            box.setValue(int(value))
-        elif p.unit == "":
-            box = QtGui.QDoubleSpinBox()
-            box.setRange(p.minimum, p.maximum)
-            box.setDecimals(6 if p.maximum <= 1.0 else 4)
-            box.setSingleStep(0.05)
-            box.setValue(float(value))
-        else:
-            box = _quantity_box(p.unit, value, p.minimum, p.maximum)
-        box.setToolTip(p.doc)
-        return box
+    def widget(self, name):
+        """The input of a method parameter (tests set values through it)."""
+        return self.widgets[name]
 
-    def _connect(self, box):
-        sig = (getattr(box, "valueChanged", None) or getattr(box, "toggled", None)
-               or getattr(box, "currentIndexChanged", None) or getattr(box, "editingFinished", None))
-        if sig is not None:
-            sig.connect(self.schedule_preview)
-
-    def _default_of(self, method, name):
-        """The core's default for a parameter (from the method declarations)."""
-        return api.METHODS[method].params[name].default
-
-    def _build_method_rows(self):
-        """One row per declared parameter of the chosen method (the shared
-        sliver fraction, min angle and panel cap have their own rows below;
-        guide edges are picked; linked curves are listed)."""
-        from PySide import QtGui
-
-        while self.method_form.rowCount():
-            self.method_form.removeRow(0)
-        self.widgets = {}
-        method = self.method.currentText()
-        own_rows = ("sliver_fraction", "min_angle", "max_panels")
-        self._add_guides_row(method)
-        for p in api.METHODS[method]:
-            if p.name in own_rows or p.type == "curves":
-                continue
-            if p.type == "uv_curves":
-                linked = len(getattr(self.obj, p.property, None) or []) if self.obj else 0
-                note = QtGui.QLabel(f"{linked} linked edge(s): set {p.property} in the "
-                                    "property editor")
-                note.setToolTip(p.doc)
-                self.method_form.addRow(p.label, note)
-                continue
-            value = self.values.get(p.name, p.default)
-            box = self._make_widget(p, value)
-            self._connect(box)
-            self.widgets[p.name] = box
-            self.method_form.addRow(p.label, box)
-
-    # ------------------------------------------------------------ guide edges
     def guides_needed(self, method=None):
         """How many guide edges the method takes (0: none)."""
-        method = method or self.method.currentText()
-        return api.GUIDE_COUNT.get(method, 0)
+        return task_form.guides_needed(method or self.method.currentText())
 
-    def _add_guides_row(self, method):
-        from PySide import QtGui
+    def parameters(self):
+        """(method, keyword parameters) as the panel shows them."""
+        return self.form_parts.parameters(self.guides)
 
-        self.guides_label = self.guides_pick = None
-        need = self.guides_needed(method)
-        if not need:
-            return
-        self.guides_label = QtGui.QLabel(self._guides_text())
-        self.guides_label.setWordWrap(True)
-        pick = QtGui.QPushButton("Pick edges...")
-        pick.setCheckable(True)
-        pick.setToolTip(f"Then click {need} edge(s) in the 3D view (only edges can be selected)")
-        pick.toggled.connect(self.set_picking_guides)
-        self.guides_pick = pick
-        row = QtGui.QHBoxLayout()
-        row.addWidget(self.guides_label, 1)
-        row.addWidget(pick)
-        self.method_form.addRow("Guides", row)
+    # -------------------------------------------------------------- sources
+    def _initial_guides(self):
+        if self.obj is None or "Guides" not in self.obj.PropertiesList:
+            return []
+        return selection.links_of(self.obj.Guides or [])
 
     def _guides_text(self):
         if not self.guides:
             return "(none: pick)"
         return ", ".join(f"{o.Label}.{s}" if s else o.Label for o, s in self.guides)
-
-    def set_picking_guides(self, on):
-        """Pick guide edges in the 3D view through an edges-only selection gate."""
-        panel = self
-
-        class EdgeGate:
-            def allow(self, doc, obj, sub):
-                return selection.is_element(sub, selection.EDGE) and hasattr(obj, "Shape") \
-                    and not panel._is_own(obj)
-
-        class Picker:
-            def addSelection(self, doc, obj_name, sub, pnt):
-                obj = FreeCAD.getDocument(doc).getObject(obj_name)
-                if obj is not None and selection.is_element(sub, selection.EDGE):
-                    panel.add_guide(obj, sub)
-
-        self._stop_picking()
-        self._uncheck(self.pick)
-        if on:
-            self.guides = []
-            self.guides_label.setText(self._guides_text())
-            Gui.Selection.clearSelection()
-            self._gate, self._observer = EdgeGate(), Picker()
-            Gui.Selection.addSelectionGate(self._gate)
-            Gui.Selection.addObserver(self._observer)
-
-    def add_guide(self, obj, sub):
-        """Append a guide edge; picking ends when the method has all it needs."""
-        self.guides.append((obj, sub))
-        self.guides_changed = True
-        self.guides_label.setText(self._guides_text())
-        if len(self.guides) >= self.guides_needed():
-            self.guides_pick.setChecked(False)
-            Gui.Selection.clearSelection()
-        self.schedule_preview()
-
-    def _method_changed(self, *args):
-        for name, box in self.widgets.items():
-            self.values[name] = self._read(box)
-        self._build_method_rows()
-
-    @staticmethod
-    def _read(box):
-        from PySide import QtGui
-
-        if isinstance(box, QtGui.QCheckBox):
-            return bool(box.isChecked())
-        if isinstance(box, QtGui.QComboBox):
-            return str(box.currentText())
-        if isinstance(box, QtGui.QLineEdit):  # a list of whole numbers
-            return [int(k) for k in box.text().replace(",", " ").split()]
-        return _value(box) if box.property("rawValue") is not None or \
-            hasattr(box, "decimals") else int(box.value())
-
-    def _initial_guides(self):
-        if self.obj is None or "Guides" not in self.obj.PropertiesList:
-            return []
-        return selection.links_of(self.obj.Guides or [])
 
     def _source_text(self):
         if self.obj is not None:
@@ -319,32 +116,34 @@ class PanelizationTaskPanel:
             return self.obj.Proxy.source_face(self.obj)[0]
         return self.source
 
-    # --------------------------------------------------------- face picking
+    # -------------------------------------------------------------- picking
     def set_picking(self, on):
         """Pick a face in the 3D view: a selection gate lets only faces through."""
-        panel = self
-
-        class FaceGate:
-            def allow(self, doc, obj, sub):
-                return selection.is_element(sub, selection.FACE) and hasattr(obj, "Shape") \
-                    and not panel._is_own(obj)
-
-        class Picker:
-            def addSelection(self, doc, obj_name, sub, pnt):
-                obj = FreeCAD.getDocument(doc).getObject(obj_name)
-                if obj is not None and selection.is_element(sub, selection.FACE):
-                    panel.use_face(obj, sub)
-
         self._stop_picking()
-        self._uncheck(getattr(self, "guides_pick", None))
+        self._uncheck(self.guides_pick)
         if on:
-            Gui.Selection.clearSelection()
-            self._gate, self._observer = FaceGate(), Picker()
-            Gui.Selection.addSelectionGate(self._gate)
-            Gui.Selection.addObserver(self._observer)
+            self._start_picking(selection.FACE, self.use_face)
+
+    def set_picking_guides(self, on):
+        """Pick guide edges in the 3D view through an edges-only selection gate."""
+        self._stop_picking()
+        self._uncheck(self.pick)
+        if on:
+            self.guides = []
+            self.form_parts.show_guides()
+            self._start_picking(selection.EDGE, self.add_guide)
+
+    def _start_picking(self, kind, on_pick):
+        self._picking = ElementGate(kind, on_pick, exclude=self._is_own)
+        self._picking.start()
+
+    def _stop_picking(self):
+        if self._picking is not None:
+            self._picking.stop()
+            self._picking = None
 
     def _is_own(self, obj):
-        """The panelization's own objects cannot be its source."""
+        """The panelization's own objects cannot be its source or guides."""
         if self.obj is None:
             return False
         return obj == self.obj or getattr(obj, "Base", None) == self.obj
@@ -357,14 +156,6 @@ class PanelizationTaskPanel:
             button.setChecked(False)
             button.blockSignals(False)
 
-    def _stop_picking(self):
-        if self._gate is not None:
-            Gui.Selection.removeSelectionGate()
-            self._gate = None
-        if self._observer is not None:
-            Gui.Selection.removeObserver(self._observer)
-            self._observer = None
-
     def use_face(self, obj, sub):
         """Take (obj, 'FaceN') as the face to panelize and preview it."""
         if self.obj is None:
@@ -375,112 +166,52 @@ class PanelizationTaskPanel:
         self.pick.setChecked(False)  # ends picking
         self.schedule_preview()
 
-    def parameters(self):
-        """(method, keyword parameters) as the panel shows them."""
-        method = self.method.currentText()
-        params = {name: self._read(box) for name, box in self.widgets.items()}
-        if method == "iso_grid":
-            # Counts replace the size (the core takes one or the other).
-            if params.get("u_count") or params.get("v_count"):
-                params.pop("size", None)
-            else:
-                params.pop("u_count", None)
-                params.pop("v_count", None)
-        if self.guides_needed(method):
-            params["guides"] = [(o, s) if s else o for o, s in self.guides]
-        params.update(sliver_fraction=float(self.sliver.value()),
-                      min_angle=_value(self.min_angle), max_panels=int(self.max_panels.value()))
-        for name in list(params):  # only what this method takes
-            if name not in api.METHODS[method].params:
-                params.pop(name)
-        return method, params
+    def add_guide(self, obj, sub):
+        """Append a guide edge; picking ends when the method has all it needs."""
+        self.guides.append((obj, sub))
+        self.guides_changed = True
+        self.form_parts.show_guides()
+        if len(self.guides) >= self.guides_needed():
+            self.guides_pick.setChecked(False)
+            Gui.Selection.clearSelection()
+        self.schedule_preview()
 
-    def widget(self, name):
-        """The input of a method parameter (tests set values through it)."""
-        return self.widgets[name]
+    # -------------------------------------------------------------- preview
+    def _preview_inputs(self):
+        method, params = self.parameters()
+        return self.face_arg(), method, params
 
-    # ---------------------------------------------------------------- preview
     def schedule_preview(self, *args):
-        if self.live.isChecked():
-            self.timer.start()
-        else:
-            self.remove_preview()
+        if self.preview is not None:  # (not while the form is being built)
+            self.preview.schedule()
 
     def update_preview(self):
         """Panelize with the shown values and draw the rods; coarse first if large."""
-        method, params = self.parameters()
-        started = time.perf_counter()
-        try:
-            face = self.face_arg()
-            size = params.get("size")
-            if size and "u_count" not in params:
-                import math
-
-                area = api.face_to_shape(face).Area
-                estimate = area / (size * size)
-                if estimate > COARSE_ABOVE:
-                    coarse = dict(params, size=math.sqrt(area / COARSE_PANELS), samples=2)
-                    self._draw(api.panelize(face, method=method, **coarse), coarse=True)
-            # The preview measures with fewer samples than the final result.
-            result = api.panelize(face, method=method, **dict(params, samples=PREVIEW_SAMPLES))
-        except Exception as exc:  # shown in the panel, never raised into the GUI
-            self.last_result, self.last_error = None, str(exc)
-            self.remove_preview()
-            self.summary.setText(f"<span style='color:#b00020'>{exc}</span>")
-            return
-        self.last_result, self.last_error = result, None
-        self._draw(result)
-        self.preview_seconds = time.perf_counter() - started
-
-    def _draw(self, result, coarse=False):
-        self.remove_preview()
-        try:
-            from pivy import coin
-        except ImportError:
-            coin = None
-        view = getattr(Gui.ActiveDocument, "ActiveView", None) if Gui.ActiveDocument else None
-        if coin is not None and view is not None and hasattr(view, "getSceneGraph"):
-            node = coin.SoSeparator()
-            node.setName("TessellaPreview")
-            color = coin.SoBaseColor()
-            from . import preferences
-
-            color.rgb = preferences.defaults()["preview_color"] if not coarse else (0.6, 0.6, 0.6)
-            style = coin.SoDrawStyle()
-            style.lineWidth = 2
-            coords = coin.SoCoordinate3()
-            pts = [tuple(map(float, p)) for p in result.vertices]
-            coords.point.setValues(0, len(pts), pts)
-            lines = coin.SoIndexedLineSet()
-            index = []
-            for a, b in result.rods:
-                index += [int(a), int(b), -1]
-            lines.coordIndex.setValues(0, len(index), index)
-            for child in (color, style, coords, lines):
-                node.addChild(child)
-            view.getSceneGraph().addChild(node)
-            self.preview_node = node
-        s = result.summary
-        dev = s["panel_deviation"]["max"] if s["panel_deviation"]["count"] else 0.0
-        prefix = "Coarse preview: " if coarse else ""
-        self.summary.setText(
-            f"{prefix}{s['panel_count']} panels, {s['rod_count']} rods, {s['node_count']} nodes, "
-            f"max deviation {dev:.2f} mm, {s['irregular_count']} irregular")
-        self.preview_count += 1
-        from PySide import QtGui
-
-        QtGui.QApplication.processEvents()
+        self.preview.update()
 
     def remove_preview(self):
-        node = self.preview_node
-        self.preview_node = None
-        if node is None or Gui.ActiveDocument is None:
-            return
-        view = getattr(Gui.ActiveDocument, "ActiveView", None)
-        if view is not None and hasattr(view, "getSceneGraph"):
-            graph = view.getSceneGraph()
-            if graph.findChild(node) >= 0:
-                graph.removeChild(node)
+        self.preview.remove()
+
+    @property
+    def preview_node(self):
+        return self.preview.node
+
+    @property
+    def preview_count(self):
+        """Previews drawn (tests and the benchmark read it)."""
+        return self.preview.count
+
+    @property
+    def preview_seconds(self):
+        return self.preview.seconds
+
+    @property
+    def last_result(self):
+        return self.preview.last_result
+
+    @property
+    def last_error(self):
+        return self.preview.last_error
 
     # ---------------------------------------------------------------- buttons
     def getStandardButtons(self):
@@ -490,7 +221,7 @@ class PanelizationTaskPanel:
 
     def accept(self):
         """OK: create (new) or write the changed properties (edit); one undo step."""
-        from .commands import _warn
+        from .common import warn
 
         self.timer.stop()
         method, params = self.parameters()
@@ -500,7 +231,7 @@ class PanelizationTaskPanel:
             else:
                 self._apply(method, params)
         except Exception as exc:
-            _warn("Tessella: Panelize", f"Panelize failed: {exc}")
+            warn("Tessella: Panelize", f"Panelize failed: {exc}")
             return False  # keep the panel open to fix the values
         self._close()
         return True
@@ -523,19 +254,16 @@ class PanelizationTaskPanel:
     def _create(self, method, params):
         obj, sub = self.source
 
-        def ref(o):
-            return f"FreeCAD.getDocument({o.Document.Name!r}).getObject({o.Name!r})"
-
         def literal(key, value):
             if key == "guides":  # document objects: write how to find them
-                return "[" + ", ".join(f"({ref(g[0])}, {g[1]!r})" if isinstance(g, tuple)
-                                       else ref(g) for g in value) + "]"
+                return "[" + ", ".join(f"({object_ref(g[0])}, {g[1]!r})" if isinstance(g, tuple)
+                                       else object_ref(g) for g in value) + "]"
             return repr(value)
 
         args = ", ".join(f"{k}={literal(k, v)}" for k, v in params.items())
         # gui_progress() is None in a headless replay of the recorded macro.
         call = ("tessella.make_panelization("
-                f"(FreeCAD.getDocument({obj.Document.Name!r}).getObject({obj.Name!r}), {sub!r}), "
+                f"({object_ref(obj)}, {sub!r}), "
                 f"method={method!r}, {args}, progress=tessella.gui_progress())")
         Gui.doCommand("import freecad_workbench as tessella")
         Gui.doCommand(call)
@@ -555,9 +283,6 @@ class PanelizationTaskPanel:
         doc = obj.Document
         doc.openTransaction("Edit panelization")
         try:
-            from ..make import _param_to_property
-
-            to_property = _param_to_property()
             if self.picked is not None:
                 obj.Source = (self.picked[0], [self.picked[1]])
             obj.Method = method
@@ -568,7 +293,7 @@ class PanelizationTaskPanel:
                 if name == "guides":
                     obj.Guides = selection.link_sub_list(selection.edge_links(value))
                     continue
-                setattr(obj, to_property[name], value)
+                setattr(obj, task_form.property_of(name), value)
             obj.Proxy.seed(obj, result)
             doc.recompute()
         except Exception:

@@ -4,7 +4,8 @@ FROZEN: the module path `freecad_workbench.gui.unfold_view` and the class name
 `ViewProviderUnfold` are stored in the GuiDocument.xml of saved .FCStd files.
 """
 
-from .view_providers import _VPState, icon_path
+from .common import icon_path
+from .view_providers import _VPState
 
 
 class ViewProviderUnfold(_VPState):

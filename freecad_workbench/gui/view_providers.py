@@ -5,18 +5,7 @@ FROZEN: the module path `freecad_workbench.gui.view_providers` and the class nam
 GuiDocument.xml of every .FCStd saved from the GUI.
 """
 
-import os
-
-ICON_DIR = os.path.join(
-    os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
-    "resources",
-    "icons",
-)
-
-
-def icon_path(name):
-    """Absolute path of resources/icons/<name>.svg."""
-    return os.path.join(ICON_DIR, name + ".svg")
+from .common import ICON_DIR, icon_path  # noqa: F401  (imported from here by older code)
 
 
 class _VPState:

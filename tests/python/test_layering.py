@@ -148,3 +148,63 @@ def test_the_gui_package_installs_the_hook(monkeypatch):
     assert base.view_provider_hook is gui.attach_view_provider
     with pytest.raises(LookupError):
         gui.attach_view_provider(_FakeViewObject(), "NoSuchViewProvider")
+
+
+GUI = ROOT / "freecad_workbench" / "gui"
+COMMAND_MODULES = ("commands", "analysis_commands", "fabrication_commands")
+
+
+def _relative_imports(path):
+    """Module names (within gui/) a gui module imports at any level of its code."""
+    tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.level == 1:
+            if node.module:
+                names.add(node.module.split(".")[0])
+            else:
+                names.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            parts = node.module.split(".")
+            if parts[:2] == ["freecad_workbench", "gui"]:
+                names.add(parts[2] if len(parts) > 2 else "")
+                if len(parts) == 2:
+                    names.update(a.name for a in node.names)
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                parts = alias.name.split(".")
+                if parts[:2] == ["freecad_workbench", "gui"] and len(parts) > 2:
+                    names.add(parts[2])
+    return names
+
+
+def test_command_modules_import_only_common_not_each_other():
+    for name in COMMAND_MODULES:
+        imported = _relative_imports(GUI / f"{name}.py")
+        others = imported & (set(COMMAND_MODULES) - {name})
+        assert not others, f"gui/{name}.py imports {sorted(others)}"
+        assert "common" in imported, f"gui/{name}.py does not use gui/common.py"
+    assert _relative_imports(GUI / "common.py").isdisjoint(COMMAND_MODULES)
+    # one place registers them all, and InitGui.py goes through it
+    assert set(COMMAND_MODULES) <= _relative_imports(GUI / "register.py")
+    init_gui = (ROOT / "InitGui.py").read_text(encoding="utf-8")
+    assert "from freecad_workbench.gui import register" in init_gui
+    assert "register.COMMANDS" in init_gui
+
+
+def test_command_icons_exist():
+    from freecad_workbench.gui import common
+
+    icons = set()
+    for name in COMMAND_MODULES:
+        tree = ast.parse((GUI / f"{name}.py").read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Assign) and any(
+                    getattr(t, "id", None) == "ICON" for t in node.targets):
+                icons.add(node.value.value)
+    assert len(icons) >= 4
+    for icon in icons:
+        assert os.path.isfile(common.icon_path(icon)), icon
+    from freecad_workbench.gui import view_providers
+
+    assert view_providers.icon_path is common.icon_path  # the old import path
