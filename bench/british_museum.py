@@ -196,15 +196,8 @@ def main(argv=None):
             _, curves_a, curves_b = core.two_guide_lines_curves(sf, p)
             core_seconds = time.perf_counter() - t
             ncurves = len(curves_a) + len(curves_b)
-        else:  # the core's whole run: two GSM sets and their crossings
-            p = core.GuideLineDiamondParams()
-            p.guides = [tessella.api.edge_polyline(g) for g in guides]
-            p.rod_length = args.rod_length
-            if args.advance > 0:
-                p.advance = args.advance
-            t = time.perf_counter()
-            core.guide_line_diamond(sf, p)
-            core_seconds = (time.perf_counter() - t) / 2  # per guide-line set
+        else:  # the pipeline's method stage: two GSM sets and their crossings
+            core_seconds = res.summary["core_seconds"] / 2  # per guide-line set
             ncurves = 0
         rl = rod_lengths(res)
         s = res.summary

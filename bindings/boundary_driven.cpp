@@ -45,10 +45,6 @@ void bind_boundary_driven(py::module_& m) {
                   bindings::points<2>(bindings::DoubleArray::ensure(c), "an extra source curve"));
           });
 
-  m.def("boundary_driven", [](const SurfaceFace& f, const BoundaryDrivenParams& p) {
-    py::gil_scoped_release release;
-    return boundary_driven(f, p);
-  });
   // The intermediate stages, for display and tests: traced curves, the
   // preliminary network (nodes, edges, faces) and the final mesh.
   m.def("boundary_driven_stages", [](const SurfaceFace& f, const BoundaryDrivenParams& p) {

@@ -56,7 +56,6 @@ void bind_fabrication(py::module_& m) {
     py::gil_scoped_release release;
     return unfold_panels(mesh, p);
   });
-  m.def("unfold_panel", &unfold_panel, py::arg("xyz"), py::arg("uv"), py::arg("params"));
   m.def("fold_angle_deg", &fold_angle_deg);
 
   py::class_<FlattenParams>(m, "FlattenParams")

@@ -5,7 +5,6 @@
 #include <pybind11/stl.h>
 
 #include "numpy_convert.h"
-#include "tessella/guide_line_diamond.h"
 #include "tessella/guide_line_scaling.h"
 #include "tessella/surface_face.h"
 #include "tessella/two_guide_lines.h"
@@ -62,10 +61,6 @@ void bind_guide_lines(py::module_& m) {
       .def_readwrite("max_curves", &TwoGuideLinesParams::max_curves)
       .def_readwrite("trim_deflection", &TwoGuideLinesParams::trim_deflection)
       .def_readwrite("max_panels", &TwoGuideLinesParams::max_panels);
-  m.def("two_guide_lines", [](const SurfaceFace& f, const TwoGuideLinesParams& p) {
-    py::gil_scoped_release release;
-    return two_guide_lines(f, p);
-  });
   m.def("two_guide_lines_curves", [](const SurfaceFace& f, const TwoGuideLinesParams& p) {
     TwoGuideLinesResult r;
     {
@@ -78,35 +73,6 @@ void bind_guide_lines(py::module_& m) {
     for (const SurfaceCurve& c : r.curves_b)
       b.append(py::make_tuple(rows<2>(c.uv), rows<3>(c.xyz)));
     return py::make_tuple(std::move(r.mesh), a, b);
-  });
-  py::class_<GuideLineDiamondParams>(m, "GuideLineDiamondParams")
-      .def(py::init<>())
-      .def_property(
-          "guides",
-          [](const GuideLineDiamondParams& p) {
-            return py::make_tuple(rows<3>(p.guide_a), rows<3>(p.guide_b));
-          },
-          [](GuideLineDiamondParams& p,
-             const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& g) {
-            if (g.size() != 2) throw py::value_error("guides must hold exactly 2 polylines");
-            p.guide_a = to_points(g[0]);
-            p.guide_b = to_points(g[1]);
-          })
-      .def_readwrite("rod_length", &GuideLineDiamondParams::rod_length)
-      .def_readwrite("advance", &GuideLineDiamondParams::advance)
-      .def_readwrite("finish_sweep", &GuideLineDiamondParams::finish_sweep)
-      .def_readwrite("triangulate", &GuideLineDiamondParams::triangulate)
-      .def_readwrite("guide_tolerance", &GuideLineDiamondParams::guide_tolerance)
-      .def_readwrite("max_curves", &GuideLineDiamondParams::max_curves)
-      .def_readwrite("trim_deflection", &GuideLineDiamondParams::trim_deflection)
-      .def_readwrite("max_panels", &GuideLineDiamondParams::max_panels);
-  m.def("guide_line_diamond", [](const SurfaceFace& f, const GuideLineDiamondParams& p) {
-    py::gil_scoped_release release;
-    return guide_line_diamond(f, p);
-  });
-  m.def("guide_line_scaling", [](const SurfaceFace& f, const GuideLineScalingParams& p) {
-    py::gil_scoped_release release;
-    return guide_line_scaling(f, p);
   });
   // The mesh and the advanced curves [(uv (K,2), xyz (K,3)), ...] in sweep order.
   m.def("guide_line_scaling_curves", [](const SurfaceFace& f, const GuideLineScalingParams& p) {

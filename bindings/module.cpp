@@ -23,7 +23,6 @@ using bindings::values;
 
 void bind_boundary_driven(py::module_& m);
 void bind_fabrication(py::module_& m);
-void bind_agents(py::module_& m);
 void bind_pipeline(py::module_& m);
 
 using bindings::nogil;
@@ -93,28 +92,14 @@ PYBIND11_MODULE(_core, m) {
         return out;
       });
 
-  py::class_<GridClipParams>(m, "GridClipParams")
-      .def(py::init<>())
-      .def_readwrite("sliver_fraction", &GridClipParams::sliver_fraction)
-      .def_readwrite("trim_deflection", &GridClipParams::trim_deflection)
-      .def_readwrite("max_panels", &GridClipParams::max_panels);
   py::class_<IsoGridParams>(m, "IsoGridParams")
       .def(py::init<>())
       .def_readwrite("u_count", &IsoGridParams::u_count)
       .def_readwrite("v_count", &IsoGridParams::v_count)
-      .def_readwrite("size", &IsoGridParams::size)
-      .def_readwrite("clip", &IsoGridParams::clip);
-  py::class_<EqualSizeGridParams>(m, "EqualSizeGridParams")
-      .def(py::init<>())
-      .def_readwrite("size", &EqualSizeGridParams::size)
-      .def_readwrite("clip", &EqualSizeGridParams::clip);
+      .def_readwrite("size", &IsoGridParams::size);
   py::class_<MetricsParams>(m, "MetricsParams")
       .def(py::init<>())
       .def_readwrite("samples", &MetricsParams::samples);
-  py::class_<IrregularParams>(m, "IrregularParams")
-      .def(py::init<>())
-      .def_readwrite("min_angle_deg", &IrregularParams::min_angle_deg)
-      .def_readwrite("min_area_fraction", &IrregularParams::min_area_fraction);
 
   py::class_<PanelMesh>(m, "PanelMesh")
       .def_property_readonly("uv", [](const PanelMesh& mesh) { return rows<2>(mesh.uv); })
@@ -165,36 +150,11 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("face"), py::arg("params"), py::arg("progress") = py::none());
   m.def(
-      "equal_size_grid",
-      [](const SurfaceFace& f, const EqualSizeGridParams& p, py::object progress) {
-        return with_progress(progress, [&] { return equal_size_grid(f, p); });
-      },
-      py::arg("face"), py::arg("params"), py::arg("progress") = py::none());
-  m.def(
       "measure_panels",
       [](const SurfaceFace& f, const PanelMesh& mesh, const MetricsParams& p, py::object progress) {
         return with_progress(progress, [&] { return measure_panels(f, mesh, p); });
       },
       py::arg("face"), py::arg("mesh"), py::arg("params"), py::arg("progress") = py::none());
-  m.def("node_data", &node_data);
-  m.def("irregular_panels",
-        [](const PanelMesh& mesh, const PanelMetrics& metrics, const IrregularParams& p) {
-          const std::vector<bool> flags = irregular_panels(mesh, metrics, p);
-          py::array_t<bool> a(static_cast<py::ssize_t>(flags.size()));
-          auto r = a.mutable_unchecked<1>();
-          for (std::size_t i = 0; i < flags.size(); ++i) r(i) = flags[i];
-          return a;
-        });
-  m.def("summarize", [](const std::vector<double>& v) {
-    const SummaryStats s = summarize(v);
-    py::dict d;
-    d["count"] = s.count;
-    d["mean"] = s.mean;
-    d["variance"] = s.variance;
-    d["min"] = s.min;
-    d["max"] = s.max;
-    return d;
-  });
   m.def(
       "panels_to_brep",
       [](const PanelMesh& mesh, double tol, py::object progress) {
@@ -207,6 +167,14 @@ PYBIND11_MODULE(_core, m) {
         [](const PanelMesh& mesh) { return nogil([&] { return nodes_to_brep(mesh); }); });
   bind_boundary_driven(m);
   bind_guide_lines(m);
-  bind_agents(m);
+  // The cost counter of a face and the folds of a mesh (benchmarks, tests).
+  m.def("surface_evaluations", [](const SurfaceFace& f) { return f.evaluations(); });
+  m.def("mesh_folds", [](const PanelMesh& mesh) {
+    py::array_t<long long> a({static_cast<py::ssize_t>(mesh.folds.size()), py::ssize_t(2)});
+    auto r = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < mesh.folds.size(); ++i)
+      r(i, 0) = mesh.folds[i][0], r(i, 1) = mesh.folds[i][1];
+    return a;
+  });
   bind_pipeline(m);
 }

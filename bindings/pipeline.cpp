@@ -117,6 +117,9 @@ void bind_pipeline(py::module_& m) {
         return d;
       });
 
+  m.def(
+      "summarize", [](const std::vector<double>& v) { return stats(summarize(v)); },
+      "count, mean, variance, min and max of a list of values");
   // Stage-by-stage callers (boundary_driven_stages) build the struct the same way.
   m.def("boundary_driven_params", &boundary_driven_params, py::arg("values"),
         "BoundaryDrivenParams from the declared keyword values (checked)");

@@ -1,4 +1,15 @@
-"""The only importer of the compiled module `_core` (built by CMake into this folder)."""
+"""The only importer of the compiled module `_core` (built by CMake into this folder).
+
+What Python calls: `panelize` (the whole pipeline, once per face) and
+`method_declarations` (THE declaration of methods and parameters); the
+fabrication entry points (unfold, flatten, nest, offsets, shape export); and a
+small stage-level console API for plots and benchmarks: the guide-line curve
+sets (`guide_line_scaling_curves`, `two_guide_lines_curves` with their params
+structs), `boundary_driven_stages` (traced curves and the preliminary network),
+`iso_grid` + `measure_panels` (the coarsest-grid search of
+bench/compare_methods.py), `summarize`, `surface_evaluations`, `mesh_folds`,
+`fold_angle_deg`.
+"""
 
 try:
     from . import _core  # noqa: F401
@@ -15,7 +26,6 @@ from ._core import (  # noqa: E402,F401
     panelize,
     PanelizeResult,
     BoundaryDrivenParams,
-    EqualSizeGridParams,
     FlattenParams,
     flatten_panels,
     NestParams,
@@ -24,47 +34,23 @@ from ._core import (  # noqa: E402,F401
     fold_angle_deg,
     nest_parts,
     offset_outline,
-    unfold_panel,
     unfold_panels,
-    GradientDescentParams,
-    GridClipParams,
-    GuideLineDiamondParams,
     GuideLineScalingParams,
-    IrregularParams,
     IsoGridParams,
     MetricsParams,
     PanelMesh,
-    RelaxedGridParams,
-    RelaxedGridReport,
     SurfaceFace,
-    boundary_driven,
     boundary_driven_stages,
     boundary_driven_params,
     TwoGuideLinesParams,
-    guide_line_diamond,
-    equal_size_grid,
-    guide_line_scaling,
     guide_line_scaling_curves,
-    WalkingAgentParams,
-    WalkingAgentReport,
-    equal_size_grid,
-    gradient_descent,
-    irregular_panels,
-    is_valid_agent_start,
     iso_grid,
     measure_panels,
     mesh_folds,
-    node_data,
     nodes_to_brep,
     panels_to_brep,
-    relaxed_grid,
-    relaxed_grid_report,
-    reset_surface_evaluations,
     rods_to_brep,
     summarize,
-    two_guide_lines,
     two_guide_lines_curves,
     surface_evaluations,
-    walking_agent,
-    walking_agent_report,
 )

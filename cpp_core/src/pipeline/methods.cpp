@@ -1,4 +1,4 @@
-// The registry of method declarations (tessella/methods.h): the shared
+// The method declarations of tessella/methods.h: the registry of the shared
 // pipeline parameters, the families' methods, and the one check of values.
 #include <algorithm>
 #include <cmath>
