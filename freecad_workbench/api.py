@@ -38,10 +38,6 @@ GUIDE_COUNT = {
     name: int(m.params["guides"].minimum) for name, m in METHODS.items() if "guides" in m.params
 }
 
-#: Parameters every method accepts (the pipeline's own: clean-up and metrics).
-COMMON_PARAMS = tuple(p.name for p in next(iter(METHODS.values())).params.values() if p.shared)
-
-
 PANEL_ID_FORMAT = "P-{:04d}"
 ROD_ID_FORMAT = "R-{:04d}"
 NODE_ID_FORMAT = "N-{:04d}"
@@ -237,9 +233,8 @@ def panelize(face, method="iso_grid", progress=None, **params):
 def panelize_brep(brep, method="iso_grid", progress=None, **params):
     """panelize() on a face given as its BRep string (what a document recompute
     already has: the face is serialized once)."""
-    _check_kwargs(method, params)
     surface = core.SurfaceFace.from_brep_string(brep)
-    values = core_values(method, params, surface)
+    values = core_values(method, params, surface)  # checks the keywords
     return panelize_surface(surface, method, values, params, progress)
 
 

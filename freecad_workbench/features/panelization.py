@@ -41,9 +41,6 @@ from .base import (  # noqa: F401
     value_of,
 )
 
-#: Methods of seed 000 and where the agents may start.
-AGENT_METHODS = ("walking_agent", "gradient_descent", "relaxed_grid")
-AGENT_STARTS = ("u_min_v_min", "u_max_v_min", "u_min_v_max", "u_max_v_max", "max_curvature")
 
 def _declared_properties():
     """{property: [Param, ...]} of every method parameter (freecad_workbench.methods)."""
