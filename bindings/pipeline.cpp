@@ -108,6 +108,9 @@ void bind_pipeline(py::module_& m) {
         d["face_area"] = s.face_area;
         d["model_size"] = s.model_size;
         d["fold_count"] = s.fold_count;
+        d["bend_count"] = s.bend_count;
+        d["split_panels"] = s.split_panels;
+        d["boundary_nodes_added"] = s.boundary_nodes_added;
         d["surface_evaluations"] = s.surface_evaluations;
         d["core_seconds"] = s.core_seconds;
         d["panel_deviation"] = stats(s.deviation);

@@ -38,6 +38,12 @@ struct PanelMesh {
   // (vertex pair, a < b). The fold angle follows from the two triangles.
   std::vector<std::array<int, 2>> folds;
 
+  // Bend lines of the panels modelled as flat pieces (see mesh/panel_model.h):
+  // per panel, node-to-node diagonals (panel-local corner indices, a < b) along
+  // which the sheet is bent. Parallel to `panels` once the boundary-piece stage
+  // ran (empty lists for unbent panels); empty before.
+  std::vector<std::vector<std::array<int, 2>>> bends;
+
   // What the method reports about its own run.
   int merged_slivers = 0;     // slivers merged into a neighbour
   double nominal_area = 0.0;  // area of a full panel (mm^2), for irregularity

@@ -1,7 +1,8 @@
 // Per-panel and per-rod measurements against the surface (see DESIGN.md glossary).
 // The panel a workshop builds is modelled as: triangle -> flat triangle,
-// quad -> bilinear patch of its corners, n-gon -> fan of flat triangles around the
-// mean of its corners. Every figure here is measured on that model.
+// quad of four nodes -> bilinear patch of its corners, any other panel -> its
+// flat pieces (src/mesh/panel_model.h, src/mesh/boundary_pieces.h), trim edge
+// included. Every figure here is measured on that model.
 #pragma once
 
 #include <vector>
@@ -27,6 +28,16 @@ struct PanelMetrics {
 
 PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
                             const MetricsParams& params = {});
+
+// Only the panels with which[k] set (one flag per panel); the others NaN.
+PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
+                            const MetricsParams& params, const std::vector<char>& which);
+
+// Metrics after a stage changed some panels: panel k of `mesh` is measured
+// again if changed[k], else copied from panel origin[k] of `before`.
+PanelMetrics remeasure_panels(const SurfaceFace& face, const PanelMesh& mesh,
+                              const PanelMetrics& before, const std::vector<int>& origin,
+                              const std::vector<char>& changed, const MetricsParams& params = {});
 
 struct SummaryStats {
   int count = 0;

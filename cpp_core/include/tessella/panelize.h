@@ -22,6 +22,9 @@ struct PanelizeSummary {
   int panel_count = 0, rod_count = 0, node_count = 0;
   int merged_slivers = 0, irregular_count = 0, fold_count = 0;
   double quad_share = 0.0;  // fraction of panels that are quads
+  // Boundary pieces (src/mesh/boundary_pieces.h): bend lines over all panels,
+  // panels split by a new rod, trim points made nodes to meet the allowance.
+  int bend_count = 0, split_panels = 0, boundary_nodes_added = 0;
   double nominal_area = 0.0, face_area = 0.0, model_size = 0.0;
   // Cost of the method call alone (no metrics).
   std::uint64_t surface_evaluations = 0;

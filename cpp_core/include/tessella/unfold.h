@@ -49,7 +49,14 @@ struct FlatPanel {
 FlatPanel unfold_panel(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv,
                        const UnfoldParams& params = {});
 
-// Unfolds every panel of the mesh, in panel order.
+// Unfolds a panel cut into the given triangles (corner triples in the panel's
+// orientation, forming a tree across shared diagonals).
+FlatPanel unfold_triangles(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv,
+                           const std::vector<std::array<int, 3>>& triangles,
+                           const UnfoldParams& params = {});
+
+// Unfolds every panel of the mesh (a panel modelled as flat pieces by its
+// pieces, see mesh/boundary_pieces.h: only its bend lines fold), in panel order.
 std::vector<FlatPanel> unfold_panels(const PanelMesh& mesh, const UnfoldParams& params = {});
 
 // Signed dihedral (degrees) between triangles (a,b,c) and (a,d,b) sharing

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -45,13 +46,14 @@ double planarity(const std::vector<Vec3>& p) {
 }
 
 // Largest distance from sample points of the panel model to the surface.
+// `tris`: the panel model's flat triangles; empty for a bilinear quad.
 double deviation(const SurfaceFace& face, const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
-                 int samples) {
+                 const std::vector<std::array<int, 3>>& tris, int samples) {
   double worst = 0;
   auto probe = [&](const Vec3& x, const Vec2& start) {
     worst = std::max(worst, face.project(x, start).distance);
   };
-  if (p.size() == 4) {
+  if (tris.empty()) {
     const int n = samples;
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; j <= n; ++j) {
@@ -63,12 +65,12 @@ double deviation(const SurfaceFace& face, const std::vector<Vec3>& p, const std:
     }
     return worst;
   }
-  // Triangle or n-gon: the triangles of its (u,v) outline, each sampled as
-  // densely as its size asks (a boundary panel has many thin triangles).
+  // Triangle or flat pieces: each triangle sampled as densely as its size
+  // asks (a boundary panel has many thin triangles).
   double extent = 0;
   for (const Vec3& a : p)
     for (const Vec3& b : p) extent = std::max(extent, (a - b).norm());
-  for (const auto& t : triangulate_polygon(uv)) {
+  for (const auto& t : tris) {
     const double longest = std::max(
         {(p[t[0]] - p[t[1]]).norm(), (p[t[1]] - p[t[2]]).norm(), (p[t[2]] - p[t[0]]).norm()});
     const int n = std::max(1, static_cast<int>(std::ceil(samples * longest / extent)));
@@ -82,6 +84,42 @@ double deviation(const SurfaceFace& face, const std::vector<Vec3>& p, const std:
   return worst;
 }
 
+void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k, int samples,
+                   PanelMetrics& m, std::size_t slot) {
+  const auto& panel = mesh.panels[k];
+  std::vector<Vec3> p;
+  for (int v : panel) p.push_back(mesh.xyz[v]);
+  const std::vector<Vec2> uv = panel_corner_uv(mesh, k);
+  m.deviation[slot] = deviation(face, p, uv, panel_model_triangles(mesh, k), samples);
+  m.planarity[slot] = planarity(p);
+  m.area[slot] = panel_area(mesh, k);
+  double lo = 180.0, hi = 0.0;
+  for (std::size_t c = 0; c < p.size(); ++c) {
+    const Vec3 a = p[(c + p.size() - 1) % p.size()] - p[c];
+    const Vec3 b = p[(c + 1) % p.size()] - p[c];
+    const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
+    lo = std::min(lo, angle);
+    hi = std::max(hi, angle);
+  }
+  m.min_angle[slot] = lo;
+  m.max_angle[slot] = hi;
+}
+
+void resize(PanelMetrics& m, std::size_t np) {
+  m.deviation.resize(np);
+  m.planarity.resize(np);
+  m.area.resize(np);
+  m.min_angle.resize(np);
+  m.max_angle.resize(np);
+}
+
+void measure_rods(const PanelMesh& mesh, PanelMetrics& m) {
+  m.rod_length.clear();
+  m.rod_length.reserve(mesh.rods.size());
+  for (const auto& rod : mesh.rods)
+    m.rod_length.push_back((mesh.xyz[rod[0]] - mesh.xyz[rod[1]]).norm());
+}
+
 }  // namespace
 
 PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
@@ -89,34 +127,57 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
   require_in_range("samples", params.samples, 1, 64);
   PanelMetrics m;
   const std::size_t np = mesh.panels.size();
-  m.deviation.resize(np);
-  m.planarity.resize(np);
-  m.area.resize(np);
-  m.min_angle.resize(np);
-  m.max_angle.resize(np);
+  resize(m, np);
   for (std::size_t k = 0; k < np; ++k) {
     report_progress(double(k) / double(np), "measuring panels");
-    const auto& panel = mesh.panels[k];
-    std::vector<Vec3> p;
-    for (int v : panel) p.push_back(mesh.xyz[v]);
-    const std::vector<Vec2> uv = panel_corner_uv(mesh, k);
-    m.deviation[k] = deviation(face, p, uv, params.samples);
-    m.planarity[k] = planarity(p);
-    m.area[k] = panel_model_area(p, uv);
-    double lo = 180.0, hi = 0.0;
-    for (std::size_t c = 0; c < p.size(); ++c) {
-      const Vec3 a = p[(c + p.size() - 1) % p.size()] - p[c];
-      const Vec3 b = p[(c + 1) % p.size()] - p[c];
-      const double angle = std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
-      lo = std::min(lo, angle);
-      hi = std::max(hi, angle);
-    }
-    m.min_angle[k] = lo;
-    m.max_angle[k] = hi;
+    measure_panel(face, mesh, k, params.samples, m, k);
   }
-  m.rod_length.reserve(mesh.rods.size());
-  for (const auto& rod : mesh.rods)
-    m.rod_length.push_back((mesh.xyz[rod[0]] - mesh.xyz[rod[1]]).norm());
+  measure_rods(mesh, m);
+  return m;
+}
+
+PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
+                            const MetricsParams& params, const std::vector<char>& which) {
+  require_in_range("samples", params.samples, 1, 64);
+  if (which.size() != mesh.panels.size())
+    throw InvalidParameter("measure_panels: one flag per panel expected");
+  PanelMetrics m;
+  const std::size_t np = mesh.panels.size();
+  resize(m, np);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t k = 0; k < np; ++k) {
+    report_progress(double(k) / double(np), "measuring panels");
+    if (which[k])
+      measure_panel(face, mesh, k, params.samples, m, k);
+    else
+      m.deviation[k] = m.planarity[k] = m.area[k] = m.min_angle[k] = m.max_angle[k] = nan;
+  }
+  measure_rods(mesh, m);
+  return m;
+}
+
+PanelMetrics remeasure_panels(const SurfaceFace& face, const PanelMesh& mesh,
+                              const PanelMetrics& before, const std::vector<int>& origin,
+                              const std::vector<char>& changed, const MetricsParams& params) {
+  require_in_range("samples", params.samples, 1, 64);
+  const std::size_t np = mesh.panels.size();
+  if (origin.size() != np || changed.size() != np)
+    throw InvalidParameter("remeasure_panels: origin and changed must have one entry per panel");
+  PanelMetrics m;
+  resize(m, np);
+  for (std::size_t k = 0; k < np; ++k) {
+    if (changed[k]) {
+      measure_panel(face, mesh, k, params.samples, m, k);
+      continue;
+    }
+    const std::size_t o = static_cast<std::size_t>(origin[k]);
+    m.deviation[k] = before.deviation.at(o);
+    m.planarity[k] = before.planarity.at(o);
+    m.area[k] = before.area.at(o);
+    m.min_angle[k] = before.min_angle.at(o);
+    m.max_angle[k] = before.max_angle.at(o);
+  }
+  measure_rods(mesh, m);
   return m;
 }
 

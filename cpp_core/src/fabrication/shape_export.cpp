@@ -65,8 +65,9 @@ TopoDS_Face flat_face(const std::vector<Vec3>& p, const Vec3& c, const Vec3& n, 
   return face.Face();
 }
 
+// `pieces`: the corner lists of a panel modelled as flat pieces (empty: not).
 TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
-                         double planar_tolerance) {
+                         const std::vector<std::vector<int>>& pieces, double planar_tolerance) {
   // Planar within the tolerance: one flat face on the best plane through the
   // mean corner with Newell's normal (which follows the corner order).
   Vec3 c = Vec3::Zero();
@@ -78,7 +79,24 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
     const double off = off_plane(p, c, n);
     if (off <= planar_tolerance) return flat_face(p, c, n, off * 1.01);
   }
-  if (p.size() == 4) {
+  if (pieces.size() > 1) {
+    // Bent along its bend lines: one flat face per piece.
+    BRep_Builder builder;
+    TopoDS_Compound sheet;
+    builder.MakeCompound(sheet);
+    for (const std::vector<int>& piece : pieces) {
+      std::vector<Vec3> q;
+      for (int i : piece) q.push_back(p[i]);
+      Vec3 qc = Vec3::Zero();
+      for (const Vec3& x : q) qc += x;
+      qc /= double(q.size());
+      const Vec3 qn = newell_normal(q);
+      if (!(qn.norm() > 0)) continue;
+      builder.Add(sheet, flat_face(q, qc, qn.normalized(), off_plane(q, qc, qn.normalized()) * 1.01));
+    }
+    return sheet;
+  }
+  if (p.size() == 4 && pieces.empty()) {
     // Bent quad: its bilinear patch, exact through the four corners; with the
     // poles in this order du x dv points along the counter-clockwise normal.
 #pragma GCC diagnostic push
@@ -123,7 +141,10 @@ std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance) {
       report_progress(double(k) / double(mesh.panels.size()), "building panel faces");
       std::vector<Vec3> p;
       for (int v : mesh.panels[k]) p.push_back(mesh.xyz[v]);
-      builder.Add(all, panel_shape(p, panel_corner_uv(mesh, k), planar_tolerance));
+      std::vector<std::vector<int>> pieces;
+      if (modelled_as_pieces(mesh, k))
+        pieces = split_polygon(static_cast<int>(p.size()), panel_bends(mesh, k));
+      builder.Add(all, panel_shape(p, panel_corner_uv(mesh, k), pieces, planar_tolerance));
     }
     return to_brep(all);
   } catch (const Standard_Failure& e) {

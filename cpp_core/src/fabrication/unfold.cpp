@@ -118,6 +118,13 @@ double fold_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d
 
 FlatPanel unfold_panel(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv,
                        const UnfoldParams& params) {
+  if (xyz.size() < 3) throw InvalidGeometry("a panel needs at least three corners");
+  return unfold_triangles(xyz, uv, panel_triangles(xyz, uv), params);
+}
+
+FlatPanel unfold_triangles(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv,
+                           const std::vector<std::array<int, 3>>& tris,
+                           const UnfoldParams& params) {
   require_in_range("fold_tolerance_deg", params.fold_tolerance_deg, 0.0, 180.0);
   const int n = static_cast<int>(xyz.size());
   if (n < 3) throw InvalidGeometry("a panel needs at least three corners");
@@ -127,7 +134,7 @@ FlatPanel unfold_panel(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv
     if ((xyz[(i + 1) % n] - xyz[i]).norm() == 0.0)
       throw InvalidGeometry("a panel has two coincident corners");
 
-  const std::vector<Tri> tris = panel_triangles(xyz, uv);
+  if (tris.empty()) throw InvalidGeometry("unfold: a panel without triangles");
   auto dist = [&](int i, int j) { return (xyz[i] - xyz[j]).norm(); };
 
   // Triangles sharing a diagonal, by the diagonal's (min, max) corners.
@@ -210,7 +217,13 @@ std::vector<FlatPanel> unfold_panels(const PanelMesh& mesh, const UnfoldParams& 
   for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
     std::vector<Vec3> xyz;
     for (int v : mesh.panels[p]) xyz.push_back(mesh.xyz[v]);
-    out.push_back(unfold_panel(xyz, panel_corner_uv(mesh, p), params));
+    const std::vector<Vec2> uv = panel_corner_uv(mesh, p);
+    // A panel modelled as flat pieces unfolds by its pieces' triangles: only
+    // its bend lines can fold. Others as unfold_panel does.
+    if (modelled_as_pieces(mesh, p))
+      out.push_back(unfold_triangles(xyz, uv, panel_model_triangles(mesh, p), params));
+    else
+      out.push_back(unfold_panel(xyz, uv, params));
   }
   return out;
 }

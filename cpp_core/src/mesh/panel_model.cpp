@@ -161,10 +161,73 @@ double panel_model_area(const std::vector<Vec3>& xyz, const std::vector<Vec2>& u
   return area;
 }
 
+bool modelled_as_pieces(const PanelMesh& mesh, std::size_t k) {
+  const std::vector<int>& panel = mesh.panels[k];
+  if (panel.size() > 4) return true;
+  if (panel.size() < 4) return false;
+  for (int v : panel)
+    if (!is_node(mesh, v)) return true;
+  return false;
+}
+
+const std::vector<std::array<int, 2>>& panel_bends(const PanelMesh& mesh, std::size_t k) {
+  static const std::vector<std::array<int, 2>> none;
+  return k < mesh.bends.size() ? mesh.bends[k] : none;
+}
+
+std::vector<std::vector<int>> split_polygon(int corners,
+                                            const std::vector<std::array<int, 2>>& diagonals) {
+  std::vector<std::vector<int>> pieces(1);
+  for (int c = 0; c < corners; ++c) pieces[0].push_back(c);
+  for (const auto& d : diagonals) {
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+      std::vector<int>& piece = pieces[p];
+      const auto ia = std::find(piece.begin(), piece.end(), d[0]);
+      const auto ib = std::find(piece.begin(), piece.end(), d[1]);
+      if (ia == piece.end() || ib == piece.end()) continue;
+      std::size_t i = static_cast<std::size_t>(ia - piece.begin());
+      std::size_t j = static_cast<std::size_t>(ib - piece.begin());
+      if (i > j) std::swap(i, j);
+      if (j - i < 2 || (i == 0 && j + 1 == piece.size())) break;  // an outline edge
+      std::vector<int> first(piece.begin() + static_cast<long>(i),
+                             piece.begin() + static_cast<long>(j) + 1);
+      std::vector<int> second(piece.begin() + static_cast<long>(j), piece.end());
+      second.insert(second.end(), piece.begin(), piece.begin() + static_cast<long>(i) + 1);
+      piece = std::move(first);
+      pieces.push_back(std::move(second));
+      break;
+    }
+  }
+  return pieces;
+}
+
+std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec2>& uv,
+                                                   const std::vector<std::array<int, 2>>& bends) {
+  if (bends.empty()) return triangulate_polygon(uv);
+  std::vector<std::array<int, 3>> out;
+  for (const std::vector<int>& piece : split_polygon(static_cast<int>(uv.size()), bends)) {
+    std::vector<Vec2> sub;
+    for (int c : piece) sub.push_back(uv[c]);
+    for (const auto& t : triangulate_polygon(sub)) out.push_back({piece[t[0]], piece[t[1]], piece[t[2]]});
+  }
+  return out;
+}
+
+std::vector<std::array<int, 3>> panel_model_triangles(const PanelMesh& mesh, std::size_t k) {
+  const std::size_t n = mesh.panels[k].size();
+  if (n == 3) return {{0, 1, 2}};
+  if (!modelled_as_pieces(mesh, k)) return {};
+  return triangulate_pieces(panel_corner_uv(mesh, k), panel_bends(mesh, k));
+}
+
 double panel_area(const PanelMesh& mesh, std::size_t p) {
   std::vector<Vec3> xyz;
   for (int v : mesh.panels[p]) xyz.push_back(mesh.xyz[v]);
-  return panel_model_area(xyz, panel_corner_uv(mesh, p));
+  const auto tris = panel_model_triangles(mesh, p);
+  if (tris.empty()) return bilinear_area(xyz);
+  double area = 0;
+  for (const auto& t : tris) area += 0.5 * (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm();
+  return area;
 }
 
 }  // namespace tessella

@@ -1,7 +1,9 @@
 // The panel a workshop builds, as every measurement and export models it:
-// triangle -> flat triangle; quad -> bilinear patch of its corners;
-// n-gon -> flat triangles of an ear-clipping triangulation of its (u,v) outline
-// (valid for non-convex boundary panels, unlike a fan).
+// triangle -> flat triangle; quad of four nodes -> bilinear patch of its corners;
+// any other panel (a boundary panel whose outline follows a trim, a polygon of
+// more than four nodes) -> flat pieces: its outline cut along its bend lines
+// (PanelMesh::bends), each piece flat (mesh/boundary_pieces.h puts the outline
+// points on the piece planes) and triangulated on its own (u,v) outline.
 #pragma once
 
 #include <array>
@@ -16,6 +18,27 @@ namespace tessella {
 // corners, n-2 for n corners, each turning the same way as the outline
 // (counter-clockwise outline: counter-clockwise triangles; clockwise: clockwise).
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv);
+
+// Whether panel k is modelled as flat pieces (see above) rather than as a flat
+// triangle or a bilinear quad of four nodes.
+bool modelled_as_pieces(const PanelMesh& mesh, std::size_t k);
+
+// The bend lines of panel k (empty if none).
+const std::vector<std::array<int, 2>>& panel_bends(const PanelMesh& mesh, std::size_t k);
+
+// The outline of a polygon cut along non-crossing diagonals (corner pairs):
+// the corner lists of the pieces, each in the outline's own order.
+std::vector<std::vector<int>> split_polygon(int corners,
+                                            const std::vector<std::array<int, 2>>& diagonals);
+
+// Triangles of a polygon cut into pieces along `bends`, each piece triangulated
+// on its own (u,v) outline, so that no triangle spans a bend.
+std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec2>& uv,
+                                                   const std::vector<std::array<int, 2>>& bends);
+
+// The flat triangles panel k is built of (corner indices, the panel's
+// orientation); empty for a quad of four nodes (its bilinear patch).
+std::vector<std::array<int, 3>> panel_model_triangles(const PanelMesh& mesh, std::size_t k);
 
 // Area of the panel model: bilinear for quads, triangulated otherwise.
 double panel_model_area(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pipeline/declaration_builder.h"
+#include "mesh/boundary_pieces.h"
 #include "tessella/errors.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_metrics.h"
@@ -41,6 +42,14 @@ std::vector<ParamDeclaration> make_shared_params() {
   d = decl("samples", ParamKind::Integer, "", 1, 256, "Samples",
            "Samples per panel edge for the deviation measure", "Advanced", "Samples");
   d.default_value = MetricsParams{}.samples;
+  out.push_back(d);
+  d = decl("boundary_deviation", ParamKind::Real, "mm", 0.0, 1e9,
+           "Boundary deviation (0: automatic)",
+           "A flat boundary piece whose trim edge lies farther than this from the surface gets "
+           "a new node on the trim (0 = the method's deviation bound, else the largest deviation "
+           "of its full panels)",
+           "Panelization", "BoundaryDeviation");
+  d.default_value = BoundaryPiecesParams{}.max_deviation;
   out.push_back(d);
   for (ParamDeclaration& p : out) p.shared = true;
   return out;

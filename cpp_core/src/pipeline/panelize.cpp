@@ -8,6 +8,8 @@
 #include <map>
 #include <utility>
 
+#include "mesh/boundary_pieces.h"
+#include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
@@ -60,6 +62,24 @@ std::vector<double> fold_angles(const PanelMesh& mesh) {
   return out;
 }
 
+// The deviation a flat boundary piece may keep (BoundaryPiecesParams):
+// boundary_deviation if given, else the method's own bound, else the largest
+// deviation of the full panels (a boundary piece no worse than the panels
+// the layout already accepts).
+double allowed_boundary_deviation(const ParamValues& values, const MethodDeclaration& method,
+                                  const PanelMetrics& full) {
+  const double given = value_or<double>(values, method, "boundary_deviation");
+  if (given > 0) return given;
+  if (method.find("max_deviation")) {
+    const double bound = value_or<double>(values, method, "max_deviation");
+    if (bound > 0) return bound;
+  }
+  double worst = 0;
+  for (double d : full.deviation)
+    if (std::isfinite(d)) worst = std::max(worst, d);
+  return worst;
+}
+
 }  // namespace
 
 PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::string& method,
@@ -81,7 +101,20 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   MetricsParams mp;
   mp.samples = value_or<int>(values, decl, "samples");
   report_stage(0.0, "measuring panels");
-  r.metrics = measure_panels(*face, r.mesh, mp);
+  // Full panels first (they fix the boundary pieces' allowance), then the
+  // boundary pieces once they are modelled.
+  std::vector<char> full(r.mesh.panels.size());
+  for (std::size_t k = 0; k < full.size(); ++k) full[k] = modelled_as_pieces(r.mesh, k) ? 0 : 1;
+  const PanelMetrics full_metrics = measure_panels(*face, r.mesh, mp, full);
+  BoundaryPiecesParams bp;
+  bp.max_deviation = allowed_boundary_deviation(values, decl, full_metrics);
+  BoundaryPiecesReport pieces = model_boundary_pieces(r.mesh, bp);
+  for (std::size_t k = 0; k < pieces.changed.size(); ++k)
+    if (!full[static_cast<std::size_t>(pieces.origin[k])]) pieces.changed[k] = 1;
+  r.metrics = remeasure_panels(*face, r.mesh, full_metrics, pieces.origin, pieces.changed, mp);
+  r.summary.bend_count = pieces.bends;
+  r.summary.split_panels = pieces.split;
+  r.summary.boundary_nodes_added = pieces.refined;
 
   IrregularParams ip;
   ip.min_angle_deg = value_or<double>(values, decl, "min_angle");

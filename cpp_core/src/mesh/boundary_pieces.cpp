@@ -1,0 +1,339 @@
+#include "mesh/boundary_pieces.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "mesh/panel_model.h"
+#include "tessella/errors.h"
+
+namespace tessella {
+
+namespace {
+
+using Diagonal = std::array<int, 2>;
+
+struct Plane {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit
+};
+
+// A panel being modelled: its vertices and their (u,v) as this panel sees them.
+struct Draft {
+  std::vector<int> vertices;
+  std::vector<Vec2> uv;
+};
+
+double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double o1 = cross2(a, b, c), o2 = cross2(a, b, d);
+  const double o3 = cross2(c, d, a), o4 = cross2(c, d, b);
+  return ((o1 >= 0) != (o2 >= 0) || o1 == 0 || o2 == 0) &&
+         ((o3 >= 0) != (o4 >= 0) || o3 == 0 || o4 == 0) &&
+         std::max(a.x(), b.x()) >= std::min(c.x(), d.x()) &&
+         std::max(c.x(), d.x()) >= std::min(a.x(), b.x()) &&
+         std::max(a.y(), b.y()) >= std::min(c.y(), d.y()) &&
+         std::max(c.y(), d.y()) >= std::min(a.y(), b.y());
+}
+
+bool inside_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2 &a = poly[i], &b = poly[j];
+    if ((a.y() > q.y()) != (b.y() > q.y()) &&
+        q.x() < a.x() + (q.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+      in = !in;
+  }
+  return in;
+}
+
+// Whether the straight (u,v) segment between corners i and j runs inside the
+// outline (crosses no edge not ending at i or j, midpoint inside): a bend line
+// or a new rod must lie on the panel.
+bool diagonal_inside(const std::vector<Vec2>& uv, int i, int j) {
+  const int n = static_cast<int>(uv.size());
+  for (int a = 0; a < n; ++a) {
+    const int b = (a + 1) % n;
+    if (a == i || a == j || b == i || b == j) continue;
+    if (segments_touch(uv[i], uv[j], uv[a], uv[b])) return false;
+  }
+  return inside_polygon(0.5 * (uv[i] + uv[j]), uv);
+}
+
+Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); }
+
+double angle_between(const Vec3& n1, const Vec3& n2) {
+  const double l = n1.norm() * n2.norm();
+  if (!(l > 0)) return 180.0;
+  return std::atan2(n1.cross(n2).norm(), n1.dot(n2)) * 180.0 / 3.14159265358979323846;
+}
+
+// Least-squares plane through `fixed` (0, 1 or 2 points that must lie on it)
+// fitted to `points`: a piece with fewer than three (non-collinear) nodes.
+Plane fit_plane(const std::vector<Vec3>& points, const std::vector<Vec3>& fixed) {
+  Plane plane;
+  Vec3 origin = Vec3::Zero();
+  if (!fixed.empty()) {
+    origin = fixed[0];
+  } else {
+    for (const Vec3& p : points) origin += p;
+    origin /= double(std::max<std::size_t>(1, points.size()));
+  }
+  plane.point = origin;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vec3& p : points) cov += (p - origin) * (p - origin).transpose();
+  if (fixed.size() >= 2 && (fixed[1] - fixed[0]).norm() > 0) {
+    // The plane holds the line through the two fixed points: its normal is
+    // the best one perpendicular to that line.
+    const Vec3 d = (fixed[1] - fixed[0]).normalized();
+    const Vec3 e1 = d.unitOrthogonal(), e2 = d.cross(e1);
+    Eigen::Matrix2d c2;
+    c2 << e1.dot(cov * e1), e1.dot(cov * e2), e2.dot(cov * e1), e2.dot(cov * e2);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(c2);
+    const Eigen::Vector2d v = eig.eigenvectors().col(0);
+    plane.normal = (v.x() * e1 + v.y() * e2).normalized();
+    return plane;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  plane.normal = eig.eigenvectors().col(0).normalized();
+  return plane;
+}
+
+class PieceModeller {
+ public:
+  PieceModeller(PanelMesh& mesh, const BoundaryPiecesParams& params, BoundaryPiecesReport& report)
+      : mesh_(mesh), params_(params), report_(report), original_(mesh.xyz) {}
+
+  // Models one draft; appends the resulting panel(s) to the output lists.
+  void model(Draft draft, int origin) {
+    for (;;) {
+      std::vector<int> nodes;
+      for (int c = 0; c < int(draft.vertices.size()); ++c)
+        if (is_node(mesh_, draft.vertices[c])) nodes.push_back(c);
+      const int k = static_cast<int>(nodes.size());
+      if (k > params_.max_bends + 3) {
+        if (split(draft, nodes, origin)) return;
+        if (promote_middle(draft)) continue;
+        keep_unmodelled(draft, origin);
+        return;
+      }
+      std::vector<Diagonal> bends;
+      if (k >= 4 && !choose_bends(draft, nodes, bends)) {
+        // Every bend line would leave the panel (a trim curving into it):
+        // a node in the middle of the longest trim run sees both its ends.
+        if (promote_middle(draft)) continue;
+        keep_unmodelled(draft, origin);
+        return;
+      }
+      // Pieces and their planes; the trim points' offsets from them.
+      std::vector<Vec3> xyz;
+      for (int v : draft.vertices) xyz.push_back(original_[v]);
+      std::vector<Vec3> placed = xyz;
+      int worst = -1;
+      double worst_offset = 0;
+      for (const std::vector<int>& piece : split_polygon(int(xyz.size()), bends)) {
+        const Plane plane = piece_plane(draft, xyz, piece);
+        for (int c : piece) {
+          if (is_node(mesh_, draft.vertices[c])) continue;
+          const double off = (xyz[c] - plane.point).dot(plane.normal);
+          placed[c] = xyz[c] - off * plane.normal;
+          if (std::abs(off) > worst_offset) worst_offset = std::abs(off), worst = c;
+        }
+      }
+      if (params_.max_deviation > 0 && worst >= 0 && worst_offset > params_.max_deviation) {
+        // Too far from the surface for a flat piece: the farthest trim point
+        // becomes a node (it stays on the trim), and the panel is modelled again.
+        mesh_.is_node[draft.vertices[worst]] = 1;
+        ++report_.refined;
+        rods_changed_ = true;
+        continue;
+      }
+      for (std::size_t c = 0; c < draft.vertices.size(); ++c) mesh_.xyz[draft.vertices[c]] = placed[c];
+      report_.bends += static_cast<int>(bends.size());
+      ++report_.modelled;
+      emit(std::move(draft), std::move(bends), origin, true);
+      return;
+    }
+  }
+
+  void keep(Draft draft, int origin) { emit(std::move(draft), {}, origin, false); }
+
+  bool rods_changed() const { return rods_changed_; }
+  std::vector<std::vector<int>> panels;
+  std::vector<std::vector<Vec2>> corner_uv;
+  std::vector<std::vector<Diagonal>> bends;
+
+ private:
+  void emit(Draft draft, std::vector<Diagonal> panel_bends, int origin, bool changed) {
+    panels.push_back(std::move(draft.vertices));
+    corner_uv.push_back(std::move(draft.uv));
+    bends.push_back(std::move(panel_bends));
+    report_.origin.push_back(origin);
+    report_.changed.push_back(changed ? 1 : 0);
+  }
+
+  // No valid bend lines or split (a panel whose node diagonals all leave it):
+  // left as its triangulated outline, as before this stage.
+  void keep_unmodelled(Draft draft, int origin) { emit(std::move(draft), {}, origin, false); }
+
+  // Makes the middle point of the longest run of trim points a node; false if
+  // the panel has no trim point left.
+  bool promote_middle(const Draft& draft) {
+    const int n = static_cast<int>(draft.vertices.size());
+    int first_node = -1;
+    for (int c = 0; c < n && first_node < 0; ++c)
+      if (is_node(mesh_, draft.vertices[c])) first_node = c;
+    if (first_node < 0) return false;
+    int best_start = -1, best_len = 0;
+    for (int s = 0; s < n;) {
+      const int c = (first_node + s) % n;
+      if (is_node(mesh_, draft.vertices[c])) {
+        ++s;
+        continue;
+      }
+      int len = 0;
+      while (s + len < n && !is_node(mesh_, draft.vertices[(first_node + s + len) % n])) ++len;
+      if (len > best_len) best_len = len, best_start = s;
+      s += len;
+    }
+    if (best_len == 0) return false;
+    mesh_.is_node[draft.vertices[(first_node + best_start + best_len / 2) % n]] = 1;
+    ++report_.refined;
+    rods_changed_ = true;
+    return true;
+  }
+
+  // Splits a panel of too many nodes by a new rod: the node diagonal inside
+  // the panel that halves the nodes most evenly, then the shortest.
+  bool split(Draft& draft, const std::vector<int>& nodes, int origin) {
+    const int k = static_cast<int>(nodes.size());
+    int best_i = -1, best_j = -1;
+    int best_balance = std::numeric_limits<int>::max();
+    double best_length = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < k; ++i) {
+      for (int j = i + 2; j < k; ++j) {
+        if (i == 0 && j == k - 1) continue;  // neighbours in node order
+        const int a = nodes[i], b = nodes[j];
+        if (!diagonal_inside(draft.uv, a, b)) continue;
+        const int balance = std::abs((j - i) - (k - (j - i)));
+        const double length = (original_[draft.vertices[a]] - original_[draft.vertices[b]]).norm();
+        if (balance < best_balance || (balance == best_balance && length < best_length)) {
+          best_balance = balance, best_length = length, best_i = a, best_j = b;
+        }
+      }
+    }
+    if (best_i < 0) return false;
+    ++report_.split;
+    rods_changed_ = true;
+    for (const std::vector<int>& part : split_polygon(int(draft.vertices.size()), {{best_i, best_j}})) {
+      Draft sub;
+      for (int c : part) {
+        sub.vertices.push_back(draft.vertices[c]);
+        sub.uv.push_back(draft.uv[c]);
+      }
+      model(std::move(sub), origin);
+    }
+    return true;
+  }
+
+  // Bend lines for a panel of 4 or 5 nodes: of the node polygon's
+  // triangulations whose diagonals run inside the panel, the one with the
+  // smallest largest fold (ties: the first in node order, for determinism).
+  bool choose_bends(const Draft& draft, const std::vector<int>& nodes, std::vector<Diagonal>& out) {
+    const int k = static_cast<int>(nodes.size());
+    auto x = [&](int i) { return original_[draft.vertices[nodes[i % k]]]; };
+    double best = std::numeric_limits<double>::infinity();
+    // Fans from each node: k = 4 gives the two diagonals, k = 5 all five
+    // triangulations of a pentagon.
+    for (int i = 0; i < (k == 4 ? 2 : k); ++i) {
+      std::vector<Diagonal> diagonals;
+      bool inside = true;
+      for (int j = i + 2; j <= i + k - 2; ++j) {
+        const int a = nodes[i % k], b = nodes[j % k];
+        if (!diagonal_inside(draft.uv, a, b)) inside = false;
+        diagonals.push_back({std::min(a, b), std::max(a, b)});
+      }
+      if (!inside) continue;
+      double fold = 0;
+      for (int j = i + 1; j + 1 < i + k - 1; ++j) {
+        const Vec3 n1 = triangle_normal(x(i), x(j), x(j + 1));
+        const Vec3 n2 = triangle_normal(x(i), x(j + 1), x(j + 2));
+        fold = std::max(fold, angle_between(n1, n2));
+      }
+      if (fold < best) best = fold, out = diagonals;
+    }
+    return std::isfinite(best);
+  }
+
+  // The plane of one piece: through its three nodes, or fitted to its points
+  // through the nodes it has (fewer than three, or collinear).
+  Plane piece_plane(const Draft& draft, const std::vector<Vec3>& xyz, const std::vector<int>& piece) {
+    std::vector<Vec3> nodes, points;
+    for (int c : piece) {
+      points.push_back(xyz[c]);
+      if (is_node(mesh_, draft.vertices[c])) nodes.push_back(xyz[c]);
+    }
+    if (nodes.size() == 3) {
+      const Vec3 n = triangle_normal(nodes[0], nodes[1], nodes[2]);
+      const double scale = std::max({(nodes[1] - nodes[0]).squaredNorm(),
+                                     (nodes[2] - nodes[0]).squaredNorm(),
+                                     (nodes[2] - nodes[1]).squaredNorm()});
+      if (n.norm() > 1e-9 * scale) return {nodes[0], n.normalized()};
+      // Collinear nodes: the line through the two farthest apart is fixed.
+      std::size_t a = 0, b = 1;
+      for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t j = i + 1; j < 3; ++j)
+          if ((nodes[i] - nodes[j]).squaredNorm() > (nodes[a] - nodes[b]).squaredNorm()) a = i, b = j;
+      return fit_plane(points, {nodes[a], nodes[b]});
+    }
+    return fit_plane(points, nodes);
+  }
+
+  PanelMesh& mesh_;
+  const BoundaryPiecesParams& params_;
+  BoundaryPiecesReport& report_;
+  const std::vector<Vec3> original_;  // vertex positions on the surface, before any move
+  bool rods_changed_ = false;
+};
+
+}  // namespace
+
+BoundaryPiecesReport model_boundary_pieces(PanelMesh& mesh, const BoundaryPiecesParams& params) {
+  require_in_range("max_deviation", params.max_deviation, 0.0, 1e12);
+  require_in_range("max_bends", params.max_bends, 1, 16);
+  BoundaryPiecesReport report;
+  // A trim point shared by two panels would be moved onto two planes: such a
+  // point is kept where it is (a node for this stage's purposes).
+  std::vector<int> uses(mesh.vertex_count(), 0);
+  for (const auto& panel : mesh.panels)
+    for (int v : panel) ++uses[v];
+  if (mesh.is_node.empty()) mesh.is_node.assign(mesh.vertex_count(), 1);
+  std::vector<char> shared_point(mesh.vertex_count(), 0);
+  for (std::size_t v = 0; v < uses.size(); ++v)
+    if (!mesh.is_node[v] && uses[v] > 1) shared_point[v] = mesh.is_node[v] = 1;
+
+  PieceModeller modeller(mesh, params, report);
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    Draft draft{mesh.panels[k], panel_corner_uv(mesh, k)};
+    if (modelled_as_pieces(mesh, k))
+      modeller.model(std::move(draft), static_cast<int>(k));
+    else
+      modeller.keep(std::move(draft), static_cast<int>(k));
+  }
+  for (std::size_t v = 0; v < shared_point.size(); ++v)
+    if (shared_point[v]) mesh.is_node[v] = 0;
+
+  const bool had_corner_uv = !mesh.corner_uv.empty();
+  mesh.panels = std::move(modeller.panels);
+  mesh.bends = std::move(modeller.bends);
+  if (had_corner_uv) mesh.corner_uv = std::move(modeller.corner_uv);
+  if (modeller.rods_changed()) build_rods(mesh);
+  return report;
+}
+
+}  // namespace tessella
