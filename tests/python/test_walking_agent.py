@@ -75,8 +75,10 @@ def test_bound_holds_on_a_trimmed_freeform_face(freeform_face, start):
     assert max(dev.values()) <= BOUND * (1 + 1e-6)
     # The bound is used, not just met: the worst panel comes close to it.
     assert max(dev.values()) > 0.3 * BOUND
-    # Panels stay on the face (trim and holes respected): every node is on it.
-    for x in r.vertices[:: max(1, len(r.vertices) // 80)]:
+    # Panels stay on the face (trim and holes respected): every node is on it
+    # (outline points of a flat boundary piece lie on its plane, measured above).
+    nodes = r.vertices[r.nodes]
+    for x in nodes[:: max(1, len(nodes) // 80)]:
         d = freeform_face.distToShape(Part.Vertex(FreeCAD.Vector(*x)))[0]
         assert d < 1e-6 * r.summary["model_size"] + 1e-7
     # Area of the panels covers the trimmed face.

@@ -5,6 +5,7 @@
 // included. Every figure here is measured on that model.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "tessella/panel_mesh.h"
@@ -28,6 +29,13 @@ struct PanelMetrics {
 
 PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
                             const MetricsParams& params = {});
+
+// Largest distance from sample points of a panel model to the surface: corners
+// `p` with their (u,v) (projection starts), `tris` its flat triangles (empty:
+// the bilinear patch of a quad), `samples` per edge direction.
+double panel_model_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
+                             const std::vector<Vec2>& uv,
+                             const std::vector<std::array<int, 3>>& tris, int samples);
 
 // Only the panels with which[k] set (one flag per panel); the others NaN.
 PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,

@@ -45,10 +45,11 @@ double planarity(const std::vector<Vec3>& p) {
   return worst / edge;
 }
 
-// Largest distance from sample points of the panel model to the surface.
-// `tris`: the panel model's flat triangles; empty for a bilinear quad.
-double deviation(const SurfaceFace& face, const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
-                 const std::vector<std::array<int, 3>>& tris, int samples) {
+}  // namespace
+
+double panel_model_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
+                             const std::vector<Vec2>& uv,
+                             const std::vector<std::array<int, 3>>& tris, int samples) {
   double worst = 0;
   auto probe = [&](const Vec3& x, const Vec2& start) {
     worst = std::max(worst, face.project(x, start).distance);
@@ -84,13 +85,15 @@ double deviation(const SurfaceFace& face, const std::vector<Vec3>& p, const std:
   return worst;
 }
 
+namespace {
+
 void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k, int samples,
                    PanelMetrics& m, std::size_t slot) {
   const auto& panel = mesh.panels[k];
   std::vector<Vec3> p;
   for (int v : panel) p.push_back(mesh.xyz[v]);
   const std::vector<Vec2> uv = panel_corner_uv(mesh, k);
-  m.deviation[slot] = deviation(face, p, uv, panel_model_triangles(mesh, k), samples);
+  m.deviation[slot] = panel_model_deviation(face, p, uv, panel_model_triangles(mesh, k), samples);
   m.planarity[slot] = planarity(p);
   m.area[slot] = panel_area(mesh, k);
   double lo = 180.0, hi = 0.0;

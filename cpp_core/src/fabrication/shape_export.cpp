@@ -68,19 +68,9 @@ TopoDS_Face flat_face(const std::vector<Vec3>& p, const Vec3& c, const Vec3& n, 
 // `pieces`: the corner lists of a panel modelled as flat pieces (empty: not).
 TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
                          const std::vector<std::vector<int>>& pieces, double planar_tolerance) {
-  // Planar within the tolerance: one flat face on the best plane through the
-  // mean corner with Newell's normal (which follows the corner order).
-  Vec3 c = Vec3::Zero();
-  for (const Vec3& q : p) c += q;
-  c /= double(p.size());
-  const Vec3 newell = newell_normal(p);
-  if (newell.norm() > 0) {
-    const Vec3 n = newell.normalized();
-    const double off = off_plane(p, c, n);
-    if (off <= planar_tolerance) return flat_face(p, c, n, off * 1.01);
-  }
   if (pieces.size() > 1) {
-    // Bent along its bend lines: one flat face per piece.
+    // Modelled as flat pieces (a boundary panel bent along node diagonals):
+    // one flat face per piece, the model every figure is measured on.
     BRep_Builder builder;
     TopoDS_Compound sheet;
     builder.MakeCompound(sheet);
@@ -95,6 +85,17 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
       builder.Add(sheet, flat_face(q, qc, qn.normalized(), off_plane(q, qc, qn.normalized()) * 1.01));
     }
     return sheet;
+  }
+  // Planar within the tolerance: one flat face on the best plane through the
+  // mean corner with Newell's normal (which follows the corner order).
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& q : p) c += q;
+  c /= double(p.size());
+  const Vec3 newell = newell_normal(p);
+  if (newell.norm() > 0) {
+    const Vec3 n = newell.normalized();
+    const double off = off_plane(p, c, n);
+    if (off <= planar_tolerance) return flat_face(p, c, n, off * 1.01);
   }
   if (p.size() == 4 && pieces.empty()) {
     // Bent quad: its bilinear patch, exact through the four corners; with the

@@ -8,6 +8,7 @@
 
 #include "mesh/panel_model.h"
 #include "tessella/errors.h"
+#include "tessella/panel_metrics.h"
 
 namespace tessella {
 
@@ -65,6 +66,18 @@ bool diagonal_inside(const std::vector<Vec2>& uv, int i, int j) {
   return inside_polygon(0.5 * (uv[i] + uv[j]), uv);
 }
 
+// Whether two non-adjacent edges of the closed polygon touch: a piece whose
+// outline, put on its plane, crosses itself cannot be cut.
+bool crosses_itself(const std::vector<Vec2>& p) {
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;
+      if (segments_touch(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) return true;
+    }
+  return false;
+}
+
 Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); }
 
 double angle_between(const Vec3& n1, const Vec3& n2) {
@@ -106,8 +119,9 @@ Plane fit_plane(const std::vector<Vec3>& points, const std::vector<Vec3>& fixed)
 
 class PieceModeller {
  public:
-  PieceModeller(PanelMesh& mesh, const BoundaryPiecesParams& params, BoundaryPiecesReport& report)
-      : mesh_(mesh), params_(params), report_(report), original_(mesh.xyz) {}
+  PieceModeller(const SurfaceFace& face, PanelMesh& mesh, const BoundaryPiecesParams& params,
+                BoundaryPiecesReport& report)
+      : face_(face), mesh_(mesh), params_(params), report_(report), original_(mesh.xyz) {}
 
   // Models one draft; appends the resulting panel(s) to the output lists.
   void model(Draft draft, int origin) {
@@ -136,27 +150,47 @@ class PieceModeller {
       std::vector<Vec3> placed = xyz;
       int worst = -1;
       double worst_offset = 0;
+      bool tangled = false;
       for (const std::vector<int>& piece : split_polygon(int(xyz.size()), bends)) {
         const Plane plane = piece_plane(draft, xyz, piece);
+        const Vec3 e1 = plane.normal.unitOrthogonal(), e2 = plane.normal.cross(e1);
+        std::vector<Vec2> on_plane;
         for (int c : piece) {
-          if (is_node(mesh_, draft.vertices[c])) continue;
-          const double off = (xyz[c] - plane.point).dot(plane.normal);
-          placed[c] = xyz[c] - off * plane.normal;
-          if (std::abs(off) > worst_offset) worst_offset = std::abs(off), worst = c;
+          if (!is_node(mesh_, draft.vertices[c])) {
+            const double off = (xyz[c] - plane.point).dot(plane.normal);
+            placed[c] = xyz[c] - off * plane.normal;
+            if (std::abs(off) > worst_offset) worst_offset = std::abs(off), worst = c;
+          }
+          on_plane.emplace_back((placed[c] - plane.point).dot(e1), (placed[c] - plane.point).dot(e2));
         }
+        // A trim curving away from the plane can fold its projection over.
+        if (piece.size() > 3 && crosses_itself(on_plane)) tangled = true;
       }
-      if (params_.max_deviation > 0 && worst >= 0 && worst_offset > params_.max_deviation) {
-        // Too far from the surface for a flat piece: the farthest trim point
-        // becomes a node (it stays on the trim), and the panel is modelled again.
-        mesh_.is_node[draft.vertices[worst]] = 1;
+      // Refined while its outline on the plane crosses itself or it deviates
+      // more than allowed (trim offset first: it needs no sampling): the trim
+      // point farthest from its plane becomes a node (it stays on the trim),
+      // and the panel is modelled again.
+      const bool too_far =
+          params_.max_deviation > 0 &&
+          (worst_offset > params_.max_deviation ||
+           panel_model_deviation(face_, placed, draft.uv, triangulate_pieces(draft.uv, bends),
+                                 params_.samples) > params_.max_deviation);
+      if (worst >= 0 && (tangled || too_far)) {
+        // The new node keeps min_node_spacing from the others along the trim
+        // (no short rods); a piece that only a closer node would improve is
+        // kept as it is (its deviation is reported as measured), unless its
+        // outline crosses itself.
+        const int spaced = farthest_spaced_point(draft, placed, xyz);
+        if (spaced < 0 && !tangled) {
+          finish(std::move(draft), std::move(bends), placed, origin);
+          return;
+        }
+        mesh_.is_node[draft.vertices[spaced >= 0 ? spaced : worst]] = 1;
         ++report_.refined;
         rods_changed_ = true;
         continue;
       }
-      for (std::size_t c = 0; c < draft.vertices.size(); ++c) mesh_.xyz[draft.vertices[c]] = placed[c];
-      report_.bends += static_cast<int>(bends.size());
-      ++report_.modelled;
-      emit(std::move(draft), std::move(bends), origin, true);
+      finish(std::move(draft), std::move(bends), placed, origin);
       return;
     }
   }
@@ -180,6 +214,46 @@ class PieceModeller {
   // No valid bend lines or split (a panel whose node diagonals all leave it):
   // left as its triangulated outline, as before this stage.
   void keep_unmodelled(Draft draft, int origin) { emit(std::move(draft), {}, origin, false); }
+
+  void finish(Draft draft, std::vector<Diagonal> bends, const std::vector<Vec3>& placed, int origin) {
+    for (std::size_t c = 0; c < draft.vertices.size(); ++c) mesh_.xyz[draft.vertices[c]] = placed[c];
+    report_.bends += static_cast<int>(bends.size());
+    ++report_.modelled;
+    emit(std::move(draft), std::move(bends), origin, true);
+  }
+
+  // The trim point farthest from its piece plane (placed vs on the surface)
+  // whose distance along the outline to the nearest node, both ways, is at
+  // least min_node_spacing; -1 if none.
+  int farthest_spaced_point(const Draft& draft, const std::vector<Vec3>& placed,
+                            const std::vector<Vec3>& xyz) const {
+    const int n = static_cast<int>(draft.vertices.size());
+    std::vector<double> along(n, std::numeric_limits<double>::infinity());
+    auto sweep = [&](int step) {
+      double run = std::numeric_limits<double>::infinity();
+      for (int pass = 0; pass < 2; ++pass)
+        for (int s = 0; s < n; ++s) {
+          const int c = step > 0 ? s : n - 1 - s;
+          const int prev = (c - step + n) % n;
+          if (is_node(mesh_, draft.vertices[c])) {
+            run = 0;
+            continue;
+          }
+          run += (xyz[c] - xyz[prev]).norm();
+          along[c] = std::min(along[c], run);
+        }
+    };
+    sweep(1);
+    sweep(-1);
+    int best = -1;
+    double best_offset = 0;
+    for (int c = 0; c < n; ++c) {
+      if (is_node(mesh_, draft.vertices[c]) || along[c] < params_.min_node_spacing) continue;
+      const double off = (placed[c] - xyz[c]).norm();
+      if (off > best_offset) best_offset = off, best = c;
+    }
+    return best;
+  }
 
   // Makes the middle point of the longest run of trim points a node; false if
   // the panel has no trim point left.
@@ -294,6 +368,7 @@ class PieceModeller {
     return fit_plane(points, nodes);
   }
 
+  const SurfaceFace& face_;
   PanelMesh& mesh_;
   const BoundaryPiecesParams& params_;
   BoundaryPiecesReport& report_;
@@ -303,8 +378,10 @@ class PieceModeller {
 
 }  // namespace
 
-BoundaryPiecesReport model_boundary_pieces(PanelMesh& mesh, const BoundaryPiecesParams& params) {
+BoundaryPiecesReport model_boundary_pieces(const SurfaceFace& face, PanelMesh& mesh,
+                                           const BoundaryPiecesParams& params) {
   require_in_range("max_deviation", params.max_deviation, 0.0, 1e12);
+  require_in_range("samples", params.samples, 1, 256);
   require_in_range("max_bends", params.max_bends, 1, 16);
   BoundaryPiecesReport report;
   // A trim point shared by two panels would be moved onto two planes: such a
@@ -317,7 +394,7 @@ BoundaryPiecesReport model_boundary_pieces(PanelMesh& mesh, const BoundaryPieces
   for (std::size_t v = 0; v < uses.size(); ++v)
     if (!mesh.is_node[v] && uses[v] > 1) shared_point[v] = mesh.is_node[v] = 1;
 
-  PieceModeller modeller(mesh, params, report);
+  PieceModeller modeller(face, mesh, params, report);
   for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
     Draft draft{mesh.panels[k], panel_corner_uv(mesh, k)};
     if (modelled_as_pieces(mesh, k))

@@ -14,9 +14,10 @@
 // plane, so the unfolded outline carries the trim edge as one smooth curve and
 // only bend lines are folds. Nodes never move (rods still meet there); trim
 // points move off the surface by their distance to the piece plane, and the
-// deviation metric measures exactly that piece. Where that distance exceeds
-// `max_deviation` the farthest trim point becomes a node (a new rod end on the
-// trim) and the panel is modelled again.
+// deviation metric measures exactly that piece. Where the piece deviates from
+// the surface by more than `max_deviation` (sampled as the metrics do, trim
+// edge included) the trim point farthest from its piece plane becomes a node
+// (a new rod end on the trim) and the panel is modelled again.
 #pragma once
 
 #include <vector>
@@ -25,10 +26,17 @@
 
 namespace tessella {
 
+class SurfaceFace;
+
 struct BoundaryPiecesParams {
-  // Largest distance (mm) of a piece's trim edge from the surface before the
-  // piece is refined; 0 = no refinement.
+  // Largest deviation (mm) of a piece from the surface before the piece is
+  // refined; 0 = no refinement.
   double max_deviation = 0.0;
+  // Samples per edge direction for that deviation (MetricsParams::samples).
+  int samples = 8;
+  // Least distance (mm, along the trim) of a new node from the other nodes:
+  // refining never makes a rod shorter than this.
+  double min_node_spacing = 0.0;
   // Most bend lines per panel (2: a five-node panel is bent twice; a panel of
   // more nodes is split by a new rod).
   int max_bends = 2;
@@ -45,6 +53,7 @@ struct BoundaryPiecesReport {
 
 // Models the pieces in place: moves trim points onto their piece planes, fills
 // mesh.bends, splits panels (new rods) and rebuilds mesh.rods when it did.
-BoundaryPiecesReport model_boundary_pieces(PanelMesh& mesh, const BoundaryPiecesParams& params);
+BoundaryPiecesReport model_boundary_pieces(const SurfaceFace& face, PanelMesh& mesh,
+                                           const BoundaryPiecesParams& params);
 
 }  // namespace tessella

@@ -108,7 +108,16 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   const PanelMetrics full_metrics = measure_panels(*face, r.mesh, mp, full);
   BoundaryPiecesParams bp;
   bp.max_deviation = allowed_boundary_deviation(values, decl, full_metrics);
-  BoundaryPiecesReport pieces = model_boundary_pieces(r.mesh, bp);
+  bp.samples = mp.samples;
+  // New nodes on the trim keep a quarter of the nominal panel edge from the
+  // others (the short-rod rule; median rod where a method has no nominal size).
+  bp.min_node_spacing = 0.25 * std::sqrt(std::max(0.0, r.mesh.nominal_area));
+  if (!(bp.min_node_spacing > 0) && !full_metrics.rod_length.empty()) {
+    std::vector<double> rods = full_metrics.rod_length;
+    std::nth_element(rods.begin(), rods.begin() + long(rods.size() / 2), rods.end());
+    bp.min_node_spacing = 0.25 * rods[rods.size() / 2];
+  }
+  BoundaryPiecesReport pieces = model_boundary_pieces(*face, r.mesh, bp);
   for (std::size_t k = 0; k < pieces.changed.size(); ++k)
     if (!full[static_cast<std::size_t>(pieces.origin[k])]) pieces.changed[k] = 1;
   r.metrics = remeasure_panels(*face, r.mesh, full_metrics, pieces.origin, pieces.changed, mp);
