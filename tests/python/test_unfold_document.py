@@ -81,11 +81,14 @@ def test_make_unfold_and_nest(doc):
     d.recompute()
     assert u.isValid()
     check_against_panels(u, p)
-    # a sheet too small for a panel: the Unfold reports an error, no crash
+    # a sheet too small for a panel: the Unfold reports it in Status (no
+    # traceback), draws the panels in rows and nests nothing
     u.Nest = True
     u.SheetWidth, u.SheetHeight = 300.0, 300.0
     d.recompute()
-    assert not u.isValid()
+    assert u.isValid() and u.SheetCount == 0, u.Status
+    assert u.Status.startswith("Not nested: ") and "smallest sheet that fits" in u.Status
+    check_against_panels(u, p)
 
 
 def test_make_unfold_errors_leave_document_untouched(doc):
