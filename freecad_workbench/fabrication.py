@@ -293,9 +293,11 @@ def _not_fitting(ids, boxes, fit, sizes, margin, rotations):
              else f"any stock size ({_size_text(sizes)} mm)")
     more = f" (and {len(bad) - 1} more part{'s' if len(bad) > 2 else ''})" if len(bad) > 1 else ""
     sw, sh = _smallest_box(boxes + 2 * margin + _FIT_SLACK)
+    turns = (f"in any of the {rotations} allowed rotations" if rotations > 1
+             else "in its own orientation (rotations=1)")
     return ValueError(
         f"{ids[i]} ({w:.1f} x {h:.1f} mm) does not fit on {where} with margin {margin:g} mm "
-        f"in any of the {rotations} allowed rotations{more}; the smallest sheet that fits "
+        f"{turns}{more}; the smallest sheet that fits "
         f"every part is {sw:g} x {sh:g} mm (sheet_width={sw:g}, sheet_height={sh:g})")
 
 
