@@ -213,7 +213,7 @@ def test_svg_lays_sheets_out_in_a_grid_of_their_own_sizes(fine, tmp_path):
               float(r.get("height"))) for r in root.findall("s:rect", SVG)]
     assert len(rects) == lay.sheet_count
     assert [(w, h) for _, _, w, h in rects] == pytest.approx(lay.sheet_sizes)
-    assert len({round(x) for x, _, _, _ in rects}) > 1 and len({round(y) for _, y, _, _ in rects}) > 1
+    assert len({round(r[0]) for r in rects}) > 1 and len({round(r[1]) for r in rects}) > 1
     for a in range(len(rects)):  # frames apart
         for b in range(a + 1, len(rects)):
             xa, ya, wa, ha = rects[a]
