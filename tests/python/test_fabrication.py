@@ -236,7 +236,9 @@ def check_dxf(path, r, flat, lay=None):
     names = [i.dxf.name for i in inserts]
     assert sorted(names) == sorted(r.panel_ids) and len(set(names)) == len(names)
     by_id = dict(zip(r.panel_ids, r.panels))
-    gap = max(100.0, 0.1 * lay.sheet_width) if lay else 0
+    from freecad_workbench.export import _arrange
+
+    origins = _arrange.sheet_origins(lay) if lay else []  # sheets in a grid
     for ins in inserts:
         pid = ins.dxf.name
         p = r.vertices[list(by_id[pid])]
@@ -267,11 +269,11 @@ def check_dxf(path, r, flat, lay=None):
             m = ins.matrix44()
             world = np.array([tuple(m.transform((x, y, 0)))[:2] for x, y in pts])
             sheet = lay.placements[r.panel_ids.index(pid)].sheet
-            x0 = sheet * (lay.sheet_width + gap)
+            x0, y0 = origins[sheet]
             assert world[:, 0].min() >= x0 + lay.margin - 1e-6
             assert world[:, 0].max() <= x0 + lay.sheet_width - lay.margin + 1e-6
-            assert world[:, 1].min() >= lay.margin - 1e-6
-            assert world[:, 1].max() <= lay.sheet_height - lay.margin + 1e-6
+            assert world[:, 1].min() >= y0 + lay.margin - 1e-6
+            assert world[:, 1].max() <= y0 + lay.sheet_height - lay.margin + 1e-6
     return doc
 
 

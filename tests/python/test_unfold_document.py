@@ -66,19 +66,29 @@ def test_make_unfold_and_nest(doc):
     d.recompute()
     assert u.isValid() and u.SheetCount >= 1 and 0 < u.Utilization < 1
     check_against_panels(u, p)
-    bb = u.Shape.BoundBox
-    assert bb.YMin >= 10 - 1e-9 and bb.YMax <= 2500 - 10 + 1e-9
+    from freecad_workbench.export import _arrange
+
+    _res, flat, lay = u.Proxy.compute(u)
+    origins = _arrange.sheet_origins(lay)  # sheets in a grid
+    for part, f in zip(u.Shape.childShapes(), flat):
+        bb = part.BoundBox
+        x0, y0 = origins[lay.placements[lay.index(f.id)].sheet]
+        assert bb.XMin >= x0 + 10 - 1e-6 and bb.XMax <= x0 + 4000 - 10 + 1e-6
+        assert bb.YMin >= y0 + 10 - 1e-6 and bb.YMax <= y0 + 2500 - 10 + 1e-6
     # parametric: a coarser panelization re-unfolds
     u.Nest = False
     p.Size = 2500.0
     d.recompute()
     assert u.isValid()
     check_against_panels(u, p)
-    # a sheet too small for a panel: the Unfold reports an error, no crash
+    # a sheet too small for a panel: the Unfold reports it in Status (no
+    # traceback), draws the panels in rows and nests nothing
     u.Nest = True
     u.SheetWidth, u.SheetHeight = 300.0, 300.0
     d.recompute()
-    assert not u.isValid()
+    assert u.isValid() and u.SheetCount == 0, u.Status
+    assert u.Status.startswith("Not nested: ") and "smallest sheet that fits" in u.Status
+    check_against_panels(u, p)
 
 
 def test_make_unfold_errors_leave_document_untouched(doc):
