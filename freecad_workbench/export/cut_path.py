@@ -141,7 +141,7 @@ def _collapse_jogs(p, tol, keep):
     # start the scan at a point that is not close to its predecessor
     far = np.nonzero(np.roll(step, 1) > tol)[0]
     if len(far) == 0:
-        raise ValueError(f"the outline's points all lie within {tol:g} mm of each other")
+        return list(range(n))  # every point within tol of the next: nothing to collapse safely
     start = int(far[0])
     order = [(start + i) % n for i in range(n)]
     out = []
@@ -181,7 +181,9 @@ def simplify(points, tolerance=DEFAULT_SIMPLIFY_TOLERANCE, keep=()):
     if tol == 0.0:
         return np.arange(n)
     alive = _collapse_jogs(p, tol, keep)
-    if len(alive) <= 3:
+    if len(alive) < 3:
+        return np.arange(n)  # a sliver under the tolerance: left as it is
+    if len(alive) == 3:
         return np.array(alive)
     m = len(alive)
     prev = {alive[k]: alive[k - 1] for k in range(m)}

@@ -183,6 +183,11 @@ def test_simplify_removes_collinear_points_and_jogs_keeps_corners():
     assert list(cp.simplify(sq, 0.0)) == list(range(len(sq)))
     bend = [(0, 0), (500, 0.01), (1000, 0), (1000, 600), (0, 600)]
     assert list(cp.simplify(bend, 1e-3)) == [0, 1, 2, 3, 4]
+    # slivers under the tolerance are left as they are (never fewer than 3 points)
+    tiny = [(0, 0), (1e-4, 0), (1e-4, 1e-4), (0, 1e-4)]
+    assert len(cp.simplify(tiny, 1e-3)) >= 3 and cp.make_cut_path(tiny).segment_count >= 3
+    needle = [(0, 0), (1000, 0), (1000, 0.0002), (0, 0.0001)]
+    assert len(cp.simplify(needle, 1e-3)) >= 3
     for bad in ([(0, 0), (1, 1)], [(0, 0), (1, 0), (math.nan, 1)]):
         with pytest.raises(ValueError):
             cp.simplify(bad)
@@ -380,11 +385,15 @@ def test_ids_a_user_can_type(tmp_path, panels):
     assert names == dxf_mod.block_names([f.id for f in weird])  # deterministic
     assert len({n.lower() for n in names}) == len(names)  # unique, also without case
     from ezdxf.lldxf.validator import is_valid_block_name
+    used = set()
     for pid, name in zip([f.id for f in weird], names):
         assert is_valid_block_name(name) and len(name) <= 64 and name.isascii() and " " not in name
         assert name[0] != "*"
-        if re.fullmatch(r"[A-Za-z0-9_.-]{1,64}", pid) and pid.lower() != "roof_a_01" or pid == "ROOF_A_01":
-            assert name == pid  # safe IDs keep their name
+        if re.fullmatch(r"[A-Za-z0-9_.-]{1,64}", pid) and pid.lower() not in used:
+            assert name == pid  # a safe ID keeps its name unless taken (without case)
+        used.add(name.lower())
+    assert names[3] == "roof_a_01_2"  # "ROOF_A_01" took the name (DXF names ignore case)
+    assert names[0].startswith("ROOF_A_01_") and names[1].startswith("ROOF_A_01_")
     for blocks in (True, False):
         s = tessella.export_dxf(weird, str(tmp_path / f"w{blocks}.dxf"), layout=lay, blocks=blocks)
         labels, cut_ids = [], []
