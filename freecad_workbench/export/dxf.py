@@ -206,7 +206,7 @@ def _write_part(dw, layout_space, f, index, name, cut, ref, place, opts):
                                dxfattribs={"layer": "FOLD"})
         line.set_xdata(APPID, [(1000, "fold"), (1071, int(a)), (1071, int(b)),
                                (1040, float(signed))])
-        mid = 0.5 * (pa + pb)
+        mid = pa + 0.3 * (pb - pa)  # off the centre, where the ID goes
         rot = _readable(math.degrees(math.atan2(pb[1] - pa[1], pb[0] - pa[0])))
         t = target.add_text(fold_text(signed), dxfattribs={
             "layer": "LABEL", "height": 0.6 * h, "rotation": rot})
