@@ -83,9 +83,12 @@ def make_unfold(panelization, doc=None, **options):
     return obj
 
 
-def export_unfold(unfold_obj, path):
+def export_unfold(unfold_obj, path, **options):
     """Write an Unfold object's flat panels (as laid out: nested or in rows) to a
-    DXF or SVG file, chosen by the extension. Returns the writer's summary."""
+    DXF or SVG file, chosen by the extension. Returns the writer's summary. A DXF is
+    written for CAM as `export_dxf` does by default (one file per sheet when nested:
+    <stem>_sheet01.dxf, ...; the summary's "paths"); `options` go to `export_dxf`
+    (per_sheet, blocks, cut_path, reference, arcs, chord_tolerance, ...)."""
     from .export.dxf import export_dxf
     from .export.svg import export_svg
     from .features.unfold import Unfold
@@ -97,5 +100,8 @@ def export_unfold(unfold_obj, path):
         raise ValueError(f"the file must end in .dxf or .svg, got {path!r}")
     _res, flat, layout = unfold_obj.Proxy.compute(unfold_obj)
     kerf = layout.kerf if layout else float(getattr(unfold_obj.Kerf, "Value", unfold_obj.Kerf))
-    writer = export_dxf if ext == "dxf" else export_svg
-    return writer(flat, path, layout=layout, kerf=kerf)
+    if ext == "svg":
+        if options:
+            raise ValueError(f"options {sorted(options)} apply to DXF only")
+        return export_svg(flat, path, layout=layout, kerf=kerf)
+    return export_dxf(flat, path, layout=layout, kerf=kerf, **options)

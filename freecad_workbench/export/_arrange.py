@@ -49,30 +49,6 @@ def fold_text(angle):
     return f"{'V' if angle > 0 else 'M'} {abs(angle):.4f}°"
 
 
-# Characters AutoCAD does not allow in a symbol-table name (block, layer), and
-# '|' (external-reference names).
-_DXF_NAME_BAD = frozenset('<>/\\":;?*|,=`')
-
-
-def dxf_block_names(ids):
-    """A safe, unique DXF block name per ID, in order: characters DXF names may
-    not hold become '_', control characters are dropped, ends are stripped, at
-    most 255 characters; names equal but for case (DXF names ignore case) get
-    '~2', '~3', ... The ID itself, as typed, belongs in the label text."""
-    used = set()
-    out = []
-    for pid in ids:
-        base = "".join("_" if c in _DXF_NAME_BAD else c for c in str(pid)
-                       if ord(c) >= 32 and ord(c) != 127).strip()[:240] or "PANEL"
-        name, k = base, 1
-        while name.casefold() in used:
-            k += 1
-            name = f"{base}~{k}"
-        used.add(name.casefold())
-        out.append(name)
-    return out
-
-
 def dxf_text(text):
     """Text for a DXF TEXT entity that shows `text` as typed: DXF reads '%%c',
     '%%d', '%%p', ... as symbols, so when '%%' occurs every '%' is written '%%%'."""

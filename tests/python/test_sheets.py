@@ -236,7 +236,7 @@ def test_dxf_sheet_frames_have_each_sheets_size(fine, tmp_path):
 
     lay = tessella.nest(fine, stock_sizes=[(1400, 1000), (1600, 1250)])
     path = str(tmp_path / "frames.dxf")
-    tessella.export_dxf(fine, path, layout=lay)
+    tessella.export_dxf(fine, path, layout=lay, per_sheet=False)
     msp = ezdxf.readfile(path).modelspace()
     frames = []
     for e in msp.query("LWPOLYLINE"):

@@ -165,7 +165,10 @@ def test_export_unfold_object(doc, tmp_path):
     d, p = doc
     u = tessella.make_unfold(p, nest=True, sheet_width=4000.0, sheet_height=2500.0)
     path = str(tmp_path / "u.dxf")
-    tessella.export_unfold(u, path)
+    # the exact form (one drawing, blocks, every outline point); the CAM defaults are
+    # checked in test_dxf_cam.py
+    s = tessella.export_unfold(u, path, per_sheet=False, blocks=True, arcs=False, simplify_tolerance=0)
+    assert s["paths"] == [path]
     dxf = ezdxf.readfile(path)
     faces = panels_child(p).Shape.childShapes()
     for pid, face in zip(u.PanelIds, faces):
@@ -175,6 +178,8 @@ def test_export_unfold_object(doc, tmp_path):
                     for i in range(len(pts)))
         l3 = sorted(e.Length for e in boundary_edges(face))
         assert max(abs(a - b) for a, b in zip(l2, l3)) < 1e-6
+    cam = tessella.export_unfold(u, str(tmp_path / "cam.dxf"))  # default: one file per sheet
+    assert len(cam["paths"]) == u.SheetCount and all(os.path.isfile(q) for q in cam["paths"])
     tessella.export_unfold(u, str(tmp_path / "u.svg"))
     assert os.path.getsize(str(tmp_path / "u.svg")) > 0
     with pytest.raises(ValueError, match="dxf or .svg"):
