@@ -40,7 +40,8 @@ def make_curve_network(*args, **kwargs):
     return _make(*args, **kwargs)
 
 
-from .fabrication import FlatPanel, FlatPatch, NestLayout, flatten, nest, unfold  # noqa: F401,E402
+from .fabrication import (  # noqa: F401,E402
+    FlatPanel, FlatPatch, NestLayout, flatten, nest, smallest_sheet, unfold)
 
 
 def export_dxf(*args, **kwargs):

@@ -43,6 +43,33 @@ ROD_ID_FORMAT = "R-{:04d}"
 NODE_ID_FORMAT = "N-{:04d}"
 
 
+def format_ids(fmt, count, what="panel"):
+    """IDs fmt.format(1), ..., fmt.format(count): any text a user can type around a
+    number field (``ROOF/A:{:03d}``, spaces, unicode). Raises ValueError for a
+    format that is not one, gives an empty ID or an ID with a control character,
+    or gives two items the same ID (e.g. no number field): IDs name parts on
+    drawings and schedules, so they are refused rather than silently suffixed."""
+    name = f"{what.capitalize()}IdFormat"
+    if not isinstance(fmt, str) or not fmt:
+        raise ValueError(f"{name} must be a text like P-{{:04d}}, got {fmt!r}")
+    seen = {}
+    out = []
+    for k in range(1, count + 1):
+        try:
+            text = fmt.format(k)
+        except (IndexError, KeyError, ValueError, TypeError, AttributeError):
+            raise ValueError(f"{name} {fmt!r} is not a format like P-{{:04d}}") from None
+        if not text.strip() or any(ord(c) < 32 or ord(c) == 127 for c in text):
+            raise ValueError(f"{name} {fmt!r} gives {what} {k} the ID {text!r} "
+                             "(empty or with a control character)")
+        if text in seen:
+            raise ValueError(f"{name} {fmt!r} gives {what}s {seen[text]} and {k} the same ID "
+                             f"{text!r}: put the number in it, e.g. {{:04d}}")
+        seen[text] = k
+        out.append(text)
+    return out
+
+
 @dataclass
 class PanelizeResult:
     """Everything one panelization produced. Arrays are numpy, lengths in mm."""
@@ -66,6 +93,12 @@ class PanelizeResult:
     _mesh: object = field(default=None, repr=False)
     #: the core's result: keeps the parsed face (unfolding and flattening reuse it)
     _core: object = field(default=None, repr=False)
+    #: Python formats of the IDs from the item number (1-based); a Panelization
+    #: sets them from its PanelIdFormat / RodIdFormat / NodeIdFormat. Every
+    #: writer (unfold, nest, DXF, SVG, schedules, structural export) reads the IDs here.
+    panel_id_format: str = PANEL_ID_FORMAT
+    rod_id_format: str = ROD_ID_FORMAT
+    node_id_format: str = NODE_ID_FORMAT
 
     @property
     def surface(self):
@@ -74,21 +107,22 @@ class PanelizeResult:
 
     @property
     def panel_ids(self):
-        return [PANEL_ID_FORMAT.format(i + 1) for i in range(len(self.panels))]
+        """One ID per panel (panel order), from panel_id_format (see format_ids)."""
+        return format_ids(self.panel_id_format, len(self.panels), "panel")
 
     @property
     def rod_ids(self):
-        return [ROD_ID_FORMAT.format(i + 1) for i in range(len(self.rods))]
+        return format_ids(self.rod_id_format, len(self.rods), "rod")
 
     @property
     def node_ids(self):
         """One ID per node (self.nodes order)."""
-        return [NODE_ID_FORMAT.format(i + 1) for i in range(len(self.nodes))]
+        return format_ids(self.node_id_format, len(self.nodes), "node")
 
     @property
     def node_id_by_vertex(self):
         """{vertex index: node ID} for the vertices that are nodes (rod ends)."""
-        return {int(v): NODE_ID_FORMAT.format(k + 1) for k, v in enumerate(self.nodes)}
+        return {int(v): nid for v, nid in zip(self.nodes, self.node_ids)}
 
     def panels_brep(self, planar_tolerance=None):
         """BRep string of a compound with one sub-shape per panel (panel order)."""

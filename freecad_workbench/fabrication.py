@@ -7,7 +7,10 @@
     flat[i].fold, flat[i].fold_angle           # None / (a, b) corner indices; degrees (0 = flat)
     layout = tessella.nest(flat, sheet_width=2500.0, sheet_height=1250.0,
                            margin=10.0, spacing=6.0, rotations=4)
-    layout.sheet_count, layout.utilization, layout.placed_outline(i)
+    layout = tessella.nest(flat, stock_sizes=[(2500, 1250), (3000, 1500)])
+    layout.sheet_count, layout.sheet_sizes, layout.utilization, layout.placed_outline(i)
+    layout.ids                                 # matched to panels by ID (unique)
+    tessella.smallest_sheet(flat, margin=10.0, rotations=4)   # (width, height) every panel fits
 
 No FreeCAD document is needed. Lengths in mm, angles in degrees.
 """
@@ -95,20 +98,26 @@ class Placement:
 
 @dataclass
 class NestLayout:
-    """Where every flat panel lies: sheet point = R(angle) outline point + offset."""
+    """Where every flat panel lies: sheet point = R(angle) outline point + offset.
+
+    Matched to panels by ID (`ids`, unique): the writers look each panel up by
+    its ID, so the panel list may come in any order."""
 
     ids: list
     placements: list  # Placement per panel, input order
     sheet_count: int
-    sheet_utilization: list  # per sheet: panel area / sheet area
+    sheet_utilization: list  # per sheet: panel area / that sheet's area
     utilization: float  # all panel area / all sheets' area
-    sheet_width: float
+    sheet_width: float  # the sheet size asked for (with stock sizes: the largest stock width)
     sheet_height: float
     margin: float
     spacing: float
     rotations: int
     kerf: float
-    outlines: list = field(default_factory=list, repr=False)  # the nested outlines
+    outlines: list = field(default_factory=list, repr=False)  # the nested (cut) outlines
+    sheet_sizes: list = field(default_factory=list)  # per sheet: (width, height) mm
+    stock_sizes: list = field(default_factory=list)  # the stock sizes offered (empty: one size)
+    panel_outlines: list = field(default_factory=list, repr=False)  # nominal outlines nested
 
     def placed_outline(self, i, outline=None):
         """Outline i (or the given (k,2) points of that panel) in its sheet's coordinates."""
@@ -122,6 +131,19 @@ class NestLayout:
         """Indices of the panels on sheet s."""
         return [i for i, p in enumerate(self.placements) if p.sheet == s]
 
+    def sheet_size(self, s):
+        """(width, height) mm of sheet s."""
+        if self.sheet_sizes:
+            return self.sheet_sizes[s]
+        return (self.sheet_width, self.sheet_height)
+
+    def index(self, panel_id):
+        """Layout index of the panel with this ID (ValueError if it is not in the layout)."""
+        try:
+            return self.ids.index(panel_id)
+        except ValueError:
+            raise ValueError(f"panel {panel_id!r} is not in the layout") from None
+
 
 def cut_outline(panel, kerf):
     """The cutter path of a flat panel: its outline grown by kerf/2 (kerf = cut width, mm)."""
@@ -134,44 +156,268 @@ def cut_outline(panel, kerf):
     return np.asarray(core.offset_outline(outline, p))
 
 
+def unique_ids(items, what="panel"):
+    """The IDs of flat panels (attribute `id`); ValueError naming the first ID given twice
+    (a layout is matched to its panels by ID)."""
+    ids, seen = [], {}
+    for i, f in enumerate(items):
+        pid = getattr(f, "id", None)
+        if not isinstance(pid, str) or not pid:
+            raise ValueError(f"{what} {i} has no ID (got {pid!r})")
+        if pid in seen:
+            raise ValueError(f"{what} ID {pid!r} is given twice ({what}s {seen[pid]} and {i}): "
+                             "IDs must be unique")
+        seen[pid] = i
+        ids.append(pid)
+    return ids
+
+
+def _boxes(outlines, rotations):
+    """(n, rotations, 2): width and height of each outline's bounding box at each
+    allowed rotation (multiples of 360/rotations degrees, as the nesting core)."""
+    out = np.zeros((len(outlines), rotations, 2))
+    for k in range(rotations):
+        a = math.radians(360.0 * k / rotations)
+        rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        for i, o in enumerate(outlines):
+            q = np.asarray(o, dtype=float) @ rot.T
+            out[i, k] = q.max(axis=0) - q.min(axis=0)
+    return out
+
+
+# Slack on the fit test and on a suggested sheet (mm): the core places parts on
+# a 1e-3 mm grid, so a part exactly as large as the free area may not fit.
+_FIT_SLACK = 2e-3
+
+
+def _fits(boxes, width, height, margin):
+    """(n,) bool: part i fits a width x height sheet (margin all round) in some rotation."""
+    ok = (boxes[:, :, 0] + 2 * margin + _FIT_SLACK <= width) & \
+         (boxes[:, :, 1] + 2 * margin + _FIT_SLACK <= height)
+    return ok.any(axis=1)
+
+
+def smallest_sheet(flat, margin=10.0, rotations=4, kerf=0.0):
+    """The smallest sheet (by area; whole mm, landscape on a tie) on which every
+    flat panel fits by itself, with `margin` all round and one of the allowed
+    rotations. Returns (width, height) mm."""
+    margin = _check_number("margin (mm)", margin, 0.0, 1e7)
+    r = _check_rotations(rotations)
+    outlines = [cut_outline(f, kerf) for f in flat]
+    if not outlines:
+        return (0.0, 0.0)
+    boxes = _boxes(outlines, r) + 2 * margin + _FIT_SLACK
+    return _smallest_box(boxes)
+
+
+def _smallest_box(boxes):
+    """Minimum-area (W, H), whole mm, with every part i fitting in some rotation k:
+    boxes[i, k] <= (W, H). A sweep over the widths: H(W) = max_i min over the
+    rotations with w_ik <= W of h_ik (a heap of the parts' current heights)."""
+    import heapq
+
+    n, r, _ = boxes.shape
+    boxes = np.ceil(boxes)  # whole mm
+    entries = sorted((float(boxes[i, k, 0]), float(boxes[i, k, 1]), i)
+                     for i in range(n) for k in range(r))
+    height = [math.inf] * n
+    placed = 0
+    heap = []  # (-height, part): the largest current height on top (lazy deletion)
+    best = None
+    j = 0
+    while j < len(entries):
+        w = entries[j][0]
+        while j < len(entries) and entries[j][0] == w:
+            _, h, i = entries[j]
+            if h < height[i]:
+                if height[i] == math.inf:
+                    placed += 1
+                height[i] = h
+                heapq.heappush(heap, (-h, i))
+            j += 1
+        if placed < n:
+            continue
+        while -heap[0][0] != height[heap[0][1]]:
+            heapq.heappop(heap)
+        h = -heap[0][0]
+        key = (w * h, 0 if w >= h else 1, w)  # least area, then landscape
+        if best is None or key < best[0]:
+            best = (key, (w, h))
+    return best[1]
+
+
+def _check_rotations(rotations):
+    r = _check_number("rotations", rotations, 1, 360)
+    if r != int(r):
+        raise ValueError(f"rotations must be a whole number in [1, 360], got {rotations!r}")
+    return int(r)
+
+
+def _check_stock(stock_sizes, margin):
+    """Stock sizes as a list of (width, height) floats, smallest area first (ties:
+    narrower first, then input order); duplicates dropped."""
+    try:
+        items = list(stock_sizes)
+    except TypeError:
+        raise ValueError(f"stock_sizes must be a list of (width, height), got {stock_sizes!r}") \
+            from None
+    if not items:
+        raise ValueError("stock_sizes is empty: give at least one (width, height) or None")
+    sizes = []
+    for k, item in enumerate(items):
+        try:
+            w, h = item
+        except (TypeError, ValueError):
+            raise ValueError(f"stock_sizes[{k}] must be (width, height), got {item!r}") from None
+        w = _check_number(f"stock_sizes[{k}] width (mm)", w, 1e-3, 1e7)
+        h = _check_number(f"stock_sizes[{k}] height (mm)", h, 1e-3, 1e7)
+        if 2 * margin >= min(w, h):
+            raise ValueError(f"margin ({margin:g} mm) must be less than half the smaller side "
+                             f"of stock size {w:g} x {h:g} mm")
+        if (w, h) not in sizes:
+            sizes.append((w, h))
+    return sorted(sizes, key=lambda s: (s[0] * s[1], s[0], sizes.index(s)))
+
+
+def _size_text(sizes):
+    return ", ".join(f"{w:g} x {h:g}" for w, h in sizes)
+
+
+def _not_fitting(ids, boxes, fit, sizes, margin, rotations):
+    """ValueError naming the first part that fits no sheet and the smallest sheet
+    that fits every part."""
+    bad = [i for i in range(len(ids)) if not fit[i]]
+    i = bad[0]
+    w, h = boxes[i, 0]
+    where = (f"the sheet {sizes[0][0]:g} x {sizes[0][1]:g} mm" if len(sizes) == 1
+             else f"any stock size ({_size_text(sizes)} mm)")
+    more = f" (and {len(bad) - 1} more part{'s' if len(bad) > 2 else ''})" if len(bad) > 1 else ""
+    sw, sh = _smallest_box(boxes + 2 * margin + _FIT_SLACK)
+    turns = (f"in any of the {rotations} allowed rotations" if rotations > 1
+             else "in its own orientation (rotations=1)")
+    return ValueError(
+        f"{ids[i]} ({w:.1f} x {h:.1f} mm) does not fit on {where} with margin {margin:g} mm "
+        f"{turns}{more}; the smallest sheet that fits "
+        f"every part is {sw:g} x {sh:g} mm (sheet_width={sw:g}, sheet_height={sh:g})")
+
+
+def _core_nest(outlines, ids, width, height, params):
+    """One core call on a width x height sheet: (placements, sheet count)."""
+    p = core.NestParams()
+    p.sheet_width, p.sheet_height = width, height
+    p.margin, p.spacing, p.rotations = params.margin, params.spacing, params.rotations
+    lay = core.nest_parts(outlines, p, ids)
+    return ([Placement(int(q.sheet), float(q.angle_deg), tuple(q.offset)) for q in lay.placements],
+            int(lay.sheet_count))
+
+
+def _stock_nest(outlines, ids, fits_by_size, sizes, params):
+    """Sheets from stock sizes: the parts are nested on the size that holds most of
+    them (the larger on a tie), those that fit only elsewhere on their own sizes;
+    then each sheet is re-nested on the smallest stock size (by area) that holds
+    all its parts on one sheet. Returns (placements in part order, size per sheet)."""
+    n = len(outlines)
+    remaining = list(range(n))
+    sheets = []  # [size index, [part indices], [Placement (sheet index local 0)]]
+    while remaining:
+        s = max(range(len(sizes)), key=lambda t: (sum(fits_by_size[t][i] for i in remaining),
+                                                  sizes[t][0] * sizes[t][1], -t))
+        group = [i for i in remaining if fits_by_size[s][i]]
+        pls, count = _core_nest([outlines[i] for i in group], [ids[i] for i in group],
+                                *sizes[s], params)
+        for k in range(count):
+            members = [g for g, pl in zip(group, pls) if pl.sheet == k]
+            sheets.append([s, members, [Placement(0, pl.angle, pl.offset)
+                                        for pl in pls if pl.sheet == k]])
+        remaining = [i for i in remaining if not fits_by_size[s][i]]
+    for sheet in sheets:
+        s, members, _ = sheet
+        for t in range(s):  # smaller (by area) first
+            if not all(fits_by_size[t][i] for i in members):
+                continue
+            pls, count = _core_nest([outlines[i] for i in members], [ids[i] for i in members],
+                                    *sizes[t], params)
+            if count == 1:
+                sheet[0], sheet[2] = t, pls
+                break
+    placements = [None] * n
+    for k, (s, members, pls) in enumerate(sheets):
+        for i, pl in zip(members, pls):
+            placements[i] = Placement(k, pl.angle, pl.offset)
+    return placements, [sizes[s] for s, _, _ in sheets]
+
+
+def _polygon_area(outline):
+    x, y = np.asarray(outline, dtype=float).T
+    return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)))
+
+
 def nest(flat, sheet_width=2500.0, sheet_height=1250.0, margin=10.0, spacing=6.0, rotations=4,
-         kerf=0.0):
+         kerf=0.0, stock_sizes=None):
     """Nest flat panels on stock sheets (deterministic bottom-left fill, no overlaps).
 
     `spacing` is the least gap between two cut outlines, `margin` the free border
     of the sheet, `rotations` the number of allowed rotations (multiples of
     360/rotations degrees; 1 = keep the orientation mark), `kerf` the cut width
-    (outlines are nested grown by kerf/2). Raises ValueError for a negative or
-    non-numeric setting and for a panel that fits the sheet in no rotation.
+    (outlines are nested grown by kerf/2). `stock_sizes` (optional, a list of
+    (width, height) mm) replaces the one sheet size: each sheet takes the
+    smallest stock size (by area) its parts need (layout.sheet_sizes).
+
+    Raises ValueError for a negative or non-numeric setting, for two panels with
+    the same ID, and for a panel that fits no sheet in any allowed rotation (the
+    message names it and the smallest sheet that fits every panel).
     """
     params = core.NestParams()
     params.sheet_width = _check_number("sheet_width (mm)", sheet_width, 1e-3, 1e7)
     params.sheet_height = _check_number("sheet_height (mm)", sheet_height, 1e-3, 1e7)
     params.margin = _check_number("margin (mm)", margin, 0.0, 1e7)
     params.spacing = _check_number("spacing (mm)", spacing, 0.0, 1e7)
-    r = _check_number("rotations", rotations, 1, 360)
-    if r != int(r):
-        raise ValueError(f"rotations must be a whole number in [1, 360], got {rotations!r}")
-    params.rotations = int(r)
+    params.rotations = _check_rotations(rotations)
     kerf = _check_number("kerf (mm)", kerf, 0.0, 1000.0)
     flat = list(flat)
-    ids = [getattr(f, "id", f"part {i}") for i, f in enumerate(flat)]
+    ids = unique_ids(flat)
+    if stock_sizes is None:
+        sizes = [(params.sheet_width, params.sheet_height)]
+        if 2 * params.margin >= min(sizes[0]):
+            raise ValueError("margin (mm) must be less than half the sheet's smaller side")
+    else:
+        sizes = _check_stock(stock_sizes, params.margin)
     outlines = [cut_outline(f, kerf) for f in flat]
-    lay = core.nest_parts(outlines, params, ids)
-    placements = [Placement(int(p.sheet), float(p.angle_deg), tuple(p.offset)) for p in lay.placements]
+    for pid, o in zip(ids, outlines):
+        if len(o) < 3 or not np.all(np.isfinite(o)):
+            raise ValueError(f"{pid}: an outline needs at least 3 finite points")
+    boxes = _boxes(outlines, params.rotations)
+    fits_by_size = [_fits(boxes, w, h, params.margin) for w, h in sizes]
+    fit = np.logical_or.reduce(fits_by_size) if flat else np.zeros(0, dtype=bool)
+    if not fit.all():
+        raise _not_fitting(ids, boxes, fit, sizes, params.margin, params.rotations)
+    if stock_sizes is None:
+        placements, count = _core_nest(outlines, ids, *sizes[0], params)
+        sheet_sizes = [sizes[0]] * count
+    else:
+        placements, sheet_sizes = _stock_nest(outlines, ids, fits_by_size, sizes, params)
+    area = [_polygon_area(o) for o in outlines]
+    per_sheet = [0.0] * len(sheet_sizes)
+    for a, pl in zip(area, placements):
+        per_sheet[pl.sheet] += a
+    sheet_area = [w * h for w, h in sheet_sizes]
+    widest = max(sizes, key=lambda s: (s[0] * s[1], s))
     return NestLayout(
         ids=ids,
         placements=placements,
-        sheet_count=int(lay.sheet_count),
-        sheet_utilization=[float(u) for u in lay.sheet_utilization],
-        utilization=float(lay.utilization),
-        sheet_width=params.sheet_width,
-        sheet_height=params.sheet_height,
+        sheet_count=len(sheet_sizes),
+        sheet_utilization=[a / b for a, b in zip(per_sheet, sheet_area)],
+        utilization=sum(area) / sum(sheet_area) if sheet_area else 0.0,
+        sheet_width=params.sheet_width if stock_sizes is None else widest[0],
+        sheet_height=params.sheet_height if stock_sizes is None else widest[1],
         margin=params.margin,
         spacing=params.spacing,
         rotations=params.rotations,
         kerf=kerf,
         outlines=outlines,
+        sheet_sizes=list(sheet_sizes),
+        stock_sizes=[] if stock_sizes is None else list(sizes),
+        panel_outlines=[np.array(f.outline, dtype=float) for f in flat],
     )
 
 

@@ -2,7 +2,8 @@
 
     u = tessella.make_unfold(panelization, fold_tolerance=0.01, nest=True,
                              sheet_width=2500, sheet_height=1250, margin=10, spacing=6,
-                             rotations=4, kerf=0.0)
+                             rotations=4, kerf=0.0,
+                             stock_sizes=[(2500, 1250), (3000, 1500)])   # optional
 """
 
 import FreeCAD
@@ -18,6 +19,7 @@ _OPTIONS = {
     "spacing": "Spacing",
     "rotations": "Rotations",
     "kerf": "Kerf",
+    "stock_sizes": "StockSizes",
 }
 
 
@@ -44,10 +46,13 @@ def make_unfold(panelization, doc=None, **options):
     else:
         flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance", 0.01))
     kerf = options.get("kerf", 0.0)
+    if "stock_sizes" in options:  # entries like "2500 x 1250" or (width, height) pairs
+        options["stock_sizes"] = feat.format_stock_sizes(options["stock_sizes"])
     if options.get("nest"):
         nest_opts = {k: options[k] for k in ("sheet_width", "sheet_height", "margin", "spacing",
                                              "rotations") if k in options}
-        fabrication.nest(flat, kerf=kerf, **nest_opts)
+        stock = feat.parse_stock_sizes(options.get("stock_sizes")) or None
+        fabrication.nest(flat, kerf=kerf, stock_sizes=stock, **nest_opts)
     else:
         fabrication.cut_outline([[0, 0], [1, 0], [0, 1]], kerf)
 
@@ -67,6 +72,8 @@ def make_unfold(panelization, doc=None, **options):
         doc.recompute()
         if not obj.isValid() or "Touched" in obj.State:
             raise RuntimeError(f"the Unfold did not recompute: {', '.join(obj.State)}")
+        if obj.Status != "OK":
+            raise ValueError(obj.Status)
     except BaseException:
         doc.abortTransaction()
         if name and doc.getObject(name) is not None:
@@ -76,9 +83,12 @@ def make_unfold(panelization, doc=None, **options):
     return obj
 
 
-def export_unfold(unfold_obj, path):
+def export_unfold(unfold_obj, path, **options):
     """Write an Unfold object's flat panels (as laid out: nested or in rows) to a
-    DXF or SVG file, chosen by the extension. Returns the writer's summary."""
+    DXF or SVG file, chosen by the extension. Returns the writer's summary. A DXF is
+    written for CAM as `export_dxf` does by default (one file per sheet when nested:
+    <stem>_sheet01.dxf, ...; the summary's "paths"); `options` go to `export_dxf`
+    (per_sheet, blocks, cut_path, reference, arcs, chord_tolerance, ...)."""
     from .export.dxf import export_dxf
     from .export.svg import export_svg
     from .features.unfold import Unfold
@@ -90,5 +100,8 @@ def export_unfold(unfold_obj, path):
         raise ValueError(f"the file must end in .dxf or .svg, got {path!r}")
     _res, flat, layout = unfold_obj.Proxy.compute(unfold_obj)
     kerf = layout.kerf if layout else float(getattr(unfold_obj.Kerf, "Value", unfold_obj.Kerf))
-    writer = export_dxf if ext == "dxf" else export_svg
-    return writer(flat, path, layout=layout, kerf=kerf)
+    if ext == "svg":
+        if options:
+            raise ValueError(f"options {sorted(options)} apply to DXF only")
+        return export_svg(flat, path, layout=layout, kerf=kerf)
+    return export_dxf(flat, path, layout=layout, kerf=kerf, **options)

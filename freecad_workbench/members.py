@@ -287,6 +287,8 @@ def buildability(result, flat=None, layout=None, length_tol=1.0, angle_tol=0.5):
         s["max_fold_angle"] = float(max((f.fold_angle for f in flat), default=0.0))
     if layout is not None:
         s["sheets"] = layout.sheet_count
-        s["sheet_area"] = layout.sheet_count * layout.sheet_width * layout.sheet_height
+        s["sheet_area"] = float(sum(w * h for w, h in (
+            layout.sheet_size(k) for k in range(layout.sheet_count))))
+        s["sheet_sizes"] = [tuple(layout.sheet_size(k)) for k in range(layout.sheet_count)]
         s["nesting_utilization"] = layout.utilization
     return s

@@ -156,14 +156,24 @@ def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_t
     planarity, fold diagonal ("a-b", corner indices) and angle. Returns the row count."""
     from .schedule_csv import panel_perimeters
 
+    from ..fabrication import unique_ids
+
+    flat = list(flat)
     types, _ = m.panel_types(flat, length_tol, angle_tol)
     per = panel_perimeters(result)
+    index = {pid: k for k, pid in enumerate(result.panel_ids)}
+    rows = []  # the result's panel of each flat panel, found by ID
+    for pid in unique_ids(flat):
+        if pid not in index:
+            raise ValueError(f"flat panel {pid!r} is not a panel of this result: unfold "
+                             "the result you write")
+        rows.append(index[pid])
     with _open(path) as f:
         w = csv.writer(f)
         w.writerow(PANEL_FAB_COLUMNS)
-        for k, fp in enumerate(flat):
+        for t, fp, k in zip(types, flat, rows):
             size = fp.outline.max(axis=0) - fp.outline.min(axis=0)
-            w.writerow([fp.id, f"PT-{types[k] + 1:03d}", len(fp.outline), repr(float(size[0])),
+            w.writerow([fp.id, f"PT-{t + 1:03d}", len(fp.outline), repr(float(size[0])),
                         repr(float(size[1])), repr(float(result.metrics["panel_area"][k])),
                         repr(float(fp.area)), repr(float(per[k])),
                         repr(float(result.metrics["panel_deviation"][k])),

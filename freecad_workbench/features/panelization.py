@@ -151,6 +151,12 @@ class Panelization(_StateMixin):
         add_property(obj, "App::PropertyString", "PanelIdFormat", "Output",
                      "Python format of the panel IDs from the panel number, e.g. P-{:04d}",
                      default="P-{:04d}")
+        add_property(obj, "App::PropertyString", "RodIdFormat", "Output",
+                     "Python format of the rod IDs from the rod number, e.g. R-{:04d}",
+                     default="R-{:04d}")
+        add_property(obj, "App::PropertyString", "NodeIdFormat", "Output",
+                     "Python format of the node IDs from the node number, e.g. N-{:04d}",
+                     default="N-{:04d}")
         ro = _READONLY_OUTPUT
         for name, type_name, doc in (
             ("PanelCount", "App::PropertyInteger", "Number of panels"),
@@ -268,6 +274,7 @@ class Panelization(_StateMixin):
         signature, (face_arg, brep), method, params = self._signature(obj)
         cache = getattr(self, "_cache", None)
         if cache is not None and cache.signature == signature:
+            self._apply_id_formats(obj, cache.result)
             return cache
         failed = getattr(self, "_failed", None)
         if failed is not None and failed[0] == signature:
@@ -282,7 +289,18 @@ class Panelization(_StateMixin):
             raise
         self._failed = None
         self._cache = _Cache(signature, res, shapes)
+        self._apply_id_formats(obj, res)
         return self._cache
+
+    @staticmethod
+    def _apply_id_formats(obj, res):
+        """The document's ID formats on the result: every consumer (Panels, Unfold,
+        schedules, exports) reads its IDs from the result (api.format_ids checks them)."""
+        api = _api()
+        for prop, attr, default in (("PanelIdFormat", "panel_id_format", api.PANEL_ID_FORMAT),
+                                    ("RodIdFormat", "rod_id_format", api.ROD_ID_FORMAT),
+                                    ("NodeIdFormat", "node_id_format", api.NODE_ID_FORMAT)):
+            setattr(res, attr, getattr(obj, prop, "") or default)
 
     @staticmethod
     def _shapes(res):
@@ -396,11 +414,7 @@ class PanelizationPart(_StateMixin):
         role = obj.Role
         obj.Shape = cache.shapes[role]
         if role == "Panels":
-            fmt = getattr(parent, "PanelIdFormat", "") or "P-{:04d}"
-            try:
-                obj.PanelIds = [fmt.format(i + 1) for i in range(len(res.panels))]
-            except (IndexError, KeyError, ValueError):
-                raise ValueError(f"PanelIdFormat {fmt!r} is not a format like P-{{:04d}}")
+            obj.PanelIds = res.panel_ids  # the parent's PanelIdFormat (checked there)
             obj.Deviation = [float(x) for x in res.metrics["panel_deviation"]]
             obj.Planarity = [float(x) for x in res.metrics["panel_planarity"]]
             obj.Area = [float(x) for x in res.metrics["panel_area"]]

@@ -2,18 +2,26 @@
 
     Unfold (Part::FeaturePython, proxy `Unfold`)
         Base -> Panelization
-        FoldTolerance (deg); CurvedPanels, Subdivisions; Nest, SheetWidth, SheetHeight, Margin, Spacing,
-        Rotations, Kerf (mm)
+        FoldTolerance (deg); CurvedPanels, Subdivisions; Nest, SheetWidth, SheetHeight,
+        StockSizes ("2500 x 1250", ...), Margin, Spacing, Rotations, Kerf (mm)
         read-only: PanelIds, FoldAngles, FoldedPanels, MaxFoldAngle, MaxStrain, SheetCount,
-        Utilization
+        SheetSizes, Utilization, Status
 
-Shape: a compound with one sub-compound per panel (panel order) holding the
-closed outline wire (the cutter path when Kerf > 0) and its fold lines; laid out
-on sheets (side by side along x) when Nest is true, else in rows.
+Shape: a compound with one sub-compound per panel (panel order, PanelIds: the
+Panelization's PanelIdFormat) holding the closed outline wire (the cutter path
+when Kerf > 0) and its fold lines; laid out on sheets (in a grid, each sheet of
+its own size, see export/_arrange.py) when Nest is true, else in rows.
+
+Status: "OK" or what went wrong with the settings (e.g. a part that fits no
+sheet, with the smallest sheet that fits every part). Such an error is reported
+in one line, without a traceback: the object stays valid, its panels are drawn
+in rows (not nested) and SheetCount is 0. Errors of the code itself raise.
 
 FROZEN: the module path `freecad_workbench.features.unfold` and the class name
 `Unfold` are stored in every saved .FCStd.
 """
+
+import re
 
 import FreeCAD
 
@@ -26,6 +34,34 @@ from .base import (  # noqa: F401
     value_of,
 )
 from .panelization import is_panelization
+
+
+_SIZE = re.compile(r"\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(?:mm)?\s*[xX×*]\s*"
+                   r"([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(?:mm)?\s*\Z")
+
+
+def parse_stock_sizes(entries):
+    """[(width, height)] mm from entries like '2500 x 1250' (also '2500x1250 mm',
+    '2500 × 1250') or (width, height) pairs; ValueError naming a bad entry."""
+    out = []
+    for k, entry in enumerate(entries or []):
+        if isinstance(entry, str):
+            m = _SIZE.match(entry)
+            if not m:
+                raise ValueError(f"StockSizes[{k}] {entry!r} is not a size like '2500 x 1250'")
+            out.append((float(m.group(1)), float(m.group(2))))
+        else:
+            try:
+                w, h = entry
+                out.append((float(w), float(h)))
+            except (TypeError, ValueError):
+                raise ValueError(f"StockSizes[{k}] {entry!r} is not (width, height)") from None
+    return out
+
+
+def format_stock_sizes(sizes):
+    """The StockSizes entries ('2500 x 1250') of (width, height) pairs or entries."""
+    return [f"{w:g} x {h:g}" for w, h in parse_stock_sizes(sizes)]
 
 
 class Unfold(_StateMixin):
@@ -51,6 +87,10 @@ class Unfold(_StateMixin):
                      default=2500.0)
         add_property(obj, "App::PropertyLength", "SheetHeight", "Nesting", "Sheet height",
                      default=1250.0)
+        add_property(obj, "App::PropertyStringList", "StockSizes", "Nesting",
+                     "Stock sheet sizes 'width x height' (mm), e.g. 2500 x 1250: each sheet "
+                     "takes the smallest (by area) that holds its parts. Empty: SheetWidth x "
+                     "SheetHeight")
         add_property(obj, "App::PropertyLength", "Margin", "Nesting",
                      "Free border on every side of a sheet", default=10.0)
         add_property(obj, "App::PropertyLength", "Spacing", "Nesting",
@@ -74,6 +114,10 @@ class Unfold(_StateMixin):
                      "Sheets used (0 without nesting)", attr=ro)
         add_property(obj, "App::PropertyFloat", "Utilization", "Result",
                      "Panel area / sheet area over all sheets", attr=ro)
+        add_property(obj, "App::PropertyStringList", "SheetSizes", "Result",
+                     "Size of every sheet, 'width x height' (mm)", attr=ro)
+        add_property(obj, "App::PropertyString", "Status", "Result",
+                     "OK, or why the panels could not be unfolded or nested", attr=ro)
 
     def onDocumentRestored(self, obj):
         self._ensure_runtime()
@@ -92,31 +136,46 @@ class Unfold(_StateMixin):
             "spacing": value_of(obj.Spacing),
             "rotations": int(obj.Rotations),
             "kerf": value_of(obj.Kerf),
+            "stock_sizes": list(getattr(obj, "StockSizes", [])),
         }
 
-    def compute(self, obj):
-        """(result, flat, layout or None) for the current Base and options."""
+    def _unfold(self, obj):
         from .. import fabrication
 
         base = obj.Base
         if base is None or not is_panelization(base):
             raise ValueError("Base must link to a Panelization object")
-        res = base.Proxy.result(base).result
+        res = base.Proxy.result(base).result  # carries the Panelization's ID formats
         o = self.options(obj)
         if o["curved"]:
             face_arg, _label = base.Proxy.source_face(base)
             flat = fabrication.flatten(res, face_arg, subdivisions=o["subdivisions"])
         else:
             flat = fabrication.unfold(res, fold_tolerance=o["fold_tolerance"])
-        layout = None
+        return res, flat
+
+    def compute_flat(self, obj):
+        """The flat panels (FlatPanel or FlatPatch, panel order) for the current options."""
+        return self._unfold(obj)[1]
+
+    def compute(self, obj):
+        """(result, flat, layout or None) for the current Base and options."""
+        res, flat = self._unfold(obj)
+        return res, flat, self.nest(obj, flat)
+
+    def nest(self, obj, flat):
+        """The nesting layout of `flat` for the current options (None without Nest)."""
+        from .. import fabrication
+
+        o = self.options(obj)
         if o["nest"]:
-            layout = fabrication.nest(flat, sheet_width=o["sheet_width"],
-                                      sheet_height=o["sheet_height"], margin=o["margin"],
-                                      spacing=o["spacing"], rotations=o["rotations"],
-                                      kerf=o["kerf"])
-        else:
-            fabrication.cut_outline(flat[0] if flat else [[0, 0], [1, 0], [0, 1]], o["kerf"])
-        return res, flat, layout
+            return fabrication.nest(flat, sheet_width=o["sheet_width"],
+                                    sheet_height=o["sheet_height"], margin=o["margin"],
+                                    spacing=o["spacing"], rotations=o["rotations"],
+                                    kerf=o["kerf"],
+                                    stock_sizes=parse_stock_sizes(o["stock_sizes"]) or None)
+        fabrication.cut_outline(flat[0] if flat else [[0, 0], [1, 0], [0, 1]], o["kerf"])
+        return None
 
     def execute(self, obj):
         import Part
@@ -124,12 +183,21 @@ class Unfold(_StateMixin):
         from .. import fabrication
         from ..export import _arrange
 
+        # A setting the user can fix (ValueError: a part that fits no sheet, a bad
+        # stock size, an ID format) becomes the Status, reported in one line; the
+        # panels are still drawn (in rows) when only the nesting failed.
+        flat, layout, status = [], None, "OK"
         try:
-            res, flat, layout = self.compute(obj)
-        except Exception as exc:
-            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {exc}\n")
-            raise
-        kerf = value_of(obj.Kerf)
+            flat = self.compute_flat(obj)
+            layout = self.nest(obj, flat)
+        except ValueError as exc:
+            status = f"{'Not nested: ' if flat else ''}{exc}"
+            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {status}\n")
+            layout = None
+        obj.Status = status
+        kerf = layout.kerf if layout is not None else value_of(obj.Kerf)
+        if not 0.0 <= kerf <= 1000.0:  # reported in Status: draw the nominal outlines
+            kerf = 0.0
         placements, _ = _arrange.arrange(flat, layout)
         parts = []
         for f, pl in zip(flat, placements):
@@ -148,3 +216,4 @@ class Unfold(_StateMixin):
         obj.MaxFoldAngle = float(max(obj.FoldAngles, default=0.0))
         obj.SheetCount = layout.sheet_count if layout else 0
         obj.Utilization = float(layout.utilization) if layout else 0.0
+        obj.SheetSizes = [f"{w:g} x {h:g}" for w, h in layout.sheet_sizes] if layout else []

@@ -51,8 +51,8 @@ class ExportFlatCommand(DocumentCommand):
 
     ICON = "Tessella_Unfold"
     MENU_TEXT = "Export flat panels (DXF/SVG)"
-    TOOL_TIP = ("Write the selected Unfold's panels to a DXF (layers CUT, FOLD, LABEL; "
-                "one block per panel; mm) or an SVG file")
+    TOOL_TIP = ("Write the selected Unfold's panels to DXF for CAM (one file per sheet, "
+                "layers CUT, FOLD, LABEL; mm) or to an SVG file")
 
     def Activated(self):
         obj = selected_unfold()

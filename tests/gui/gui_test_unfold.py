@@ -5,6 +5,7 @@ Panelization (or its Panels child) -> one Unfold per run, one undo step, its vie
 provider and icon, the echoed Python call; save and reopen restores the view provider.
 """
 
+import glob
 import os
 import sys
 import tempfile
@@ -104,11 +105,16 @@ def test_unfold_command():
                 Gui.runCommand("Tessella_ExportFlat")
         finally:
             fc.ask_path = original_ask
-        if check("export wrote the DXF", os.path.isfile(out), str(dc.texts)):
+        # CAM default: one file per sheet (flat_sheet01.dxf, ...), one cut path per panel
+        written = sorted(glob.glob(out[:-4] + "_sheet*.dxf")) if us[0].Nest else [out]
+        if check("export wrote the DXF", bool(written) and all(os.path.isfile(w) for w in written),
+                 str(dc.texts)):
             import ezdxf
+            from freecad_workbench.export.dxf import id_from_xdata
 
-            names = sorted(i.dxf.name for i in ezdxf.readfile(out).modelspace().query("INSERT"))
-            check("DXF holds one block per panel", names == sorted(us[0].PanelIds), str(names[:5]))
+            names = sorted(id_from_xdata(e.get_xdata("TESSELLA"))[1] for w in written
+                           for e in ezdxf.readfile(w).modelspace().query('LWPOLYLINE[layer=="CUT"]'))
+            check("DXF holds one cut path per panel", names == sorted(us[0].PanelIds), str(names[:5]))
         Gui.Selection.clearSelection()
         with DialogCatcher() as dc:
             Gui.runCommand("Tessella_Schedules")

@@ -4,6 +4,7 @@ the nesting is checked with FreeCAD's own geometry (Part wires, distToShape)."""
 
 import math
 import os
+import re
 import xml.etree.ElementTree as ET
 
 import FreeCAD  # noqa: F401  (before Part)
@@ -230,13 +231,21 @@ def read_dxf(path):
     return doc
 
 
+# The exact, inspectable form of the DXF (the CAM defaults differ: one file per sheet,
+# exploded, simplified arc-fitted cut paths; tests/python/test_dxf_cam.py): one drawing,
+# one block per panel, every outline point.
+EXACT = dict(per_sheet=False, blocks=True, arcs=False, simplify_tolerance=0.0)
+
+
 def check_dxf(path, r, flat, lay=None):
     doc = read_dxf(path)
     inserts = doc.modelspace().query("INSERT")
     names = [i.dxf.name for i in inserts]
     assert sorted(names) == sorted(r.panel_ids) and len(set(names)) == len(names)
     by_id = dict(zip(r.panel_ids, r.panels))
-    gap = max(100.0, 0.1 * lay.sheet_width) if lay else 0
+    from freecad_workbench.export import _arrange
+
+    origins = _arrange.sheet_origins(lay) if lay else []  # sheets in a grid
     for ins in inserts:
         pid = ins.dxf.name
         p = r.vertices[list(by_id[pid])]
@@ -249,7 +258,8 @@ def check_dxf(path, r, flat, lay=None):
         l2 = np.linalg.norm(np.roll(pts, -1, axis=0) - pts, axis=1)
         assert np.max(np.abs(l3 - l2)) < 1e-6, pid
         folds = [e for e in block if e.dxftype() == "LINE" and e.dxf.layer == "FOLD"]
-        texts = [e.dxf.text for e in block if e.dxftype() == "TEXT" and e.dxf.layer == "FOLD"]
+        assert not [e for e in block if e.dxftype() == "TEXT" and e.dxf.layer == "FOLD"]
+        texts = [e.dxf.text for e in block if e.dxftype() == "TEXT" and e.dxf.layer == "LABEL"]
         for line in folds:
             a, b = (int(v) for c, v in line.get_xdata("TESSELLA") if c == 1071)
             angle = [v for c, v in line.get_xdata("TESSELLA") if c == 1040][0]
@@ -260,34 +270,34 @@ def check_dxf(path, r, flat, lay=None):
                 assert f"{abs(angle):.4f}" in " ".join(texts)
         if len(p) == 4 and min(dihedral_quad(p, (0, 2)), dihedral_quad(p, (1, 3))) > 0.01:
             assert len(folds) == 1, pid
-        labels = [e.dxf.text for e in block if e.dxftype() == "TEXT" and e.dxf.layer == "LABEL"]
+        labels = [t for t in texts if not re.match(r"^[VM] \d+\.\d{4}°$", t)]
         assert labels == [pid]
         assert any(e.dxftype() == "LINE" and e.dxf.layer == "LABEL" for e in block)  # mark
         if lay is not None:
             m = ins.matrix44()
             world = np.array([tuple(m.transform((x, y, 0)))[:2] for x, y in pts])
             sheet = lay.placements[r.panel_ids.index(pid)].sheet
-            x0 = sheet * (lay.sheet_width + gap)
+            x0, y0 = origins[sheet]
             assert world[:, 0].min() >= x0 + lay.margin - 1e-6
             assert world[:, 0].max() <= x0 + lay.sheet_width - lay.margin + 1e-6
-            assert world[:, 1].min() >= lay.margin - 1e-6
-            assert world[:, 1].max() <= lay.sheet_height - lay.margin + 1e-6
+            assert world[:, 1].min() >= y0 + lay.margin - 1e-6
+            assert world[:, 1].max() <= y0 + lay.sheet_height - lay.margin + 1e-6
     return doc
 
 
 def test_dxf_reads_back_exactly_nested(tmp_path, freeform, layout):
     r, flat = freeform
     path = str(tmp_path / "panels.dxf")
-    tessella.export_dxf(flat, path, layout=layout, kerf=0.0)
+    tessella.export_dxf(flat, path, layout=layout, kerf=0.0, **EXACT)
     doc = check_dxf(path, r, flat, layout)
-    sheets = [e for e in doc.modelspace() if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "SHEET"]
+    sheets = [e for e in doc.modelspace() if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "SHEET_REF"]
     assert len(sheets) == layout.sheet_count
 
 
 def test_dxf_saddle_fold_angles(tmp_path, saddle):
     r, flat = saddle
     path = str(tmp_path / "saddle.dxf")
-    tessella.export_dxf(flat, path)
+    tessella.export_dxf(flat, path, **EXACT)
     doc = check_dxf(path, r, flat)
     n_folds = sum(1 for e in doc.entitydb.values() if e.dxftype() == "LINE" and e.dxf.layer == "FOLD")
     assert n_folds == len(flat)
@@ -301,12 +311,12 @@ def test_dxf_kerf_offsets_the_cut(tmp_path, saddle):
     path = str(tmp_path / "kerf.dxf")
     lay = tessella.nest(flat, sheet_width=2500, sheet_height=1250, margin=10, spacing=6, kerf=kerf)
     check_layout(flat, lay, kerf)
-    tessella.export_dxf(flat, path, layout=lay)
+    tessella.export_dxf(flat, path, layout=lay, cut_path="compensated", reference=True, **EXACT)
     doc = ezdxf.readfile(path)
     for f in flat:
         block = doc.blocks[f.id]
         cut = [e for e in block if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "CUT"][0]
-        nominal = [e for e in block if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "OUTLINE"][0]
+        nominal = [e for e in block if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "REFERENCE"][0]
         wc = wire([(x, y) for x, y, *_ in cut.get_points()])
         wn = wire([(x, y) for x, y, *_ in nominal.get_points()])
         assert np.allclose([(x, y) for x, y, *_ in nominal.get_points()], f.outline, atol=1e-12)
@@ -383,7 +393,7 @@ def test_flatten_patches_to_dxf(tmp_path):
     patches = tessella.flatten(r, face, subdivisions=m)
     lay = tessella.nest(patches, sheet_width=2500, sheet_height=1250, margin=10, spacing=6)
     path = str(tmp_path / "patches.dxf")
-    tessella.export_dxf(patches, path, layout=lay)
+    tessella.export_dxf(patches, path, layout=lay, **EXACT)
     doc = ezdxf.readfile(path)
     for patch in patches:
         cut = [e for e in doc.blocks[patch.id] if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "CUT"][0]

@@ -66,19 +66,29 @@ def test_make_unfold_and_nest(doc):
     d.recompute()
     assert u.isValid() and u.SheetCount >= 1 and 0 < u.Utilization < 1
     check_against_panels(u, p)
-    bb = u.Shape.BoundBox
-    assert bb.YMin >= 10 - 1e-9 and bb.YMax <= 2500 - 10 + 1e-9
+    from freecad_workbench.export import _arrange
+
+    _res, flat, lay = u.Proxy.compute(u)
+    origins = _arrange.sheet_origins(lay)  # sheets in a grid
+    for part, f in zip(u.Shape.childShapes(), flat):
+        bb = part.BoundBox
+        x0, y0 = origins[lay.placements[lay.index(f.id)].sheet]
+        assert bb.XMin >= x0 + 10 - 1e-6 and bb.XMax <= x0 + 4000 - 10 + 1e-6
+        assert bb.YMin >= y0 + 10 - 1e-6 and bb.YMax <= y0 + 2500 - 10 + 1e-6
     # parametric: a coarser panelization re-unfolds
     u.Nest = False
     p.Size = 2500.0
     d.recompute()
     assert u.isValid()
     check_against_panels(u, p)
-    # a sheet too small for a panel: the Unfold reports an error, no crash
+    # a sheet too small for a panel: the Unfold reports it in Status (no
+    # traceback), draws the panels in rows and nests nothing
     u.Nest = True
     u.SheetWidth, u.SheetHeight = 300.0, 300.0
     d.recompute()
-    assert not u.isValid()
+    assert u.isValid() and u.SheetCount == 0, u.Status
+    assert u.Status.startswith("Not nested: ") and "smallest sheet that fits" in u.Status
+    check_against_panels(u, p)
 
 
 def test_make_unfold_errors_leave_document_untouched(doc):
@@ -155,7 +165,10 @@ def test_export_unfold_object(doc, tmp_path):
     d, p = doc
     u = tessella.make_unfold(p, nest=True, sheet_width=4000.0, sheet_height=2500.0)
     path = str(tmp_path / "u.dxf")
-    tessella.export_unfold(u, path)
+    # the exact form (one drawing, blocks, every outline point); the CAM defaults are
+    # checked in test_dxf_cam.py
+    s = tessella.export_unfold(u, path, per_sheet=False, blocks=True, arcs=False, simplify_tolerance=0)
+    assert s["paths"] == [path]
     dxf = ezdxf.readfile(path)
     faces = panels_child(p).Shape.childShapes()
     for pid, face in zip(u.PanelIds, faces):
@@ -165,6 +178,8 @@ def test_export_unfold_object(doc, tmp_path):
                     for i in range(len(pts)))
         l3 = sorted(e.Length for e in boundary_edges(face))
         assert max(abs(a - b) for a, b in zip(l2, l3)) < 1e-6
+    cam = tessella.export_unfold(u, str(tmp_path / "cam.dxf"))  # default: one file per sheet
+    assert len(cam["paths"]) == u.SheetCount and all(os.path.isfile(q) for q in cam["paths"])
     tessella.export_unfold(u, str(tmp_path / "u.svg"))
     assert os.path.getsize(str(tmp_path / "u.svg")) > 0
     with pytest.raises(ValueError, match="dxf or .svg"):
