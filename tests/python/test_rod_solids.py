@@ -61,7 +61,9 @@ def test_mitred_ends_match_cut_list(result, profile):
         for rod in row["rods"]:
             cut_list_angles[rod] = sorted((row["cut_angle_1"], row["cut_angle_2"]))
     for k, solid in enumerate(comp.Solids):
-        assert solid.isValid()
+        assert solid.isValid() and solid.Shells[0].isClosed()
+        if profile[0] == "rect":  # one connected hexahedron, not loose faces
+            assert (len(solid.Faces), len(solid.Edges), len(solid.Vertexes)) == (6, 12, 8)
         a, b = int(rd["node_a"][k]), int(rd["node_b"][k])
         p, q = xyz[a], xyz[b]
         length = float(np.linalg.norm(q - p))
