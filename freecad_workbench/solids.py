@@ -123,6 +123,10 @@ def rod_end_planes(result, ends="mitred", max_mitre=MAX_MITRE):
     would tilt more than max_mitre and the end is turned to max_mitre)."""
     if ends not in ("mitred", "square"):
         raise ValueError(f"ends must be 'mitred' or 'square', got {ends!r}")
+    try:
+        max_mitre = float(max_mitre)
+    except (TypeError, ValueError):
+        raise ValueError(f"max_mitre (deg) must be a number, got {max_mitre!r}") from None
     if not 0.0 < max_mitre < 90.0:
         raise ValueError(f"max_mitre (deg) must be in (0, 90), got {max_mitre!r}")
     xyz = np.asarray(result.vertices, dtype=float)
