@@ -1,5 +1,5 @@
-// The pipeline (tessella/panelize.h): method -> metrics -> irregular panels ->
-// nodes -> folds -> summary, the same steps for every method.
+// The pipeline (tessella/panelize.h): method -> short rods merged -> metrics ->
+// irregular panels -> nodes -> folds -> summary, the same steps for every method.
 #include "tessella/panelize.h"
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 #include <map>
 #include <utility>
 
+#include "mesh/short_rod_merge.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
@@ -74,6 +75,16 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   face->reset_evaluations();
   const auto started = std::chrono::steady_clock::now();
   r.mesh = decl.run(*face, values);
+  // No rod shorter than min_rod_length, whatever the method; walking_agent's
+  // max_deviation is a hard bound on every panel and is kept (gradient_descent's
+  // is a target).
+  report_stage(0.0, "merging short rods");
+  ShortRodMergeParams sp;
+  sp.min_rod_length = value_or<double>(values, decl, "min_rod_length");
+  sp.samples = value_or<int>(values, decl, "samples");
+  if (method == "walking_agent")
+    sp.max_deviation = value_or<double>(values, decl, "max_deviation");
+  const ShortRodMergeReport merged = merge_short_rods(*face, r.mesh, sp);
   r.summary.core_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   r.summary.surface_evaluations = face->evaluations();
@@ -108,6 +119,10 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   s.planarity = summarize(r.metrics.planarity);
   s.area = summarize(r.metrics.area);
   s.rod_length = summarize(r.metrics.rod_length);
+  s.min_rod_length = merged.min_rod_length;
+  s.merged_rods = merged.merged;
+  s.short_rods = merged.remaining;
+  s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
   return r;
 }
 
