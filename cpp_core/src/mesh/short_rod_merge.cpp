@@ -98,6 +98,8 @@ class Merger {
         }
     }
     alive_.assign(np, 1);
+    all_quads_ = std::all_of(m_.panels.begin(), m_.panels.end(),
+                             [](const std::vector<int>& p) { return p.size() == 4; });
     vpanels_.assign(nv, {});
     double total = 0;
     for (std::size_t p = 0; p < np; ++p) {
@@ -556,6 +558,8 @@ class Merger {
       if (a <= area_eps_) return why("orientation", p), false;
       after += a;
       if (!is_simple(q)) return why("not simple", p), false;
+      // An all-quad layout (boundary_driven) stays one: its quads are its point.
+      if (all_quads_ && v.size() != 4) return why("not a quad", p), false;
       if (nodes_of(p).size() < std::min<std::size_t>(3, nodes_before(p))) return why("nodes", p), false;
       for (std::size_t k = 0; k < v.size(); ++k) {
         const int x = v[k], y = v[(k + 1) % v.size()];
@@ -761,6 +765,7 @@ class Merger {
   ShortRodMergeParams params_;
   double limit_;
   double sign_ = 1.0;
+  bool all_quads_ = false;
   double area_eps_ = 0.0;
   std::vector<char> alive_;
   std::vector<std::vector<int>> vpanels_;
