@@ -9,8 +9,6 @@
 #include "mesh/short_rod_merge.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -98,7 +96,8 @@ class Merger {
         }
     }
     alive_.assign(np, 1);
-    all_quads_ = std::all_of(m_.panels.begin(), m_.panels.end(),
+    all_quads_ = params.keep_quads &&
+                 std::all_of(m_.panels.begin(), m_.panels.end(),
                              [](const std::vector<int>& p) { return p.size() == 4; });
     vpanels_.assign(nv, {});
     double total = 0;
@@ -533,13 +532,9 @@ class Merger {
     return *std::max_element(pm.deviation.begin(), pm.deviation.end());
   }
 
-  bool valid() const {
-    const bool ok = valid_impl();
-    return ok;
-  }
-  void why(const char* what, int p) const {
-    if (std::getenv("TESSELLA_SRM_DEBUG")) std::fprintf(stderr, "  refused: %s (panel %d)\n", what, p);
-  }
+  bool valid() const { return valid_impl(); }
+  // Why a collapse is refused (kept for reading; a debugger can break here).
+  void why(const char* /*reason*/, int /*panel*/) const {}
   bool valid_impl() const {
     double before = 0, after = 0, scale = 0;
     for (const Saved& s : saved_) {
@@ -558,7 +553,13 @@ class Merger {
       if (a <= area_eps_) return why("orientation", p), false;
       after += a;
       if (!is_simple(q)) return why("not simple", p), false;
-      // An all-quad layout (boundary_driven) stays one: its quads are its point.
+      // A quad is modelled as the bilinear patch of its corners, which folds
+      // over unless the quad is convex.
+      if (q.size() == 4)
+        for (std::size_t k = 0; k < 4; ++k)
+          if (sign_ * cross2(q[(k + 1) % 4] - q[k], q[(k + 2) % 4] - q[(k + 1) % 4]) <= 0)
+            return why("quad not convex", p), false;
+      // An all-quad layout stays one (keep_quads).
       if (all_quads_ && v.size() != 4) return why("not a quad", p), false;
       if (nodes_of(p).size() < std::min<std::size_t>(3, nodes_before(p))) return why("nodes", p), false;
       for (std::size_t k = 0; k < v.size(); ++k) {
@@ -678,13 +679,10 @@ class Merger {
 
   bool collapse(int a, int b, int ref) {
     const std::vector<Candidate> cands = candidates(a, b, ref);
-    if (std::getenv("TESSELLA_SRM_DEBUG"))
-      std::fprintf(stderr, "rod %d-%d %.1f mm: %zu candidates\n", a, b, length(a, b), cands.size());
     int best = -1;
     std::tuple<int, int, double> best_key{0, 0, 0.0};
     for (std::size_t i = 0; i < cands.size(); ++i) {
       const bool applied = apply(cands[i]);
-      if (!applied && std::getenv("TESSELLA_SRM_DEBUG")) std::fprintf(stderr, "  refused: step\n");
       const bool ok = applied && valid();
       const double score = ok ? shortest_touched() : 0.0;
       rollback();

@@ -18,9 +18,9 @@
 // simple polygon of the mesh's orientation with at least three nodes (or
 // vanishes, its area going to the panels around), no edge is used twice, the
 // (u,v) area of the changed panels is conserved, and (with a deviation bound)
-// no changed panel deviates more than the bound or than before; a mesh of
-// quads only (boundary_driven) keeps every panel a quad (a rod that cannot go
-// without a triangle stays, counted in the report). Among the
+// no changed panel deviates more than the bound or than before; with
+// keep_quads a mesh of quads only keeps every panel a quad (a rod that cannot
+// go without a triangle stays, counted in the report). Among the
 // possible collapses of a rod the one whose changed panels keep the longest
 // shortest rod wins. Rods and folds are rebuilt afterwards.
 #pragma once
@@ -39,6 +39,9 @@ struct ShortRodMergeParams {
   // panel already over it may not get worse.
   double max_deviation = 0.0;
   int samples = 8;  // samples per panel edge of the deviation measure
+  // An all-quad mesh stays all quads (boundary_driven's layout: quads are its
+  // point).
+  bool keep_quads = false;
 };
 
 struct ShortRodMergeReport {

@@ -82,6 +82,8 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   ShortRodMergeParams sp;
   sp.min_rod_length = value_or<double>(values, decl, "min_rod_length");
   sp.samples = value_or<int>(values, decl, "samples");
+  // boundary_driven's point is an all-quad layout: a collapse may not make a triangle.
+  sp.keep_quads = method == "boundary_driven";
   if (method == "walking_agent")
     sp.max_deviation = value_or<double>(values, decl, "max_deviation");
   const ShortRodMergeReport merged = merge_short_rods(*face, r.mesh, sp);
