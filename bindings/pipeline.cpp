@@ -117,6 +117,10 @@ void bind_pipeline(py::module_& m) {
         d["panel_planarity"] = stats(s.planarity);
         d["panel_area"] = stats(s.area);
         d["rod_length"] = stats(s.rod_length);
+        d["min_rod_length"] = s.min_rod_length;
+        d["merged_rods"] = s.merged_rods;
+        d["short_rods"] = s.short_rods;
+        d["shortest_rod"] = s.shortest_rod;
         return d;
       });
 

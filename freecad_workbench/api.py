@@ -86,6 +86,8 @@ class PanelizeResult:
     #: (K,) int64: the vertices that are nodes (rod ends: grid nodes, grid/trim
     #: crossings, trim corners); the others only shape boundary panels' outlines.
     nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    #: the core's summary: counts, stats, and the short-rod stage's shortest_rod,
+    #: min_rod_length (the limit used, mm), merged_rods and short_rods (left under it)
     summary: dict = field(default_factory=dict)
     #: (F,2) int64 vertex pairs: diagonals along which a method folded a quad
     #: into two flat triangles (walking_agent's hard bound); see metrics["fold_angle"].

@@ -58,7 +58,12 @@ def _check_number(name, value, lo, hi):
     return v
 
 
-def unfold(result, fold_tolerance=0.01):
+#: Folds under this angle (degrees) count as flat: the core's default (see
+#: docs/fabrication.md, "Fold tolerance").
+DEFAULT_FOLD_TOLERANCE = core.UnfoldParams().fold_tolerance_deg
+
+
+def unfold(result, fold_tolerance=DEFAULT_FOLD_TOLERANCE):
     """Unfold every panel of a PanelizeResult; returns a list of FlatPanel (panel order).
 
     Planar panels unfold exactly (no fold). A bent quad unfolds as two triangles

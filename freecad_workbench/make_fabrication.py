@@ -1,6 +1,6 @@
 """make_unfold: the parametric Unfold object of a Panelization (console and command).
 
-    u = tessella.make_unfold(panelization, fold_tolerance=0.01, nest=True,
+    u = tessella.make_unfold(panelization, fold_tolerance=0.5, nest=True,
                              sheet_width=2500, sheet_height=1250, margin=10, spacing=6,
                              rotations=4, kerf=0.0,
                              stock_sizes=[(2500, 1250), (3000, 1500)])   # optional
@@ -44,7 +44,8 @@ def make_unfold(panelization, doc=None, **options):
         face_arg, _label = panelization.Proxy.source_face(panelization)
         flat = fabrication.flatten(res, face_arg, subdivisions=options.get("subdivisions", 8))
     else:
-        flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance", 0.01))
+        flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance",
+                                                                fabrication.DEFAULT_FOLD_TOLERANCE))
     kerf = options.get("kerf", 0.0)
     if "stock_sizes" in options:  # entries like "2500 x 1250" or (width, height) pairs
         options["stock_sizes"] = feat.format_stock_sizes(options["stock_sizes"])

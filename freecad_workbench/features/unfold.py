@@ -33,6 +33,7 @@ from .base import (  # noqa: F401
     add_property,
     value_of,
 )
+from ..fabrication import DEFAULT_FOLD_TOLERANCE
 from .panelization import is_panelization
 
 
@@ -75,7 +76,8 @@ class Unfold(_StateMixin):
     def setup_properties(self, obj):
         add_property(obj, "App::PropertyLink", "Base", "Unfold", "The Panelization to unfold")
         add_property(obj, "App::PropertyAngle", "FoldTolerance", "Unfold",
-                     "Folds under this angle count as flat", default=0.01)
+                     "Folds under this angle count as flat (a sheet takes a smaller kink when fixed)",
+                     default=DEFAULT_FOLD_TOLERANCE)
         add_property(obj, "App::PropertyBool", "CurvedPanels", "Unfold",
                      "Keep panels as curved patches of the surface and flatten them (LSCM)",
                      default=False)

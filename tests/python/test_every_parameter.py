@@ -224,7 +224,8 @@ def test_declarations_are_complete_and_derived_everywhere():
             assert to_property[p.name] == p.property
     # The shared pipeline parameters are accepted by every method.
     shared = {p.name for p in next(iter(tessella.METHODS.values())) if p.shared}
-    assert shared == {"sliver_fraction", "min_angle", "max_panels", "trim_deflection", "samples"}
+    assert shared == {"sliver_fraction", "min_angle", "max_panels", "trim_deflection",
+                      "min_rod_length", "samples", "boundary_deviation"}
     for method in tessella.METHODS.values():
         assert shared <= set(method.params)
     # The Method property documents every method.

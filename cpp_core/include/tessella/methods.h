@@ -79,8 +79,8 @@ struct MethodDeclaration {
 const std::vector<MethodDeclaration>& method_declarations();
 // The method called `name`; InvalidParameter listing the known ones otherwise.
 const MethodDeclaration& method_declaration(const std::string& name);
-// The parameters every method accepts (sliver_fraction, trim_deflection,
-// max_panels, min_angle, samples): the pipeline's own.
+// The parameters every method accepts (sliver_fraction, min_angle, max_panels,
+// trim_deflection, min_rod_length, samples): the pipeline's own.
 const std::vector<ParamDeclaration>& shared_param_declarations();
 
 // InvalidParameter unless every value names a parameter of `method`, has its

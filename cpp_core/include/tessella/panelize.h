@@ -1,5 +1,5 @@
-// The whole pipeline in one call: method -> clean-up -> metrics -> folds ->
-// summary. Python, the C++ tests and the benchmarks all run it.
+// The whole pipeline in one call: method -> short rods merged -> metrics ->
+// folds -> summary. Python, the C++ tests and the benchmarks all run it.
 //
 // Progress and cancel: install a ProgressScope (progress.h) on the calling
 // thread; every stage reports through it and a sink returning false throws
@@ -30,6 +30,12 @@ struct PanelizeSummary {
   std::uint64_t surface_evaluations = 0;
   double core_seconds = 0.0;
   SummaryStats deviation, planarity, area, rod_length;
+  // The short-rod stage (min_rod_length): the limit it used (mm, the
+  // automatic one if min_rod_length = 0), the rods it collapsed, the rods
+  // still under the limit (no valid collapse) and the shortest rod left (mm).
+  double min_rod_length = 0.0;
+  int merged_rods = 0, short_rods = 0;
+  double shortest_rod = 0.0;
 };
 
 struct PanelizeResult {

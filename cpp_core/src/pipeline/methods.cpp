@@ -39,6 +39,12 @@ std::vector<ParamDeclaration> make_shared_params() {
            "Advanced", "TrimDeflection");
   d.default_value = 0.0;
   out.push_back(d);
+  d = decl("min_rod_length", ParamKind::Real, "mm", 0.0, 1e9, "Min rod length (0: automatic)",
+           "Nodes closer than this are merged into one (a node on the trim stays exactly on "
+           "it), so no rod is shorter (0 = automatic: a quarter of the nominal panel edge)",
+           "Panelization", "MinRodLength");
+  d.default_value = 0.0;
+  out.push_back(d);
   d = decl("samples", ParamKind::Integer, "", 1, 256, "Samples",
            "Samples per panel edge for the deviation measure", "Advanced", "Samples");
   d.default_value = MetricsParams{}.samples;

@@ -1,5 +1,5 @@
-// The pipeline (tessella/panelize.h): method -> metrics -> irregular panels ->
-// nodes -> folds -> summary, the same steps for every method.
+// The pipeline (tessella/panelize.h): method -> short rods merged -> metrics ->
+// irregular panels -> nodes -> folds -> summary, the same steps for every method.
 #include "tessella/panelize.h"
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 
 #include "mesh/boundary_pieces.h"
 #include "mesh/panel_model.h"
+#include "mesh/short_rod_merge.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
@@ -94,6 +95,18 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   face->reset_evaluations();
   const auto started = std::chrono::steady_clock::now();
   r.mesh = decl.run(*face, values);
+  // No rod shorter than min_rod_length, whatever the method; walking_agent's
+  // max_deviation is a hard bound on every panel and is kept (gradient_descent's
+  // is a target).
+  report_stage(0.0, "merging short rods");
+  ShortRodMergeParams sp;
+  sp.min_rod_length = value_or<double>(values, decl, "min_rod_length");
+  sp.samples = value_or<int>(values, decl, "samples");
+  // boundary_driven's point is an all-quad layout: a collapse may not make a triangle.
+  sp.keep_quads = method == "boundary_driven";
+  if (method == "walking_agent")
+    sp.max_deviation = value_or<double>(values, decl, "max_deviation");
+  const ShortRodMergeReport merged = merge_short_rods(*face, r.mesh, sp);
   r.summary.core_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   r.summary.surface_evaluations = face->evaluations();
@@ -109,14 +122,8 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   BoundaryPiecesParams bp;
   bp.max_deviation = allowed_boundary_deviation(values, decl, full_metrics);
   bp.samples = mp.samples;
-  // New nodes on the trim keep a quarter of the nominal panel edge from the
-  // others (the short-rod rule; median rod where a method has no nominal size).
-  bp.min_node_spacing = 0.25 * std::sqrt(std::max(0.0, r.mesh.nominal_area));
-  if (!(bp.min_node_spacing > 0) && !full_metrics.rod_length.empty()) {
-    std::vector<double> rods = full_metrics.rod_length;
-    std::nth_element(rods.begin(), rods.begin() + long(rods.size() / 2), rods.end());
-    bp.min_node_spacing = 0.25 * rods[rods.size() / 2];
-  }
+  // New nodes on the trim keep min_rod_length from the others.
+  bp.min_node_spacing = merged.min_rod_length;
   BoundaryPiecesReport pieces = model_boundary_pieces(*face, r.mesh, bp);
   for (std::size_t k = 0; k < pieces.changed.size(); ++k)
     if (!full[static_cast<std::size_t>(pieces.origin[k])]) pieces.changed[k] = 1;
@@ -150,6 +157,11 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   s.planarity = summarize(r.metrics.planarity);
   s.area = summarize(r.metrics.area);
   s.rod_length = summarize(r.metrics.rod_length);
+  s.min_rod_length = merged.min_rod_length;
+  s.merged_rods = merged.merged;
+  // Still under the limit after both stages (no valid collapse).
+  for (double length : r.metrics.rod_length) s.short_rods += length < merged.min_rod_length ? 1 : 0;
+  s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
   return r;
 }
 
