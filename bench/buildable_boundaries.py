@@ -54,6 +54,13 @@ def runs(face, quick):
                 ("boundary_driven", {"size": s})]
     for bound in ([40.0] if quick else [20.0, 60.0]):
         out.append(("walking_agent", {"max_deviation": bound}))
+    # guide lines: iso-curves through the middle of the parameter range
+    u0, u1, v0, v1 = face.ParameterRange
+    gu = Part.Edge(face.Surface.uIso(0.5 * (u0 + u1)), v0, v1)
+    gv = Part.Edge(face.Surface.vIso(0.5 * (v0 + v1)), u0, u1)
+    s = sizes[len(sizes) // 2]
+    out.append(("guide_line_scaling", {"rod_length": s, "guides": [gu]}))
+    out.append(("two_guide_lines", {"rod_length": s, "guides": [gu, gv]}))
     return out
 
 
@@ -94,7 +101,8 @@ def row(name, face, method, params):
         dev = np.asarray(r.metrics["panel_deviation"])
         over = str(int(np.sum(dev > params["max_deviation"] * (1 + 1e-9))))
     small = float(np.mean(angles < 0.1)) if len(angles) else 0.0
-    label = ", ".join(f"{k}={v:.0f}" if isinstance(v, float) else f"{k}={v}" for k, v in params.items())
+    label = ", ".join(f"{k}={v:.0f}" if isinstance(v, float) else f"{k}={v}"
+                      for k, v in params.items() if k != "guides")
     return (f"| {name} | {method} {label} | {len(r.panels)} | {max(quad_folds, default=0)} / "
             f"{max(all_folds, default=0)} | {100 * small:.0f}% | {r.summary.get('bend_count', '-')} | "
             f"{shortest:.1f} | {trim:.1e} | {100 * area:+.3f}% | "

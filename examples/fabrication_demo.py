@@ -1,5 +1,7 @@
 """Fabrication demo: the bundled trimmed B-spline face with holes, panelized,
 unfolded, nested, exported (DXF, SVG, CSV, JSON, Abaqus .inp) and summarized.
+The CAM files are cam/panels_sheetNN.dxf (one per sheet); panels.dxf holds every
+sheet in one drawing for review.
 
     PYTHONPATH=/usr/lib/freecad-python3/lib:. /usr/bin/python3 examples/fabrication_demo.py --out out/fabrication
 
@@ -85,7 +87,14 @@ def main():
                            spacing=6.0, rotations=4, kerf=0.2)
     t_nest = time.perf_counter() - t
     out = lambda name: os.path.join(args.out, name)  # noqa: E731
-    tessella.export_dxf(flat, out("panels.dxf"), layout=layout)
+    # For the CAM: one file per sheet (origin at the sheet corner) in cam/; for
+    # review: every sheet in one drawing.
+    os.makedirs(out("cam"), exist_ok=True)
+    for old in os.listdir(out("cam")):  # files of an earlier run with more sheets
+        if old.endswith(".dxf"):
+            os.remove(os.path.join(out("cam"), old))
+    tessella.export_dxf(flat, os.path.join(out("cam"), "panels.dxf"), layout=layout)
+    tessella.export_dxf(flat, out("panels.dxf"), layout=layout, per_sheet=False)
     tessella.export_svg(flat, out("panels.svg"), layout=layout)
     mx.write_panel_fabrication_schedule(r, flat, out("panels_fabrication.csv"))
     mx.write_cut_list(r, out("cut_list.csv"))

@@ -418,11 +418,13 @@ def test_task_panel_edit():
         if check("rows: panel active", panel is not None):
             # its own parameter and the shared ones without a row of their own
             check("rows: equal_size_grid shows size only",
-                  sorted(panel.widgets) == ["samples", "size", "trim_deflection"],
+                  sorted(panel.widgets) == ["boundary_deviation", "min_rod_length", "samples", "size",
+                                            "trim_deflection"],
                   str(sorted(panel.widgets)))
             panel.method.setCurrentIndex(list(tessella.METHODS).index("iso_grid"))
             check("rows: iso_grid shows size and counts",
-                  sorted(panel.widgets) == ["samples", "size", "trim_deflection", "u_count", "v_count"],
+                  sorted(panel.widgets) == ["boundary_deviation", "min_rod_length", "samples", "size",
+                                            "trim_deflection", "u_count", "v_count"],
                   str(sorted(panel.widgets)))
             check("rows: the size carried over",
                   abs(task_panel._value(panel.widget("size")) - parent.Size.Value) < 1e-9)

@@ -120,8 +120,9 @@ def test_unfolded_pieces_keep_their_lengths_and_cover_the_face(run, freeform_fac
     if method in ("relaxed_grid", "boundary_driven"):
         # these layouts do not follow this face's trims (issue 18: relaxed_grid
         # ignores trims, boundary_driven overlaps near the notch): their own area
+        # (bilinear quads: the unfolded triangles are close to, not equal to, them)
         total_model = float(np.sum(r.metrics["panel_area"]))
-        assert abs(total / total_model - 1) < 1e-6
+        assert abs(total / total_model - 1) < 0.005
         return
     assert abs(total / freeform_face.Area - 1) < 0.005, (method, total / freeform_face.Area)
 

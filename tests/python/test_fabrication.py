@@ -73,7 +73,7 @@ def check_flat_against_3d(r, flat, tol=1e-9):
         if k == 4:
             d02, d13 = dihedral_quad(p, (0, 2)), dihedral_quad(p, (1, 3))
             smaller = min(d02, d13)
-            if smaller <= 0.01:
+            if smaller <= tessella.fabrication.DEFAULT_FOLD_TOLERANCE:
                 assert f.fold is None and f.fold_angle == 0.0, f.id
             else:
                 assert f.fold == ((0, 2) if d02 <= d13 else (1, 3)), f.id
@@ -268,7 +268,7 @@ def check_dxf(path, r, flat, lay=None):
             if len(p) == 4:
                 assert abs(abs(angle) - dihedral_quad(p, (a, b))) < 1e-6, pid
                 assert f"{abs(angle):.4f}" in " ".join(texts)
-        if len(p) == 4 and min(dihedral_quad(p, (0, 2)), dihedral_quad(p, (1, 3))) > 0.01:
+        if len(p) == 4 and min(dihedral_quad(p, (0, 2)), dihedral_quad(p, (1, 3))) > tessella.fabrication.DEFAULT_FOLD_TOLERANCE:
             assert len(folds) == 1, pid
         labels = [t for t in texts if not re.match(r"^[VM] \d+\.\d{4}°$", t)]
         assert labels == [pid]

@@ -176,12 +176,12 @@ class PieceModeller {
            panel_model_deviation(face_, placed, draft.uv, triangulate_pieces(draft.uv, bends),
                                  params_.samples) > params_.max_deviation);
       if (worst >= 0 && (tangled || too_far)) {
-        // The new node keeps min_node_spacing from the others along the trim
+        // The new node keeps min_node_spacing from its neighbours on the trim
         // (no short rods); a piece that only a closer node would improve is
         // kept as it is (its deviation is reported as measured), unless its
-        // outline crosses itself.
+        // outline crosses itself or the allowance is a hard bound.
         const int spaced = farthest_spaced_point(draft, placed, xyz);
-        if (spaced < 0 && !tangled) {
+        if (spaced < 0 && !tangled && !params_.hard_bound) {
           finish(std::move(draft), std::move(bends), placed, origin);
           return;
         }
@@ -223,32 +223,25 @@ class PieceModeller {
   }
 
   // The trim point farthest from its piece plane (placed vs on the surface)
-  // whose distance along the outline to the nearest node, both ways, is at
-  // least min_node_spacing; -1 if none.
+  // whose straight distance to the nearest node before and after it along the
+  // outline (the rods it would end) is at least min_node_spacing; -1 if none.
   int farthest_spaced_point(const Draft& draft, const std::vector<Vec3>& placed,
                             const std::vector<Vec3>& xyz) const {
     const int n = static_cast<int>(draft.vertices.size());
-    std::vector<double> along(n, std::numeric_limits<double>::infinity());
-    auto sweep = [&](int step) {
-      double run = std::numeric_limits<double>::infinity();
-      for (int pass = 0; pass < 2; ++pass)
-        for (int s = 0; s < n; ++s) {
-          const int c = step > 0 ? s : n - 1 - s;
-          const int prev = (c - step + n) % n;
-          if (is_node(mesh_, draft.vertices[c])) {
-            run = 0;
-            continue;
-          }
-          run += (xyz[c] - xyz[prev]).norm();
-          along[c] = std::min(along[c], run);
-        }
+    auto neighbour_node = [&](int c, int step) {
+      for (int s = 1; s < n; ++s) {
+        const int d = ((c + step * s) % n + n) % n;
+        if (is_node(mesh_, draft.vertices[d])) return d;
+      }
+      return c;
     };
-    sweep(1);
-    sweep(-1);
     int best = -1;
     double best_offset = 0;
     for (int c = 0; c < n; ++c) {
-      if (is_node(mesh_, draft.vertices[c]) || along[c] < params_.min_node_spacing) continue;
+      if (is_node(mesh_, draft.vertices[c])) continue;
+      const double before = (xyz[c] - xyz[neighbour_node(c, -1)]).norm();
+      const double after = (xyz[c] - xyz[neighbour_node(c, 1)]).norm();
+      if (std::min(before, after) < params_.min_node_spacing) continue;
       const double off = (placed[c] - xyz[c]).norm();
       if (off > best_offset) best_offset = off, best = c;
     }
@@ -296,6 +289,7 @@ class PieceModeller {
         if (!diagonal_inside(draft.uv, a, b)) continue;
         const int balance = std::abs((j - i) - (k - (j - i)));
         const double length = (original_[draft.vertices[a]] - original_[draft.vertices[b]]).norm();
+        if (length < params_.min_node_spacing) continue;  // no short new rod
         if (balance < best_balance || (balance == best_balance && length < best_length)) {
           best_balance = balance, best_length = length, best_i = a, best_j = b;
         }

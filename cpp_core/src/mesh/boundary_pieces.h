@@ -37,6 +37,9 @@ struct BoundaryPiecesParams {
   // Least distance (mm, along the trim) of a new node from the other nodes:
   // refining never makes a rod shorter than this.
   double min_node_spacing = 0.0;
+  // max_deviation is a bound every panel must meet (walking_agent's): a piece
+  // over it is refined even where that needs a closer node.
+  bool hard_bound = false;
   // Most bend lines per panel (2: a five-node panel is bent twice; a panel of
   // more nodes is split by a new rod).
   int max_bends = 2;

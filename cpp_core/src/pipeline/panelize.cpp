@@ -124,6 +124,8 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   bp.samples = mp.samples;
   // New nodes on the trim keep min_rod_length from the others.
   bp.min_node_spacing = merged.min_rod_length;
+  bp.hard_bound = method == "walking_agent" && !(value_or<double>(values, decl, "boundary_deviation") > 0);
+  report_stage(0.0, "modelling boundary pieces");
   BoundaryPiecesReport pieces = model_boundary_pieces(*face, r.mesh, bp);
   for (std::size_t k = 0; k < pieces.changed.size(); ++k)
     if (!full[static_cast<std::size_t>(pieces.origin[k])]) pieces.changed[k] = 1;
