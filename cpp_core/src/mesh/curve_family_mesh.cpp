@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/trim_deflection.h"
 #include "methods/guide_lines/guide_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
@@ -57,7 +58,7 @@ PanelMesh mesh_curve_families(const SurfaceFace& face,
   const std::vector<BdPolyline> boundary = select_bd_sources(face, loops, {}).boundary;
 
   guide_detail::Context cx{face, {}, params.rod_length, params.rod_length, 1e-9 * size, 0, {}};
-  cx.inside = guide_detail::UvInside(face, loops);
+  cx.inside = UvTrimClassifier(loops, UvTrimClassifier::Options{-1, &face});
 
   // A curve piece whose end is within `on_trim` of a trim polyline ends on that
   // trim (the pieces are cut at the trim polylines; the trim nodes are snapped

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/trim_deflection.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"

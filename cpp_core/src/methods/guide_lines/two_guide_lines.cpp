@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/trim_deflection.h"
 #include "methods/guide_lines/guide_curves.h"
 #include "mesh/curve_family_mesh.h"
 #include "tessella/errors.h"
@@ -259,7 +260,7 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   for (const TrimLoop& loop : loops)
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
-  cx.inside = UvInside(face, loops);
+  cx.inside = UvTrimClassifier(loops, UvTrimClassifier::Options{-1, &face});
   if (cx.boundary.xyz.size() < 3)
     throw InvalidGeometry("two_guide_lines: the face has no outer boundary");
   const Loop loop(cx.boundary, params.corner_angle);
