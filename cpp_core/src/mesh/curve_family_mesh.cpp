@@ -53,7 +53,7 @@ PanelMesh mesh_curve_families(const SurfaceFace& face,
   require_in_range("trim_deflection (mm)", params.trim_deflection, 0.0, 1e9);
   require_in_range("max_panels", params.max_panels, 1, 1e9);
   const double size = face.model_size();
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   const std::vector<BdPolyline> boundary = select_bd_sources(face, loops, {}).boundary;
 

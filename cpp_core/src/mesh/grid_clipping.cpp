@@ -231,7 +231,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
                         " panels, more than max_panels = " + std::to_string(params.max_panels) +
                         ": choose a larger size or raise max_panels");
   }
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : 1e-6 * face.model_size();
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   if (loops.empty()) throw InvalidGeometry("the face has no usable trim loop");
 

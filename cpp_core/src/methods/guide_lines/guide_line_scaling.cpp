@@ -708,7 +708,7 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   const double guide_len = polyline_length(params.guide);
   const double est_len = std::max(guide_len, size);
   cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * est_len / cx.l1) + 1.0, 33.0, 4001.0));
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   for (const TrimLoop& loop : loops)
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};

@@ -256,7 +256,7 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
         "two_guide_lines: the face needs more than max_curves curves at this rod_length");
   Context cx{face, {}, params.rod_length, params.rod_length, 1e-9 * size, 0, {}};
   cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * size / cx.l1) + 1.0, 33.0, 4001.0));
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   for (const TrimLoop& loop : loops)
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
