@@ -17,8 +17,7 @@ namespace {
 // [0,10]^2 counter-clockwise with the hole [4,6]^2 clockwise; a few extra
 // points on the outer edges so edges and vertices are not all at the corners.
 std::vector<std::vector<Vec2>> square_with_hole() {
-  return {{{0, 0}, {5, 0}, {10, 0}, {10, 5}, {10, 10}, {0, 10}},
-          {{4, 4}, {4, 6}, {6, 6}, {6, 4}}};
+  return {{{0, 0}, {5, 0}, {10, 0}, {10, 5}, {10, 10}, {0, 10}}, {{4, 4}, {4, 6}, {6, 6}, {6, 4}}};
 }
 
 UvTrimClassifier::Options eps(double e) {
@@ -47,10 +46,22 @@ TEST(UvTrimClassifier, SquareWithHoleInsideOutside) {
 TEST(UvTrimClassifier, EdgesAndVerticesAreOnTrimWithinEpsilon) {
   const double e = 1e-6;
   const UvTrimClassifier c(square_with_hole(), eps(e));
-  for (const Vec2& p : std::vector<Vec2>{{0, 3},     {10, 7},   {2.5, 0},      {3, 10},
-                                         {4, 5},     {6, 4.5},  {5, 4},        {5, 6},
-                                         {0, 0},     {10, 10},  {5, 0},        {10, 5},
-                                         {4, 4},     {6, 6},    {0.5 * e, 3},  {5, 6 - 0.9 * e},
+  for (const Vec2& p : std::vector<Vec2>{{0, 3},
+                                         {10, 7},
+                                         {2.5, 0},
+                                         {3, 10},
+                                         {4, 5},
+                                         {6, 4.5},
+                                         {5, 4},
+                                         {5, 6},
+                                         {0, 0},
+                                         {10, 10},
+                                         {5, 0},
+                                         {10, 5},
+                                         {4, 4},
+                                         {6, 6},
+                                         {0.5 * e, 3},
+                                         {5, 6 - 0.9 * e},
                                          {-0.9 * e, -0.0}}) {
     EXPECT_EQ(c.classify(p), TrimSide::OnTrim) << p.transpose();
     EXPECT_TRUE(c.contains(p)) << p.transpose();

@@ -47,7 +47,8 @@ void UvTrimClassifier::build(const Options& options) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   lo_ = Vec2(inf, inf);
   hi_ = Vec2(-inf, -inf);
-  for (const auto& e : edges_) lo_ = lo_.cwiseMin(e[0]).cwiseMin(e[1]), hi_ = hi_.cwiseMax(e[0]).cwiseMax(e[1]);
+  for (const auto& e : edges_)
+    lo_ = lo_.cwiseMin(e[0]).cwiseMin(e[1]), hi_ = hi_.cwiseMax(e[0]).cwiseMax(e[1]);
   const bool usable = !edges_.empty() && hi_.x() > lo_.x() && hi_.y() > lo_.y() &&
                       std::isfinite(lo_.x() + lo_.y() + hi_.x() + hi_.y());
   if (!usable) {
@@ -91,7 +92,8 @@ void UvTrimClassifier::build(const Options& options) {
 }
 
 TrimSide UvTrimClassifier::classify(const Vec2& p) const {
-  if (occt_ != nullptr) return occt_->is_inside(p.x(), p.y()) ? TrimSide::Inside : TrimSide::Outside;
+  if (occt_ != nullptr)
+    return occt_->is_inside(p.x(), p.y()) ? TrimSide::Inside : TrimSide::Outside;
   return classify_polylines(p);
 }
 

@@ -6,12 +6,12 @@
 #include <limits>
 
 #include "geometry/trim_deflection.h"
-#include "methods/guide_lines/guide_curves.h"
+#include "mesh/panel_model.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
 #include "methods/boundary_driven/bd_sources.h"
+#include "methods/guide_lines/guide_curves.h"
 #include "tessella/errors.h"
-#include "mesh/panel_model.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {

@@ -22,8 +22,8 @@
 #include <unordered_map>
 
 #include "geometry/trim_deflection.h"
-#include "tessella/errors.h"
 #include "mesh/panel_model.h"
+#include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
 

@@ -188,7 +188,8 @@ StartSpec parse_start(const std::string& start) {
   return s;
 }
 
-Vec2 max_curvature_point(const SurfaceFace& face, const UvTrimClassifier& trim, double sample_step) {
+Vec2 max_curvature_point(const SurfaceFace& face, const UvTrimClassifier& trim,
+                         double sample_step) {
   const UvBounds b = face.bounds();
   const int n = std::max(2, static_cast<int>(std::ceil(1.0 / sample_step)));
   const double hu = (b.u_max - b.u_min) / n, hv = (b.v_max - b.v_min) / n;

@@ -44,7 +44,8 @@ std::vector<double> row_crossings(const SurfaceFace& face, const UvTrimClassifie
 // chord length over the rows whose segment [a, b] touches the face.
 class RowAgents {
  public:
-  RowAgents(const SurfaceFace& face, const UvTrimClassifier& trim, int dir, std::vector<double> rows);
+  RowAgents(const SurfaceFace& face, const UvTrimClassifier& trim, int dir,
+            std::vector<double> rows);
   struct Probe {
     double deviation = 0, length = 0;
   };

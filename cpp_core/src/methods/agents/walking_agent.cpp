@@ -97,8 +97,8 @@ bool insert_line(std::vector<double>& lines, double x) {
 // The diagonal walkers: from each edge node along the cell diagonals; a cell
 // whose diagonal chord deviation is over the bound gets a line through its
 // middle (across its longer side). Returns the number of lines added.
-int diagonal_walkers(const SurfaceFace& face, const UvTrimClassifier& trim, Lines& lines, double bound,
-                     int max_panels) {
+int diagonal_walkers(const SurfaceFace& face, const UvTrimClassifier& trim, Lines& lines,
+                     double bound, int max_panels) {
   int added = 0;
   for (int round = 0; round < 20; ++round) {
     const std::size_t nu = lines.u.size(), nv = lines.v.size();
@@ -108,7 +108,8 @@ int diagonal_walkers(const SurfaceFace& face, const UvTrimClassifier& trim, Line
       for (std::size_t i = 0; i < nu; ++i) P[j * nu + i] = face.point(lines.u[i], lines.v[j]);
     std::vector<double> new_u, new_v;
     for (std::size_t j = 0; j + 1 < nv; ++j) {
-      const std::vector<double> x = agents::row_crossings(face, trim, 0, 0.5 * (lines.v[j] + lines.v[j + 1]));
+      const std::vector<double> x =
+          agents::row_crossings(face, trim, 0, 0.5 * (lines.v[j] + lines.v[j + 1]));
       for (std::size_t i = 0; i + 1 < nu; ++i) {
         const double um = 0.5 * (lines.u[i] + lines.u[i + 1]);
         const double vm = 0.5 * (lines.v[j] + lines.v[j + 1]);

@@ -5,8 +5,8 @@
 
 #include "geometry/trim_deflection.h"
 #include "geometry/uv_trim_classifier.h"
-#include "tessella/errors.h"
 #include "mesh/grid_clipping.h"
+#include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {

@@ -2,6 +2,8 @@
 // the face by scaling / translating / rotating it between new end points on the
 // boundary and projecting it back, divide the curves into equal chords and
 // connect neighbouring curves into triangles.
+#include "tessella/guide_line_scaling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,13 +11,12 @@
 #include <tuple>
 
 #include "geometry/trim_deflection.h"
-#include "methods/guide_lines/guide_curves.h"
-#include "tessella/errors.h"
 #include "methods/guide_lines/chord_division.h"
+#include "methods/guide_lines/guide_curves.h"
 #include "methods/guide_lines/right_angle_rule.h"
-#include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
+#include "tessella/errors.h"
 #include "tessella/surface_face.h"
+#include "tessella/two_guide_lines.h"
 
 namespace tessella {
 
@@ -127,7 +128,8 @@ bool on_uv_border(const SurfaceFace& face, const Vec2& uv) {
 double length_inside(const Context& cx, const SurfaceCurve& c) {
   double inside = 0.0;
   for (std::size_t i = 2; i < c.uv.size(); i += 2)
-    if (cx.inside.contains(c.uv[i - 1][0], c.uv[i - 1][1])) inside += (c.xyz[i] - c.xyz[i - 2]).norm();
+    if (cx.inside.contains(c.uv[i - 1][0], c.uv[i - 1][1]))
+      inside += (c.xyz[i] - c.xyz[i - 2]).norm();
   return inside;
 }
 

@@ -1,18 +1,19 @@
 // The Two Guide Lines with Two End Vertices Method (seed 004 section 6): each
 // guide is moved through pairs of boundary vertices; the intersections of the
 // two curve families are the nodes of a quad grid.
+#include "tessella/two_guide_lines.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "geometry/trim_deflection.h"
-#include "methods/guide_lines/guide_curves.h"
 #include "mesh/curve_family_mesh.h"
-#include "tessella/errors.h"
 #include "methods/guide_lines/chord_division.h"
+#include "methods/guide_lines/guide_curves.h"
 #include "methods/guide_lines/right_angle_rule.h"
+#include "tessella/errors.h"
 #include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
