@@ -87,7 +87,7 @@ struct BoundaryDrivenParams {
   // then traced 2 * size apart so the final panels come out near `size`.
   bool quadrangulate = true;
   BdSourceParams sources;
-  double trim_deflection = 0.0;  // mm; 0 = 2.5e-7 * model size
+  double trim_deflection = 0.0;  // mm; 0 = automatic (the one rule of every method)
   double step_fraction = 0.1;    // tracing step / curve spacing
   double corner_angle_deg = 30.0;
   // Network edges shorter than this fraction of the curve spacing are collapsed.

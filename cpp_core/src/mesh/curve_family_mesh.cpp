@@ -5,12 +5,13 @@
 #include <cmath>
 #include <limits>
 
-#include "methods/guide_lines/guide_curves.h"
+#include "geometry/trim_deflection.h"
+#include "mesh/panel_model.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
 #include "methods/boundary_driven/bd_sources.h"
+#include "methods/guide_lines/guide_curves.h"
 #include "tessella/errors.h"
-#include "mesh/panel_model.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -52,12 +53,12 @@ PanelMesh mesh_curve_families(const SurfaceFace& face,
   require_in_range("trim_deflection (mm)", params.trim_deflection, 0.0, 1e9);
   require_in_range("max_panels", params.max_panels, 1, 1e9);
   const double size = face.model_size();
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   const std::vector<BdPolyline> boundary = select_bd_sources(face, loops, {}).boundary;
 
   guide_detail::Context cx{face, {}, params.rod_length, params.rod_length, 1e-9 * size, 0, {}};
-  cx.inside = guide_detail::UvInside(face, loops);
+  cx.inside = UvTrimClassifier(loops, UvTrimClassifier::Options{-1, &face});
 
   // A curve piece whose end is within `on_trim` of a trim polyline ends on that
   // trim (the pieces are cut at the trim polylines; the trim nodes are snapped

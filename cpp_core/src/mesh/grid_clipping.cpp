@@ -21,8 +21,9 @@
 #include <map>
 #include <unordered_map>
 
-#include "tessella/errors.h"
+#include "geometry/trim_deflection.h"
 #include "mesh/panel_model.h"
+#include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
 
@@ -230,8 +231,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
                         " panels, more than max_panels = " + std::to_string(params.max_panels) +
                         ": choose a larger size or raise max_panels");
   }
-  const double deflection =
-      params.trim_deflection > 0 ? params.trim_deflection : 1e-6 * face.model_size();
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   if (loops.empty()) throw InvalidGeometry("the face has no usable trim loop");
 

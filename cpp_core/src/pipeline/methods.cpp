@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "geometry/trim_deflection.h"
 #include "pipeline/declaration_builder.h"
 #include "mesh/boundary_pieces.h"
 #include "tessella/errors.h"
@@ -34,9 +35,12 @@ std::vector<ParamDeclaration> make_shared_params() {
            "Refuse to build more panels than this", "Panelization", "MaxPanels");
   d.default_value = kDefaultMaxPanels;
   out.push_back(d);
+  std::ostringstream deflection_doc;  // the one rule, geometry/trim_deflection.h
+  deflection_doc << "Chord deflection of the trim polylines (0 = automatic: "
+                 << kAutomaticTrimDeflection
+                 << " x the model size, the diagonal of the face's bounding box)";
   d = decl("trim_deflection", ParamKind::Real, "mm", 0.0, 1e9, "Trim deflection (0: automatic)",
-           "Chord deflection of the trim polylines (0 = automatic, from the model size)",
-           "Advanced", "TrimDeflection");
+           deflection_doc.str(), "Advanced", "TrimDeflection");
   d.default_value = 0.0;
   out.push_back(d);
   d = decl("min_rod_length", ParamKind::Real, "mm", 0.0, 1e9, "Min rod length (0: automatic)",

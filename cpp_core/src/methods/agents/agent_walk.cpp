@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/trim_deflection.h"
 #include "tessella/errors.h"
 
 namespace tessella::agents {
@@ -29,43 +30,23 @@ double path_deviation(const SurfaceFace& face, const Vec2& qa, const Vec2& qb, c
   return (best - c - (best - c).dot(d) * d).norm();
 }
 
-TrimTest::TrimTest(const SurfaceFace& face)
-    : loops_(face.trim_loops(1e-3 * face.model_size())), bounds_(face.bounds()) {}
+UvTrimClassifier agent_trim(const SurfaceFace& face) {
+  return UvTrimClassifier(face.trim_loops(steering_trim_deflection(face)));
+}
 
-std::vector<double> TrimTest::crossings(int dir, double c) const {
-  // Keep the line off the exact border of the domain, where trim edges run
-  // along it and the crossing count would be ambiguous.
-  const double lo = dir == 0 ? bounds_.v_min : bounds_.u_min;
-  const double hi = dir == 0 ? bounds_.v_max : bounds_.u_max;
+std::vector<double> row_crossings(const SurfaceFace& face, const UvTrimClassifier& trim, int dir,
+                                  double c) {
+  const UvBounds b = face.bounds();
+  const double lo = dir == 0 ? b.v_min : b.u_min;
+  const double hi = dir == 0 ? b.v_max : b.u_max;
   const double eps = 1e-7 * (hi - lo);
-  c = std::clamp(c, lo + eps, hi - eps);
-  const int ia = dir == 0 ? 1 : 0;  // the fixed coordinate
-  const int ib = dir == 0 ? 0 : 1;  // the free coordinate
-  std::vector<double> out;
-  for (const TrimLoop& loop : loops_) {
-    for (std::size_t k = 0; k < loop.uv.size(); ++k) {
-      const Vec2& p = loop.uv[k];
-      const Vec2& q = loop.uv[(k + 1) % loop.uv.size()];
-      if ((p[ia] > c) == (q[ia] > c)) continue;
-      out.push_back(p[ib] + (c - p[ia]) / (q[ia] - p[ia]) * (q[ib] - p[ib]));
-    }
-  }
-  std::sort(out.begin(), out.end());
-  return out;
+  return trim.crossings(dir, std::clamp(c, lo + eps, hi - eps));
 }
 
-bool TrimTest::inside(double u, double v) const {
-  const std::vector<double> x = crossings(0, v);
-  const double eps = 1e-9 * (bounds_.u_max - bounds_.u_min);
-  u = std::clamp(u, bounds_.u_min + eps, bounds_.u_max - eps);
-  const auto n = std::lower_bound(x.begin(), x.end(), u) - x.begin();
-  return n % 2 == 1;
-}
-
-RowAgents::RowAgents(const SurfaceFace& face, const TrimTest& trim, int dir,
+RowAgents::RowAgents(const SurfaceFace& face, const UvTrimClassifier& trim, int dir,
                      std::vector<double> rows)
     : face_(face), dir_(dir), rows_(std::move(rows)) {
-  for (double c : rows_) crossings_.push_back(trim.crossings(dir, c));
+  for (double c : rows_) crossings_.push_back(row_crossings(face, trim, dir, c));
   origin_points_.resize(rows_.size());
 }
 
@@ -207,7 +188,8 @@ StartSpec parse_start(const std::string& start) {
   return s;
 }
 
-Vec2 max_curvature_point(const SurfaceFace& face, const TrimTest& trim, double sample_step) {
+Vec2 max_curvature_point(const SurfaceFace& face, const UvTrimClassifier& trim,
+                         double sample_step) {
   const UvBounds b = face.bounds();
   const int n = std::max(2, static_cast<int>(std::ceil(1.0 / sample_step)));
   const double hu = (b.u_max - b.u_min) / n, hv = (b.v_max - b.v_min) / n;
@@ -215,7 +197,7 @@ Vec2 max_curvature_point(const SurfaceFace& face, const TrimTest& trim, double s
   double best_dev = -1;
   for (int j = 0; j <= n; ++j) {
     const double v = b.v_min + hv * j;
-    const std::vector<double> x = trim.crossings(0, v);
+    const std::vector<double> x = row_crossings(face, trim, 0, v);
     for (int i = 0; i <= n; ++i) {
       const double u = b.u_min + hu * i;
       if ((std::lower_bound(x.begin(), x.end(), u) - x.begin()) % 2 == 0) continue;

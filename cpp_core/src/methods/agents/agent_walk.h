@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/uv_trim_classifier.h"
 #include "tessella/surface_face.h"
 #include "tessella/vec.h"
 
@@ -27,26 +28,24 @@ inline double chord_deviation(const Vec3& a, const Vec3& b, const Vec3& mid) {
 double path_deviation(const SurfaceFace& face, const Vec2& qa, const Vec2& qb, const Vec3& pa,
                       const Vec3& pb);
 
-// Even-odd inside test against the trim polylines (cheap; exact enough to
-// decide which agents see the face).
-class TrimTest {
- public:
-  TrimTest(const SurfaceFace& face);
-  bool inside(double u, double v) const;
-  // Sorted crossings of the line {dir coordinate free, other = c} with the loops.
-  std::vector<double> crossings(int dir, double c) const;
+// The agents' trim test: the one (u,v) classifier on the trim polylines at
+// the steering deflection (trim_deflection.h: it only decides which agents and
+// cells see the face; the panels are cut by clip_grid at the trim deflection).
+UvTrimClassifier agent_trim(const SurfaceFace& face);
 
- private:
-  std::vector<TrimLoop> loops_;
-  UvBounds bounds_;
-};
+// Sorted crossings of the row {dir coordinate free, other = c} with the trim,
+// c kept 1e-7 of the span off the border of the face's (u,v) bounds, where trim
+// edges run along the row and the crossing count would be ambiguous.
+std::vector<double> row_crossings(const SurfaceFace& face, const UvTrimClassifier& trim, int dir,
+                                  double c);
 
 // Agents on parallel rows (fixed cross parameter) walking along `dir`
 // (0 = u, 1 = v) in lockstep: probe(a, b) is the largest chord deviation and
 // chord length over the rows whose segment [a, b] touches the face.
 class RowAgents {
  public:
-  RowAgents(const SurfaceFace& face, const TrimTest& trim, int dir, std::vector<double> rows);
+  RowAgents(const SurfaceFace& face, const UvTrimClassifier& trim, int dir,
+            std::vector<double> rows);
   struct Probe {
     double deviation = 0, length = 0;
   };
@@ -94,6 +93,6 @@ StartSpec parse_start(const std::string& start);
 
 // The sample node with the largest chord deviation over a u and a v chord of
 // one sample step (inside the face).
-Vec2 max_curvature_point(const SurfaceFace& face, const TrimTest& trim, double sample_step);
+Vec2 max_curvature_point(const SurfaceFace& face, const UvTrimClassifier& trim, double sample_step);
 
 }  // namespace tessella::agents

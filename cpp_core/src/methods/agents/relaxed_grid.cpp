@@ -107,14 +107,14 @@ PanelMesh relaxed_grid(const SurfaceFace& face, const RelaxedGridParams& params,
   mesh.uv = uv;
   mesh.xyz.resize(uv.size());
   for (std::size_t k = 0; k < uv.size(); ++k) mesh.xyz[k] = face.point(uv[k].x(), uv[k].y());
-  const agents::TrimTest trim(face);
+  const UvTrimClassifier trim = agents::agent_trim(face);
   for (int j = 0; j + 1 < nv; ++j) {
     for (int i = 0; i + 1 < nu; ++i) {
       const std::vector<int> c = {int(at(i, j)), int(at(i + 1, j)), int(at(i + 1, j + 1)),
                                   int(at(i, j + 1))};
       Vec2 mid = Vec2::Zero();
       for (int x : c) mid += 0.25 * uv[x];
-      if (!trim.inside(mid.x(), mid.y())) continue;
+      if (!trim.contains(mid)) continue;
       mesh.panels.push_back(c);
     }
   }

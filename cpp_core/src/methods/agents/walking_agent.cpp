@@ -17,7 +17,6 @@ namespace tessella {
 namespace {
 
 using agents::RowAgents;
-using agents::TrimTest;
 
 // The panel bound is checked against this share of max_deviation, leaving
 // room for what a denser, independent sampling finds between our samples.
@@ -45,7 +44,7 @@ using Walker1D = std::function<std::vector<double>(RowAgents&, double, double, d
 
 // Runs one walker family per direction from the start (a corner, or the point
 // of largest curvature, from which it walks both ways).
-Lines walk_lines(const SurfaceFace& face, const TrimTest& trim, double sample_step,
+Lines walk_lines(const SurfaceFace& face, const UvTrimClassifier& trim, double sample_step,
                  const std::string& start, const Walker1D& walker) {
   const agents::StartSpec s = agents::parse_start(start);
   const UvBounds b = face.bounds();
@@ -98,8 +97,8 @@ bool insert_line(std::vector<double>& lines, double x) {
 // The diagonal walkers: from each edge node along the cell diagonals; a cell
 // whose diagonal chord deviation is over the bound gets a line through its
 // middle (across its longer side). Returns the number of lines added.
-int diagonal_walkers(const SurfaceFace& face, const TrimTest& trim, Lines& lines, double bound,
-                     int max_panels) {
+int diagonal_walkers(const SurfaceFace& face, const UvTrimClassifier& trim, Lines& lines,
+                     double bound, int max_panels) {
   int added = 0;
   for (int round = 0; round < 20; ++round) {
     const std::size_t nu = lines.u.size(), nv = lines.v.size();
@@ -109,7 +108,8 @@ int diagonal_walkers(const SurfaceFace& face, const TrimTest& trim, Lines& lines
       for (std::size_t i = 0; i < nu; ++i) P[j * nu + i] = face.point(lines.u[i], lines.v[j]);
     std::vector<double> new_u, new_v;
     for (std::size_t j = 0; j + 1 < nv; ++j) {
-      const std::vector<double> x = trim.crossings(0, 0.5 * (lines.v[j] + lines.v[j + 1]));
+      const std::vector<double> x =
+          agents::row_crossings(face, trim, 0, 0.5 * (lines.v[j] + lines.v[j + 1]));
       for (std::size_t i = 0; i + 1 < nu; ++i) {
         const double um = 0.5 * (lines.u[i] + lines.u[i + 1]);
         const double vm = 0.5 * (lines.v[j] + lines.v[j + 1]);
@@ -298,7 +298,7 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
 
   const double bound = params.max_deviation;
   const double max_size = params.max_size > 0 ? params.max_size : 1e300;
-  const TrimTest trim(face);
+  const UvTrimClassifier trim = agents::agent_trim(face);
   const double limit = kBoundMargin * bound;
   const Gauge gauge{face, limit};
 
@@ -442,7 +442,7 @@ PanelMesh gradient_descent(const SurfaceFace& face, const GradientDescentParams&
                    1.0);
   check_clip(params.clip);
   agents::parse_start(params.start);
-  const TrimTest trim(face);
+  const UvTrimClassifier trim = agents::agent_trim(face);
   const double target = params.max_deviation;
   const double max_step_fraction = params.max_step;
   Lines lines =

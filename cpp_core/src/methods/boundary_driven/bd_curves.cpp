@@ -113,7 +113,7 @@ class Tracer {
       ref = k2.d3;
       // the first crossing of [p,q] with the trim polylines
       if (first_crossing(p, q, step == 0 && start_on_boundary, pts, end)) return End::Boundary;
-      if (!inside_.inside(q)) return End::Outside;
+      if (!inside_.contains(q)) return End::Outside;
       const Vec3 q3 = face_.point(q.x(), q.y());
       arc += h_ * arc_sign;
       // parallel lines nearby (other lines; this one only far back along it)
@@ -136,7 +136,7 @@ class Tracer {
           if (first_crossing(p, target, false, pts, end)) return End::Boundary;
           return End::Near;
         }
-        if (inside_.inside(target) && !crosses_boundary(p, target)) pts.push_back(target);
+        if (inside_.contains(target) && !crosses_boundary(p, target)) pts.push_back(target);
         return End::Near;
       }
       pts.push_back(q);
@@ -270,7 +270,7 @@ class Tracer {
       const FieldDir k2 = dir_at(q + 0.5 * (sp / n) * k1.uv, k1.d3);
       q += (sp / n) * k2.uv;
       ref = k2.d3;
-      if (!inside_.inside(q)) return;
+      if (!inside_.contains(q)) return;
     }
     const FieldDir fd = dir_at(q, along);
     if (too_close(face_.point(q.x(), q.y()), fd.d3, 0.75 * sp, false)) return;
@@ -324,7 +324,7 @@ class Tracer {
   bd::PointHash hash_;
   bd::SegmentGrid grid_;
   BdTensorGrid grid_field_;
-  bd::UvClassifier inside_;
+  UvTrimClassifier inside_;
   int max_steps_ = 0;
   std::vector<BdCurve> curves_;
 };

@@ -1,5 +1,6 @@
 // Private helpers of the boundary-driven stages: segment intersection in (u,v),
-// a uniform grid of segments in (u,v) and a hash of points in 3D.
+// a uniform grid of segments in (u,v), a hash of points in 3D and the trim
+// classifier of the boundary polylines.
 #pragma once
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "geometry/uv_trim_classifier.h"
 #include "tessella/vec.h"
 
 namespace tessella::bd {
@@ -102,52 +104,13 @@ class PointHash {
 
 namespace tessella::bd {
 
-// Even-odd point-in-region test against closed (u,v) polylines (the trim
-// loops), with the segments binned in bands of v: much faster than OCCT's
-// classifier when called for every tracing step.
-class UvClassifier {
- public:
-  UvClassifier(const std::vector<std::vector<Vec2>>& loops, int bands) : n_(std::max(bands, 1)) {
-    lo_ = 1e300, hi_ = -1e300;
-    for (const auto& l : loops)
-      for (const Vec2& p : l) lo_ = std::min(lo_, p.y()), hi_ = std::max(hi_, p.y());
-    step_ = std::max((hi_ - lo_) / n_, 1e-300);
-    bands_.resize(n_);
-    for (const auto& l : loops)
-      for (std::size_t i = 0; i < l.size(); ++i) {
-        const Vec2& a = l[i];
-        const Vec2& b = l[(i + 1) % l.size()];
-        if (a.y() == b.y()) continue;
-        for (int k = band(std::min(a.y(), b.y())); k <= band(std::max(a.y(), b.y())); ++k)
-          bands_[k].push_back({a, b});
-      }
-  }
-  bool inside(const Vec2& p) const {
-    if (!(p.y() >= lo_ && p.y() <= hi_)) return false;
-    bool in = false;
-    for (const auto& s : bands_[band(p.y())]) {
-      const Vec2 &a = s[0], &b = s[1];
-      if ((a.y() > p.y()) != (b.y() > p.y())) {
-        const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
-        if (x > p.x()) in = !in;
-      }
-    }
-    return in;
-  }
-
- private:
-  int band(double v) const { return std::clamp(static_cast<int>((v - lo_) / step_), 0, n_ - 1); }
-  int n_;
-  double lo_, hi_, step_;
-  std::vector<std::vector<std::array<Vec2, 2>>> bands_;
-};
-
+// The one (u,v) point-in-trim classifier over the boundary polylines (the trim
+// loops): default on-trim epsilon, a point on the trim counts as inside.
 template <class Lines>
-UvClassifier make_classifier(const Lines& boundary) {
+UvTrimClassifier make_classifier(const Lines& boundary) {
   std::vector<std::vector<Vec2>> loops;
-  std::size_t n = 0;
-  for (const auto& l : boundary) loops.push_back(l.uv), n += l.uv.size();
-  return UvClassifier(loops, static_cast<int>(std::clamp<std::size_t>(n / 4, 16, 4096)));
+  for (const auto& l : boundary) loops.push_back(l.uv);
+  return UvTrimClassifier(loops);
 }
 
 }  // namespace tessella::bd

@@ -277,8 +277,8 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     net.nodes.push_back(n);
     return static_cast<int>(net.nodes.size()) - 1;
   };
-  const bd::UvClassifier inside = bd::make_classifier(boundary);
-  auto is_in = [&](const Vec2& uv) { return boundary.empty() || inside.inside(uv); };
+  const UvTrimClassifier inside = bd::make_classifier(boundary);
+  auto is_in = [&](const Vec2& uv) { return boundary.empty() || inside.contains(uv); };
   auto midpoint = [&](int a, int b, const Vec2& centre_uv) {
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
     auto it = mid.find(key);
@@ -487,7 +487,7 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
       if (uv_area(net.nodes, net.panels[pi]) <= 0) return true;
     return false;
   };
-  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  const UvTrimClassifier inside = bd::make_classifier(boundary);
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t v = 0; v < nn; ++v) {
       BdNode& n = net.nodes[v];
@@ -511,7 +511,7 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
         for (int w : nbr[v]) c += net.nodes[w].xyz;
         c /= double(nbr[v].size());
         const Projection pr = face.project(n.xyz + factor * (c - n.xyz), n.uv);
-        if (!inside.inside(pr.uv)) continue;
+        if (!inside.contains(pr.uv)) continue;
         n.uv = pr.uv, n.xyz = pr.point;
       }
       if (folds(static_cast<int>(v))) n = old;
@@ -555,7 +555,7 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
   auto& incident = adj.incident;
   auto& prev = adj.prev;
   auto& next = adj.next;
-  const bd::UvClassifier inside = bd::make_classifier(boundary);
+  const UvTrimClassifier inside = bd::make_classifier(boundary);
   auto local = [&](int v) {
     double q = 1e9;
     for (int pi : incident[v]) q = std::min(q, panel_quality(net.nodes, net.panels[pi]));
@@ -634,7 +634,7 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
                 const Vec3 x = old.xyz + sign * t * (perp ? dp : d);
                 const Vec2 g = old.uv + sign * t * (perp ? duvp : duv);
                 const Projection pr = face.project(x, g);
-                if (!inside.inside(pr.uv)) continue;
+                if (!inside.contains(pr.uv)) continue;
                 BdNode c = old;
                 c.uv = pr.uv, c.xyz = pr.point;
                 try_node(c);

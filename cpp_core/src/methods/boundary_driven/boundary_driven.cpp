@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/trim_deflection.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
@@ -70,7 +71,7 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
                         ": raise size or max_panels");
 
   BoundaryDrivenResult r;
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : 2.5e-7 * ms;
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const BdSources src = select_bd_sources(face, face.trim_loops(deflection), params.sources);
   r.boundary = src.boundary;
   const double spacing = params.quadrangulate ? 2.0 * params.size : params.size;

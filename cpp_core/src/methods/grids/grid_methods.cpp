@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tessella/errors.h"
+#include "geometry/trim_deflection.h"
+#include "geometry/uv_trim_classifier.h"
 #include "mesh/grid_clipping.h"
+#include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -22,25 +24,14 @@ std::vector<double> cumulative_arc_length(const SurfaceFace& face, bool along_u)
   const UvBounds b = face.bounds();
   const double a0 = along_u ? b.u_min : b.v_min, a1 = along_u ? b.u_max : b.v_max;
   const double c0 = along_u ? b.v_min : b.u_min, c1 = along_u ? b.v_max : b.u_max;
-  // Inside test by even-odd crossings of coarse trim polylines along each
-  // iso-line: 20x faster than OCCT's classifier per point, and exact enough
-  // for averaging.
-  const std::vector<TrimLoop> loops = face.trim_loops(1e-3 * face.model_size());
-  const int ia = along_u ? 0 : 1, ic = along_u ? 1 : 0;
+  // Inside test by the crossings of each iso-line with the trim classifier at
+  // the steering deflection: 20x faster than OCCT's classifier per point, and
+  // exact enough for averaging.
+  const UvTrimClassifier trim(face.trim_loops(steering_trim_deflection(face)));
   std::vector<double> speed(kAlong + 1, 0.0);
-  std::vector<double> crossings;
   for (int i = 0; i <= kAlong; ++i) {
     const double a = a0 + (a1 - a0) * i / kAlong;
-    crossings.clear();
-    for (const TrimLoop& loop : loops) {
-      for (std::size_t k = 0; k < loop.uv.size(); ++k) {
-        const Vec2& p = loop.uv[k];
-        const Vec2& q = loop.uv[(k + 1) % loop.uv.size()];
-        if ((p[ia] > a) == (q[ia] > a)) continue;
-        crossings.push_back(p[ic] + (a - p[ia]) / (q[ia] - p[ia]) * (q[ic] - p[ic]));
-      }
-    }
-    std::sort(crossings.begin(), crossings.end());
+    const std::vector<double> crossings = trim.crossings(along_u ? 1 : 0, a);
     double inside_sum = 0, all_sum = 0;
     int inside_n = 0;
     std::size_t passed = 0;

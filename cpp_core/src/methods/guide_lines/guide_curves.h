@@ -6,11 +6,12 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/uv_trim_classifier.h"
 #include "methods/guide_lines/chord_division.h"
 #include "methods/guide_lines/right_angle_rule.h"
 #include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
 #include "tessella/surface_face.h"
+#include "tessella/two_guide_lines.h"
 
 namespace tessella::guide_detail {
 
@@ -20,37 +21,14 @@ struct Boundary {
   std::vector<Vec2> uv;
 };
 
-// Point-in-face test on the cached (u,v) trim polylines (even-odd crossings of
-// a ray along +u, edges bucketed in bands of v): ~20x faster than OCCT's
-// classifier, which was a quarter of the GSM time. The polylines stay within
-// the trim deflection of the true trim. When the polylines do not classify a
-// few probe points well away from the trim as OCCT does (e.g. loops that do
-// not close in (u,v) on periodic faces), every query falls back to
-// SurfaceFace::is_inside.
-class UvInside {
- public:
-  UvInside() = default;
-  UvInside(const SurfaceFace& face, const std::vector<TrimLoop>& loops);
-  bool operator()(double u, double v) const;
-  // OCCT's classifier (exact trim, slower); for the final boundary crossings.
-  bool exact(double u, double v) const { return face_ != nullptr && face_->is_inside(u, v); }
-  bool fast() const { return !fallback_; }
-
- private:
-  bool crossings_odd(double u, double v) const;
-  const SurfaceFace* face_ = nullptr;
-  bool fallback_ = true;
-  double v0_ = 0, dv_ = 1, eps_ = 0;
-  std::vector<std::pair<Vec2, Vec2>> edges_;
-  std::vector<std::vector<int>> bands_;
-};
-
 struct Context {
   const SurfaceFace& face;
   Boundary boundary;
   double l1 = 0, advance = 0, tol = 0;
   int samples = 0;  // points per curve
-  UvInside inside;  // set from face.trim_loops after construction
+  // The trim polylines' classifier, cross-checked against OCCT (set from
+  // face.trim_loops after construction; OCCT's exact test is face.is_inside).
+  UvTrimClassifier inside;
 };
 
 double polyline_length(const std::vector<Vec3>& pts);

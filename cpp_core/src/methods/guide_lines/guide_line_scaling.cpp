@@ -2,19 +2,21 @@
 // the face by scaling / translating / rotating it between new end points on the
 // boundary and projecting it back, divide the curves into equal chords and
 // connect neighbouring curves into triangles.
+#include "tessella/guide_line_scaling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <tuple>
 
-#include "methods/guide_lines/guide_curves.h"
-#include "tessella/errors.h"
+#include "geometry/trim_deflection.h"
 #include "methods/guide_lines/chord_division.h"
+#include "methods/guide_lines/guide_curves.h"
 #include "methods/guide_lines/right_angle_rule.h"
-#include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
+#include "tessella/errors.h"
 #include "tessella/surface_face.h"
+#include "tessella/two_guide_lines.h"
 
 namespace tessella {
 
@@ -56,23 +58,23 @@ Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out, bool exact = true) {
   const Vec2 in0 = in, out0 = out;
   for (int it = 0; it < 36; ++it) {
     const Vec2 mid = 0.5 * (in + out);
-    if (cx.inside(mid[0], mid[1]))
+    if (cx.inside.contains(mid[0], mid[1]))
       in = mid;
     else
       out = mid;
   }
-  if (!exact || !cx.inside.fast()) return in;
+  if (!exact || cx.inside.uses_occt()) return in;
   const Vec2 dir = out0 - in0;
   const double len = dir.norm();
   if (!(len > 0.0)) return in;
   const double t = (in - in0).dot(dir) / (len * len);
   for (double w = 1e-3; w <= 1.0; w *= 4.0) {
     double lo = std::max(0.0, t - w), hi = std::min(1.0, t + w);
-    if (!cx.inside.exact(in0[0] + lo * dir[0], in0[1] + lo * dir[1])) continue;
-    if (cx.inside.exact(in0[0] + hi * dir[0], in0[1] + hi * dir[1])) continue;
+    if (!cx.face.is_inside(in0[0] + lo * dir[0], in0[1] + lo * dir[1])) continue;
+    if (cx.face.is_inside(in0[0] + hi * dir[0], in0[1] + hi * dir[1])) continue;
     for (int it = 0; it < 30; ++it) {
       const double mid = 0.5 * (lo + hi);
-      if (cx.inside.exact(in0[0] + mid * dir[0], in0[1] + mid * dir[1]))
+      if (cx.face.is_inside(in0[0] + mid * dir[0], in0[1] + mid * dir[1]))
         lo = mid;
       else
         hi = mid;
@@ -89,7 +91,7 @@ std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c, 
   SurfaceCurve cur;
   bool prev_in = false;
   for (std::size_t i = 0; i < c.uv.size(); ++i) {
-    const bool in = cx.inside(c.uv[i][0], c.uv[i][1]);
+    const bool in = cx.inside.contains(c.uv[i][0], c.uv[i][1]);
     if (i > 0 && in != prev_in) {
       const Vec2 b = in ? bisect_boundary(cx, c.uv[i], c.uv[i - 1], exact)
                         : bisect_boundary(cx, c.uv[i - 1], c.uv[i], exact);
@@ -126,7 +128,8 @@ bool on_uv_border(const SurfaceFace& face, const Vec2& uv) {
 double length_inside(const Context& cx, const SurfaceCurve& c) {
   double inside = 0.0;
   for (std::size_t i = 2; i < c.uv.size(); i += 2)
-    if (cx.inside(c.uv[i - 1][0], c.uv[i - 1][1])) inside += (c.xyz[i] - c.xyz[i - 2]).norm();
+    if (cx.inside.contains(c.uv[i - 1][0], c.uv[i - 1][1]))
+      inside += (c.xyz[i] - c.xyz[i - 2]).norm();
   return inside;
 }
 
@@ -144,7 +147,7 @@ Vec2 extend_to_boundary(const Context& cx, const Vec2& end, const Vec2& before) 
   double h = 1.0;
   for (int it = 0; it < 60; ++it, h *= 2.0) {
     const Vec2 x = end + h * dir;
-    if (!inside_bounds(b, x) || !cx.inside(x[0], x[1])) return bisect_boundary(cx, in, x);
+    if (!inside_bounds(b, x) || !cx.inside.contains(x[0], x[1])) return bisect_boundary(cx, in, x);
     in = x;
   }
   return in;
@@ -272,7 +275,7 @@ SurfaceCurve map_curve(const Context& cx, const SurfaceCurve& c, const Vec3& end
 void bridge_holes(const Context& cx, SurfaceCurve& c) {
   const std::size_t n = c.uv.size();
   std::vector<char> in(n);
-  for (std::size_t i = 0; i < n; ++i) in[i] = cx.inside(c.uv[i][0], c.uv[i][1]) ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) in[i] = cx.inside.contains(c.uv[i][0], c.uv[i][1]) ? 1 : 0;
   std::size_t i = 0;
   while (i < n && !in[i]) ++i;
   while (i < n) {
@@ -487,11 +490,11 @@ bool offset_curve(const Context& cx, const SweepFront& front, const SweepFront& 
   for (const Vec2& x : run.uv) run.xyz.push_back(face.point(x[0], x[1]));
   if (run.uv.size() < 2) return false;
   const std::size_t n = run.uv.size();
-  if (cx.inside(run.uv[0][0], run.uv[0][1])) {
+  if (cx.inside.contains(run.uv[0][0], run.uv[0][1])) {
     const Vec2 e = extend_to_boundary(cx, run.uv[0], run.uv[1]);
     if (front.ahead(e) > 0.0) run.uv.front() = e;
   }
-  if (cx.inside(run.uv[n - 1][0], run.uv[n - 1][1])) {
+  if (cx.inside.contains(run.uv[n - 1][0], run.uv[n - 1][1])) {
     const Vec2 e = extend_to_boundary(cx, run.uv[n - 1], run.uv[n - 2]);
     if (front.ahead(e) > 0.0) run.uv.back() = e;
   }
@@ -656,7 +659,7 @@ void split_long_boundary_edges(const Context& cx, PanelMesh& mesh) {
     for (int q = 1; q < n && ok; ++q) {
       const Vec2 m = ua + (static_cast<double>(q) / n) * du;
       const Vec2 x = m + across, y = m - across;
-      const bool in_x = cx.inside(x[0], x[1]), in_y = cx.inside(y[0], y[1]);
+      const bool in_x = cx.inside.contains(x[0], x[1]), in_y = cx.inside.contains(y[0], y[1]);
       if (in_x == in_y) {  // not along the trim (an open gap between rows)
         ok = false;
         break;
@@ -707,11 +710,11 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
   const double guide_len = polyline_length(params.guide);
   const double est_len = std::max(guide_len, size);
   cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * est_len / cx.l1) + 1.0, 33.0, 4001.0));
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   for (const TrimLoop& loop : loops)
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
-  cx.inside = UvInside(face, loops);
+  cx.inside = UvTrimClassifier(loops, UvTrimClassifier::Options{-1, &face});
   if (cx.boundary.xyz.size() < 3)
     throw InvalidGeometry("guide_line_scaling: the face has no outer boundary");
 
@@ -894,7 +897,7 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
       }
       if (!ok) continue;
       const Vec2 cuv = (mesh.uv[ids[0]] + mesh.uv[ids[1]] + mesh.uv[ids[2]]) / 3.0;
-      if (!cx.inside(cuv[0], cuv[1])) continue;
+      if (!cx.inside.contains(cuv[0], cuv[1])) continue;
       const Vec3 e1 = mesh.xyz[ids[1]] - mesh.xyz[ids[0]], e2 = mesh.xyz[ids[2]] - mesh.xyz[ids[0]];
       const Vec3 nrm = e1.cross(e2);
       if (nrm.norm() < 1e-9 * cx.l1 * cx.l1) continue;

@@ -1,17 +1,19 @@
 // The Two Guide Lines with Two End Vertices Method (seed 004 section 6): each
 // guide is moved through pairs of boundary vertices; the intersections of the
 // two curve families are the nodes of a quad grid.
+#include "tessella/two_guide_lines.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "methods/guide_lines/guide_curves.h"
+#include "geometry/trim_deflection.h"
 #include "mesh/curve_family_mesh.h"
-#include "tessella/errors.h"
 #include "methods/guide_lines/chord_division.h"
+#include "methods/guide_lines/guide_curves.h"
 #include "methods/guide_lines/right_angle_rule.h"
+#include "tessella/errors.h"
 #include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -255,11 +257,11 @@ TwoGuideLinesResult two_guide_lines_curves(const SurfaceFace& face,
         "two_guide_lines: the face needs more than max_curves curves at this rod_length");
   Context cx{face, {}, params.rod_length, params.rod_length, 1e-9 * size, 0, {}};
   cx.samples = static_cast<int>(std::clamp(std::ceil(4.0 * size / cx.l1) + 1.0, 33.0, 4001.0));
-  const double deflection = params.trim_deflection > 0 ? params.trim_deflection : size * 1e-5;
+  const double deflection = trim_deflection(face, params.trim_deflection);
   const std::vector<TrimLoop> loops = face.trim_loops(deflection);
   for (const TrimLoop& loop : loops)
     if (loop.outer) cx.boundary = {loop.xyz, loop.uv};
-  cx.inside = UvInside(face, loops);
+  cx.inside = UvTrimClassifier(loops, UvTrimClassifier::Options{-1, &face});
   if (cx.boundary.xyz.size() < 3)
     throw InvalidGeometry("two_guide_lines: the face has no outer boundary");
   const Loop loop(cx.boundary, params.corner_angle);
