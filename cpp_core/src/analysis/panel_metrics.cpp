@@ -93,9 +93,18 @@ void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k
   std::vector<Vec3> p;
   for (int v : panel) p.push_back(mesh.xyz[v]);
   const std::vector<Vec2> uv = panel_corner_uv(mesh, k);
-  m.deviation[slot] = panel_model_deviation(face, p, uv, panel_model_triangles(mesh, k), samples);
+  // One triangulation for the deviation and the area (an outline along a trim
+  // has hundreds of points).
+  const std::vector<std::array<int, 3>> tris = panel_model_triangles(mesh, k);
+  m.deviation[slot] = panel_model_deviation(face, p, uv, tris, samples);
   m.planarity[slot] = planarity(p);
-  m.area[slot] = panel_area(mesh, k);
+  if (tris.empty()) {
+    m.area[slot] = panel_area(mesh, k);  // the bilinear quad
+  } else {
+    double area = 0;
+    for (const auto& t : tris) area += 0.5 * (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm();
+    m.area[slot] = area;
+  }
   double lo = 180.0, hi = 0.0;
   for (std::size_t c = 0; c < p.size(); ++c) {
     const Vec3 a = p[(c + p.size() - 1) % p.size()] - p[c];

@@ -4,17 +4,20 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 #include "mesh/panel_model.h"
 #include "tessella/errors.h"
-#include "tessella/panel_metrics.h"
+#include "tessella/surface_face.h"
 
 namespace tessella {
 
 namespace {
 
 using Diagonal = std::array<int, 2>;
+
+constexpr int kMaxRefinements = 12;
 
 struct Plane {
   Vec3 point = Vec3::Zero();
@@ -66,15 +69,21 @@ bool diagonal_inside(const std::vector<Vec2>& uv, int i, int j) {
   return inside_polygon(0.5 * (uv[i] + uv[j]), uv);
 }
 
-// Whether two non-adjacent edges of the closed polygon touch: a piece whose
-// outline, put on its plane, crosses itself cannot be cut.
+// Whether two non-adjacent edges of the closed polygon cross properly (each
+// strictly on both sides of the other: repeated or collinear outline points do
+// not count): a piece whose outline, put on its plane, crosses itself cannot
+// be cut.
 bool crosses_itself(const std::vector<Vec2>& p) {
   const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &a = p[i], &b = p[(i + 1) % n];
     for (std::size_t j = i + 2; j < n; ++j) {
       if (i == 0 && j == n - 1) continue;
-      if (segments_touch(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) return true;
+      const Vec2 &c = p[j], &d = p[(j + 1) % n];
+      if (cross2(a, b, c) * cross2(a, b, d) < 0 && cross2(c, d, a) * cross2(c, d, b) < 0)
+        return true;
     }
+  }
   return false;
 }
 
@@ -125,14 +134,14 @@ class PieceModeller {
 
   // Models one draft; appends the resulting panel(s) to the output lists.
   void model(Draft draft, int origin) {
-    for (;;) {
+    for (int round = 0;; ++round) {
       std::vector<int> nodes;
       for (int c = 0; c < int(draft.vertices.size()); ++c)
         if (is_node(mesh_, draft.vertices[c])) nodes.push_back(c);
       const int k = static_cast<int>(nodes.size());
       if (k > params_.max_bends + 3) {
         if (split(draft, nodes, origin)) return;
-        if (promote_middle(draft)) continue;
+        if (round < kMaxRefinements && promote_middle(draft)) continue;
         keep_unmodelled(draft, origin);
         return;
       }
@@ -140,7 +149,7 @@ class PieceModeller {
       if (k >= 4 && !choose_bends(draft, nodes, bends)) {
         // Every bend line would leave the panel (a trim curving into it):
         // a node in the middle of the longest trim run sees both its ends.
-        if (promote_middle(draft)) continue;
+        if (round < kMaxRefinements && promote_middle(draft)) continue;
         keep_unmodelled(draft, origin);
         return;
       }
@@ -171,11 +180,12 @@ class PieceModeller {
       // point farthest from its plane becomes a node (it stays on the trim),
       // and the panel is modelled again.
       const bool too_far =
-          params_.max_deviation > 0 &&
-          (worst_offset > params_.max_deviation ||
-           panel_model_deviation(face_, placed, draft.uv, triangulate_pieces(draft.uv, bends),
-                                 params_.samples) > params_.max_deviation);
-      if (worst >= 0 && (tangled || too_far)) {
+          params_.max_deviation > 0 && (worst_offset > params_.max_deviation ||
+                                        node_triangles_deviation(draft, xyz, bends) >
+                                            params_.max_deviation);
+      // At most kMaxRefinements new nodes per panel: beyond that the piece is
+      // kept and its deviation reported as measured.
+      if (worst >= 0 && (tangled || too_far) && round < kMaxRefinements) {
         // The new node keeps min_node_spacing from its neighbours on the trim
         // (no short rods); a piece that only a closer node would improve is
         // kept as it is (its deviation is reported as measured), unless its
@@ -214,6 +224,30 @@ class PieceModeller {
   // No valid bend lines or split (a panel whose node diagonals all leave it):
   // left as its triangulated outline, as before this stage.
   void keep_unmodelled(Draft draft, int origin) { emit(std::move(draft), {}, origin, false); }
+
+  // Deviation of the pieces' interiors: samples of each piece's node triangle
+  // projected onto the surface (with the trim points' offsets this bounds the
+  // piece; the metrics later sample the whole piece). No triangulation of the
+  // outline, so a refinement round stays cheap.
+  double node_triangles_deviation(const Draft& draft, const std::vector<Vec3>& xyz,
+                                  const std::vector<Diagonal>& bends) const {
+    double worst = 0;
+    const int n = params_.samples;
+    for (const std::vector<int>& piece : split_polygon(int(xyz.size()), bends)) {
+      std::vector<int> nodes;
+      for (int c : piece)
+        if (is_node(mesh_, draft.vertices[c])) nodes.push_back(c);
+      if (nodes.size() != 3) continue;
+      const Vec3 &a = xyz[nodes[0]], &b = xyz[nodes[1]], &c = xyz[nodes[2]];
+      const Vec2 &ua = draft.uv[nodes[0]], &ub = draft.uv[nodes[1]], &uc = draft.uv[nodes[2]];
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j) {
+          const double s = double(i) / n, t = double(j) / n, r = 1 - s - t;
+          worst = std::max(worst, face_.project(r * a + s * b + t * c, r * ua + s * ub + t * uc).distance);
+        }
+    }
+    return worst;
+  }
 
   void finish(Draft draft, std::vector<Diagonal> bends, const std::vector<Vec3>& placed, int origin) {
     for (std::size_t c = 0; c < draft.vertices.size(); ++c) mesh_.xyz[draft.vertices[c]] = placed[c];
@@ -280,6 +314,7 @@ class PieceModeller {
   bool split(Draft& draft, const std::vector<int>& nodes, int origin) {
     const int k = static_cast<int>(nodes.size());
     int best_i = -1, best_j = -1;
+    bool best_long = false;  // at least min_node_spacing: no short new rod
     int best_balance = std::numeric_limits<int>::max();
     double best_length = std::numeric_limits<double>::infinity();
     for (int i = 0; i < k; ++i) {
@@ -289,9 +324,11 @@ class PieceModeller {
         if (!diagonal_inside(draft.uv, a, b)) continue;
         const int balance = std::abs((j - i) - (k - (j - i)));
         const double length = (original_[draft.vertices[a]] - original_[draft.vertices[b]]).norm();
-        if (length < params_.min_node_spacing) continue;  // no short new rod
-        if (balance < best_balance || (balance == best_balance && length < best_length)) {
-          best_balance = balance, best_length = length, best_i = a, best_j = b;
+        const bool long_enough = length >= params_.min_node_spacing;
+        if (std::make_tuple(!long_enough, balance, length) <
+            std::make_tuple(!best_long, best_balance, best_length)) {
+          best_long = long_enough, best_balance = balance, best_length = length, best_i = a,
+          best_j = b;
         }
       }
     }
