@@ -201,13 +201,21 @@ std::vector<std::vector<int>> split_polygon(int corners,
   return pieces;
 }
 
-std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec2>& uv,
+std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec3>& xyz,
                                                    const std::vector<std::array<int, 2>>& bends) {
-  if (bends.empty()) return triangulate_polygon(uv);
   std::vector<std::array<int, 3>> out;
-  for (const std::vector<int>& piece : split_polygon(static_cast<int>(uv.size()), bends)) {
+  for (const std::vector<int>& piece : split_polygon(static_cast<int>(xyz.size()), bends)) {
+    // The piece is flat: triangulated on its own plane (Newell's normal, which
+    // follows the corner order), where it is cut; (u,v) could fold a thin
+    // triangle over once the trim points sit on the plane.
+    Vec3 normal = Vec3::Zero();
+    for (std::size_t i = 0; i < piece.size(); ++i)
+      normal += xyz[piece[i]].cross(xyz[piece[(i + 1) % piece.size()]]);
+    if (!(normal.norm() > 0)) normal = Vec3::UnitZ();
+    normal.normalize();
+    const Vec3 e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
     std::vector<Vec2> sub;
-    for (int c : piece) sub.push_back(uv[c]);
+    for (int c : piece) sub.emplace_back(xyz[c].dot(e1), xyz[c].dot(e2));
     for (const auto& t : triangulate_polygon(sub)) out.push_back({piece[t[0]], piece[t[1]], piece[t[2]]});
   }
   return out;
@@ -217,7 +225,9 @@ std::vector<std::array<int, 3>> panel_model_triangles(const PanelMesh& mesh, std
   const std::size_t n = mesh.panels[k].size();
   if (n == 3) return {{0, 1, 2}};
   if (!modelled_as_pieces(mesh, k)) return {};
-  return triangulate_pieces(panel_corner_uv(mesh, k), panel_bends(mesh, k));
+  std::vector<Vec3> xyz;
+  for (int v : mesh.panels[k]) xyz.push_back(mesh.xyz[v]);
+  return triangulate_pieces(xyz, panel_bends(mesh, k));
 }
 
 double panel_area(const PanelMesh& mesh, std::size_t p) {

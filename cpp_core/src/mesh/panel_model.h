@@ -3,7 +3,7 @@
 // any other panel (a boundary panel whose outline follows a trim, a polygon of
 // more than four nodes) -> flat pieces: its outline cut along its bend lines
 // (PanelMesh::bends), each piece flat (mesh/boundary_pieces.h puts the outline
-// points on the piece planes) and triangulated on its own (u,v) outline.
+// points on the piece planes) and triangulated on its plane.
 #pragma once
 
 #include <array>
@@ -31,9 +31,10 @@ const std::vector<std::array<int, 2>>& panel_bends(const PanelMesh& mesh, std::s
 std::vector<std::vector<int>> split_polygon(int corners,
                                             const std::vector<std::array<int, 2>>& diagonals);
 
-// Triangles of a polygon cut into pieces along `bends`, each piece triangulated
-// on its own (u,v) outline, so that no triangle spans a bend.
-std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec2>& uv,
+// Triangles of a polygon of flat pieces cut along `bends`, each piece
+// triangulated on its own plane, so that no triangle spans a bend (corner
+// indices, turning like the corner order).
+std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec3>& xyz,
                                                    const std::vector<std::array<int, 2>>& bends);
 
 // The flat triangles panel k is built of (corner indices, the panel's
