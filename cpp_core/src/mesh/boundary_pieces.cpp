@@ -185,6 +185,12 @@ class PieceModeller {
                                             params_.max_deviation);
       // At most kMaxRefinements new nodes per panel: beyond that the piece is
       // kept and its deviation reported as measured.
+      if (tangled && (worst < 0 || round >= kMaxRefinements)) {
+        // Still crossing itself on its plane: not cuttable as a flat piece;
+        // kept on the surface as before this stage (a curved piece).
+        keep_unmodelled(std::move(draft), origin);
+        return;
+      }
       if (worst >= 0 && (tangled || too_far) && round < kMaxRefinements) {
         // The new node keeps min_node_spacing from its neighbours on the trim
         // (no short rods); a piece that only a closer node would improve is

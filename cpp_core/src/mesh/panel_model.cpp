@@ -202,20 +202,36 @@ std::vector<std::vector<int>> split_polygon(int corners,
 }
 
 std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec3>& xyz,
+                                                   const std::vector<Vec2>& uv,
                                                    const std::vector<std::array<int, 2>>& bends) {
   std::vector<std::array<int, 3>> out;
   for (const std::vector<int>& piece : split_polygon(static_cast<int>(xyz.size()), bends)) {
-    // The piece is flat: triangulated on its own plane (Newell's normal, which
-    // follows the corner order), where it is cut; (u,v) could fold a thin
-    // triangle over once the trim points sit on the plane.
-    Vec3 normal = Vec3::Zero();
-    for (std::size_t i = 0; i < piece.size(); ++i)
+    // A flat piece is triangulated on its own plane (Newell's normal, which
+    // follows the corner order), where it is cut: in (u,v) a thin triangle could
+    // turn over once the trim points sit on the plane. A piece left curved (on
+    // the surface: the boundary stage kept it) is triangulated in (u,v).
+    Vec3 normal = Vec3::Zero(), centre = Vec3::Zero();
+    for (std::size_t i = 0; i < piece.size(); ++i) {
       normal += xyz[piece[i]].cross(xyz[piece[(i + 1) % piece.size()]]);
-    if (!(normal.norm() > 0)) normal = Vec3::UnitZ();
-    normal.normalize();
-    const Vec3 e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
+      centre += xyz[piece[i]];
+    }
+    centre /= double(piece.size());
+    double extent = 0, off = 0;
+    if (normal.norm() > 0) {
+      normal.normalize();
+      for (int c : piece) {
+        extent = std::max(extent, (xyz[c] - centre).norm());
+        off = std::max(off, std::abs((xyz[c] - centre).dot(normal)));
+      }
+    }
+    const bool flat = normal.norm() > 0 && off <= 1e-9 * extent;
     std::vector<Vec2> sub;
-    for (int c : piece) sub.emplace_back(xyz[c].dot(e1), xyz[c].dot(e2));
+    if (flat) {
+      const Vec3 e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
+      for (int c : piece) sub.emplace_back(xyz[c].dot(e1), xyz[c].dot(e2));
+    } else {
+      for (int c : piece) sub.push_back(uv[c]);
+    }
     for (const auto& t : triangulate_polygon(sub)) out.push_back({piece[t[0]], piece[t[1]], piece[t[2]]});
   }
   return out;
@@ -227,7 +243,7 @@ std::vector<std::array<int, 3>> panel_model_triangles(const PanelMesh& mesh, std
   if (!modelled_as_pieces(mesh, k)) return {};
   std::vector<Vec3> xyz;
   for (int v : mesh.panels[k]) xyz.push_back(mesh.xyz[v]);
-  return triangulate_pieces(xyz, panel_bends(mesh, k));
+  return triangulate_pieces(xyz, panel_corner_uv(mesh, k), panel_bends(mesh, k));
 }
 
 double panel_area(const PanelMesh& mesh, std::size_t p) {

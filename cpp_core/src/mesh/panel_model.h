@@ -31,10 +31,11 @@ const std::vector<std::array<int, 2>>& panel_bends(const PanelMesh& mesh, std::s
 std::vector<std::vector<int>> split_polygon(int corners,
                                             const std::vector<std::array<int, 2>>& diagonals);
 
-// Triangles of a polygon of flat pieces cut along `bends`, each piece
-// triangulated on its own plane, so that no triangle spans a bend (corner
-// indices, turning like the corner order).
+// Triangles of a polygon of pieces cut along `bends`, each piece triangulated
+// on its own plane if it is flat, else on its (u,v) outline, so that no
+// triangle spans a bend (corner indices, turning like the corner order).
 std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec3>& xyz,
+                                                   const std::vector<Vec2>& uv,
                                                    const std::vector<std::array<int, 2>>& bends);
 
 // The flat triangles panel k is built of (corner indices, the panel's
