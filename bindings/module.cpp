@@ -128,6 +128,11 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<PanelMetrics>(m, "PanelMetrics")
       .def_property_readonly("deviation", [](const PanelMetrics& x) { return values(x.deviation); })
+      .def_property_readonly("deviation_unreliable",
+                             [](const PanelMetrics& x) {
+                               return std::vector<bool>(x.deviation_unreliable.begin(),
+                                                        x.deviation_unreliable.end());
+                             })
       .def_property_readonly("planarity", [](const PanelMetrics& x) { return values(x.planarity); })
       .def_property_readonly("area", [](const PanelMetrics& x) { return values(x.area); })
       .def_property_readonly("min_angle", [](const PanelMetrics& x) { return values(x.min_angle); })

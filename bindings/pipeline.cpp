@@ -114,6 +114,7 @@ void bind_pipeline(py::module_& m) {
         d["surface_evaluations"] = s.surface_evaluations;
         d["core_seconds"] = s.core_seconds;
         d["panel_deviation"] = stats(s.deviation);
+        d["unreliable_deviation"] = s.unreliable_deviation;
         d["panel_planarity"] = stats(s.planarity);
         d["panel_area"] = stats(s.area);
         d["rod_length"] = stats(s.rod_length);

@@ -18,7 +18,13 @@ struct MetricsParams {
 };
 
 struct PanelMetrics {
-  std::vector<double> deviation;  // max distance panel -> surface (mm), projected samples
+  // Max distance panel model -> surface (mm): an upper bound of the true
+  // distance, within 1% of it (measure_panel_deviation).
+  std::vector<double> deviation;
+  // 1 where the farthest point's projection found no foot point (Newton and
+  // OCCT's Extrema both failed): deviation is then the distance to the
+  // nearest surface point found, still an upper bound but maybe not tight.
+  std::vector<char> deviation_unreliable;
   std::vector<double> planarity;  // quad: diagonal distance / mean edge; n-gon: max
                                   // distance to best-fit plane / mean edge; triangle: 0
   std::vector<double> area;       // mm^2, of the panel model above
@@ -30,9 +36,26 @@ struct PanelMetrics {
 PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
                             const MetricsParams& params = {});
 
-// Largest distance from sample points of a panel model to the surface: corners
-// `p` with their (u,v) (projection starts), `tris` its flat triangles (empty:
-// the bilinear patch of a quad), `samples` per edge direction.
+// Largest distance from a panel model to the surface: corners `p` with their
+// (u,v) (projection starts), `tris` its flat triangles (empty: the bilinear
+// patch of a quad). A grid of `samples` per edge direction (at least 2: the
+// edge midpoints; each triangle as many as its size asks), then a pattern search
+// in the panel's parameters around the largest samples (at most three
+// distinct places) finds the maximum between grid points and along edges.
+// Every distance is that of a true surface point, so the value is an upper
+// bound of the true distance; with a foot point found (reliable) it is the
+// true maximum to the search's precision (tested: within 1% of a dense
+// re-measure). A projection without a foot point is retried from the nearest
+// corner and bounded by the distance to the start point and to the nearest
+// corner; if the farthest point has no foot point, `unreliable` is set.
+struct PanelDeviation {
+  double value = 0;
+  bool unreliable = false;
+};
+PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
+                                       const std::vector<Vec2>& uv,
+                                       const std::vector<std::array<int, 3>>& tris, int samples);
+// Same, the value only.
 double panel_model_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
                              const std::vector<Vec2>& uv,
                              const std::vector<std::array<int, 3>>& tris, int samples);

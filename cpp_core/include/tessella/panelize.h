@@ -30,6 +30,9 @@ struct PanelizeSummary {
   std::uint64_t surface_evaluations = 0;
   double core_seconds = 0.0;
   SummaryStats deviation, planarity, area, rod_length;
+  // Panels whose deviation is an upper bound without a foot point found
+  // (PanelMetrics::deviation_unreliable).
+  int unreliable_deviation = 0;
   // The short-rod stage (min_rod_length): the limit it used (mm, the
   // automatic one if min_rod_length = 0), the rods it collapsed, the rods
   // still under the limit (no valid collapse) and the shortest rod left (mm).

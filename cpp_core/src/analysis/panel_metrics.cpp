@@ -47,42 +47,212 @@ double planarity(const std::vector<Vec3>& p) {
 
 }  // namespace
 
+namespace {
+
+// Distance from one point of a panel model to the surface, with whether it is
+// a verified foot point (an orthogonal local minimum of the distance).
+struct Probe {
+  double distance = 0;
+  bool reliable = true;
+  Vec2 foot;
+};
+
+// Every distance here is that of x to a true surface point, so each is an
+// upper bound of the true distance; a failed projection (no orthogonal foot
+// point) is retried and replaced by the smallest such bound, and marked.
+class Prober {
+ public:
+  Prober(const SurfaceFace& face, const std::vector<Vec2>& uv) : face_(face), uv_(uv) {
+    for (const Vec2& q : uv) corner_.push_back(face.point(q.x(), q.y()));
+    tiny_ = 1e-9 * face.model_size();
+  }
+
+  Probe operator()(const Vec3& x, const Vec2& start) const {
+    const Projection pr = face_.project(x, start);
+    std::size_t near = 0;
+    double bound = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < corner_.size(); ++k) {
+      const double d = (corner_[k] - x).norm();
+      if (d < bound) bound = d, near = k;
+    }
+    if (!pr.used_fallback && pr.distance <= bound + tiny_) return {pr.distance, true, pr.uv};
+    // Newton failed, or stopped at a local minimum farther than a corner:
+    // the fallback's answer if it is a foot point, a Newton run from the
+    // nearest corner, the start point itself, the nearest corner.
+    Probe best{pr.distance, pr.distance <= bound + tiny_ && orthogonal(x, pr), pr.uv};
+    auto offer = [&](double d, bool reliable, const Vec2& foot) {
+      if (d < best.distance) best = {d, reliable, foot};
+    };
+    const Projection again = face_.project(x, uv_[near]);
+    offer(again.distance, !again.used_fallback || orthogonal(x, again), again.uv);
+    offer((face_.point(start.x(), start.y()) - x).norm(), false, start);
+    offer(bound, false, uv_[near]);
+    return best;
+  }
+
+ private:
+  bool orthogonal(const Vec3& x, const Projection& pr) const {
+    if (pr.distance <= tiny_) return true;
+    const SurfacePoint sp = face_.derivatives(pr.uv.x(), pr.uv.y());
+    const Vec3 r = x - sp.point;
+    const double rn = r.norm(), un = sp.du.norm(), vn = sp.dv.norm();
+    if (!(un > 0 && vn > 0 && rn > 0)) return false;
+    return std::abs(r.dot(sp.du)) <= 1e-6 * rn * un && std::abs(r.dot(sp.dv)) <= 1e-6 * rn * vn;
+  }
+
+  const SurfaceFace& face_;
+  const std::vector<Vec2>& uv_;
+  std::vector<Vec3> corner_;
+  double tiny_ = 0;
+};
+
+// A sample of the panel model: piece `tri` (-1: the bilinear quad) at
+// parameters (a,b) (quad: s,t in [0,1]; triangle: barycentric weights of
+// corners 1 and 2, a + b <= 1).
+struct Sample {
+  int tri = -1;
+  double a = 0, b = 0;
+  Probe probe;
+};
+
+class PanelModel {
+ public:
+  PanelModel(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
+             const std::vector<std::array<int, 3>>& tris)
+      : p_(p), uv_(uv), tris_(tris) {}
+
+  // Clamp (a,b) into the piece's domain; false if a triangle's step leaves it.
+  bool inside(int tri, double& a, double& b) const {
+    if (tri < 0) {
+      a = std::clamp(a, 0.0, 1.0);
+      b = std::clamp(b, 0.0, 1.0);
+      return true;
+    }
+    const double e = 1e-12;
+    return a >= -e && b >= -e && a + b <= 1 + e;
+  }
+  void at(int tri, double a, double b, Vec3& x, Vec2& q) const {
+    if (tri < 0) {
+      const double w0 = (1 - a) * (1 - b), w1 = a * (1 - b), w2 = a * b, w3 = (1 - a) * b;
+      x = w0 * p_[0] + w1 * p_[1] + w2 * p_[2] + w3 * p_[3];
+      q = w0 * uv_[0] + w1 * uv_[1] + w2 * uv_[2] + w3 * uv_[3];
+      return;
+    }
+    const auto& t = tris_[tri];
+    const double c = 1 - a - b;
+    x = c * p_[t[0]] + a * p_[t[1]] + b * p_[t[2]];
+    q = c * uv_[t[0]] + a * uv_[t[1]] + b * uv_[t[2]];
+  }
+
+ private:
+  const std::vector<Vec3>& p_;
+  const std::vector<Vec2>& uv_;
+  const std::vector<std::array<int, 3>>& tris_;
+};
+
+// Pattern search for a maximum of the distance around `s` within its piece:
+// steps from h0 halved down to h0 / 64, along the piece's edge directions
+// (a quad: s and t; a triangle: also along its third edge), so a maximum on
+// an edge is followed along that edge.
+Sample refine(const PanelModel& model, const Prober& probe, Sample s, double h0) {
+  static const double quad_dirs[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  static const double tri_dirs[6][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, -1}, {-1, 1}};
+  const int nd = s.tri < 0 ? 4 : 6;
+  const auto& dirs = s.tri < 0 ? quad_dirs : tri_dirs;
+  int budget = 80;
+  for (double h = h0; h >= h0 / 64 && budget > 0; h *= 0.5) {
+    bool moved = true;
+    while (moved && budget > 0) {
+      moved = false;
+      for (int d = 0; d < nd && budget > 0; ++d) {
+        double a = s.a + h * dirs[d][0], b = s.b + h * dirs[d][1];
+        if (!model.inside(s.tri, a, b) || (a == s.a && b == s.b)) continue;
+        Vec3 x;
+        Vec2 q;
+        model.at(s.tri, a, b, x, q);
+        --budget;
+        const Probe pr = probe(x, s.probe.reliable ? s.probe.foot : q);
+        if (pr.distance > s.probe.distance) {
+          s = {s.tri, a, b, pr};
+          moved = true;
+          break;
+        }
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
+                                       const std::vector<Vec2>& uv,
+                                       const std::vector<std::array<int, 3>>& tris, int samples) {
+  const Prober probe(face, uv);
+  const PanelModel model(p, uv, tris);
+  std::vector<Sample> grid;
+  std::vector<double> step;  // grid step of each piece, in its parameters
+  auto sample_piece = [&](int tri, int n) {
+    step.push_back(1.0 / n);
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; j <= (tri < 0 ? n : n - i); ++j) {
+        Sample s{tri, double(i) / n, double(j) / n, {}};
+        Vec3 x;
+        Vec2 q;
+        model.at(tri, s.a, s.b, x, q);
+        s.probe = probe(x, q);
+        grid.push_back(s);
+      }
+    }
+  };
+  if (tris.empty()) {
+    sample_piece(-1, std::max(2, samples));  // at least the edge midpoints
+  } else {
+    // Each triangle sampled as densely as its size asks (a boundary panel has
+    // many thin triangles), at least at its edge midpoints.
+    double extent = 0;
+    for (const Vec3& a : p)
+      for (const Vec3& b : p) extent = std::max(extent, (a - b).norm());
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      const auto& t = tris[k];
+      const double longest = std::max(
+          {(p[t[0]] - p[t[1]]).norm(), (p[t[1]] - p[t[2]]).norm(), (p[t[2]] - p[t[0]]).norm()});
+      const int n = extent > 0 ? std::max(2, int(std::ceil(samples * longest / extent))) : 2;
+      sample_piece(static_cast<int>(k), n);
+    }
+  }
+  // Refine around the largest samples of distinct places (at most three, at
+  // least 70% of the largest): the maximum usually lies between grid points.
+  std::vector<std::size_t> order(grid.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return grid[x].probe.distance > grid[y].probe.distance;
+  });
+  Sample best = grid[order[0]];
+  std::vector<Sample> seeds;
+  for (std::size_t k : order) {
+    const Sample& s = grid[k];
+    if (seeds.size() >= 3 || s.probe.distance < 0.7 * best.probe.distance) break;
+    const double h = step[s.tri < 0 ? 0 : s.tri];
+    bool distinct = true;
+    for (const Sample& o : seeds)
+      if (o.tri == s.tri && std::abs(o.a - s.a) <= 1.5 * h && std::abs(o.b - s.b) <= 1.5 * h)
+        distinct = false;
+    if (distinct) seeds.push_back(s);
+  }
+  if (best.probe.distance > 0) {
+    for (const Sample& s : seeds) {
+      const Sample r = refine(model, probe, s, 0.5 * step[s.tri < 0 ? 0 : s.tri]);
+      if (r.probe.distance > best.probe.distance) best = r;
+    }
+  }
+  return {best.probe.distance, !best.probe.reliable};
+}
+
 double panel_model_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
                              const std::vector<Vec2>& uv,
                              const std::vector<std::array<int, 3>>& tris, int samples) {
-  double worst = 0;
-  auto probe = [&](const Vec3& x, const Vec2& start) {
-    worst = std::max(worst, face.project(x, start).distance);
-  };
-  if (tris.empty()) {
-    const int n = samples;
-    for (int i = 0; i <= n; ++i) {
-      for (int j = 0; j <= n; ++j) {
-        const double s = double(i) / n, t = double(j) / n;
-        const double w0 = (1 - s) * (1 - t), w1 = s * (1 - t), w2 = s * t, w3 = (1 - s) * t;
-        probe(w0 * p[0] + w1 * p[1] + w2 * p[2] + w3 * p[3],
-              w0 * uv[0] + w1 * uv[1] + w2 * uv[2] + w3 * uv[3]);
-      }
-    }
-    return worst;
-  }
-  // Triangle or flat pieces: each triangle sampled as densely as its size
-  // asks (a boundary panel has many thin triangles).
-  double extent = 0;
-  for (const Vec3& a : p)
-    for (const Vec3& b : p) extent = std::max(extent, (a - b).norm());
-  for (const auto& t : tris) {
-    const double longest = std::max(
-        {(p[t[0]] - p[t[1]]).norm(), (p[t[1]] - p[t[2]]).norm(), (p[t[2]] - p[t[0]]).norm()});
-    const int n = std::max(1, static_cast<int>(std::ceil(samples * longest / extent)));
-    for (int i = 0; i <= n; ++i) {
-      for (int j = 0; i + j <= n; ++j) {
-        const double s = double(i) / n, r = double(j) / n, q = 1 - s - r;
-        probe(q * p[t[0]] + s * p[t[1]] + r * p[t[2]], q * uv[t[0]] + s * uv[t[1]] + r * uv[t[2]]);
-      }
-    }
-  }
-  return worst;
+  return measure_panel_deviation(face, p, uv, tris, samples).value;
 }
 
 namespace {
@@ -96,7 +266,9 @@ void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k
   // One triangulation for the deviation and the area (an outline along a trim
   // has hundreds of points).
   const std::vector<std::array<int, 3>> tris = panel_model_triangles(mesh, k);
-  m.deviation[slot] = panel_model_deviation(face, p, uv, tris, samples);
+  const PanelDeviation dev = measure_panel_deviation(face, p, uv, tris, samples);
+  m.deviation[slot] = dev.value;
+  m.deviation_unreliable[slot] = dev.unreliable ? 1 : 0;
   m.planarity[slot] = planarity(p);
   if (tris.empty()) {
     m.area[slot] = panel_area(mesh, k);  // the bilinear quad
@@ -119,6 +291,7 @@ void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k
 
 void resize(PanelMetrics& m, std::size_t np) {
   m.deviation.resize(np);
+  m.deviation_unreliable.assign(np, 0);
   m.planarity.resize(np);
   m.area.resize(np);
   m.min_angle.resize(np);
@@ -184,6 +357,7 @@ PanelMetrics remeasure_panels(const SurfaceFace& face, const PanelMesh& mesh,
     }
     const std::size_t o = static_cast<std::size_t>(origin[k]);
     m.deviation[k] = before.deviation.at(o);
+    m.deviation_unreliable[k] = before.deviation_unreliable.at(o);
     m.planarity[k] = before.planarity.at(o);
     m.area[k] = before.area.at(o);
     m.min_angle[k] = before.min_angle.at(o);

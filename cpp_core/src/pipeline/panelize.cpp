@@ -156,6 +156,7 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   s.model_size = face->model_size();
   s.fold_count = static_cast<int>(r.mesh.folds.size());
   s.deviation = summarize(r.metrics.deviation);
+  for (char u : r.metrics.deviation_unreliable) s.unreliable_deviation += u ? 1 : 0;
   s.planarity = summarize(r.metrics.planarity);
   s.area = summarize(r.metrics.area);
   s.rod_length = summarize(r.metrics.rod_length);
