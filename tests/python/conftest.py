@@ -42,3 +42,21 @@ def make_freeform_face():
     f = faces[0]
     assert f.isValid() and len(f.Wires) == 3
     return f
+
+
+def make_round_trimmed_face():
+    """A doubly curved B-spline patch trimmed by a circle, with a circular hole
+    (not a bundled example): the fabrication tests' face."""
+    import math
+
+    surf = Part.BSplineSurface()
+    poles = [[FreeCAD.Vector(2000.0 * i, 1800.0 * j,
+                             900 * math.sin(0.8 * i + 0.3) * math.cos(0.9 * j) + 60 * i * j)
+              for j in range(5)] for i in range(5)]
+    surf.buildFromPolesMultsKnots(poles, [4, 1, 4], [4, 1, 4], [0, 0.4, 1], [0, 0.6, 1],
+                                  False, False, 3, 3)
+    trim = Part.makeCylinder(3800, 20000, FreeCAD.Vector(4000, 3600, -10000))
+    hole = Part.makeCylinder(1300, 20000, FreeCAD.Vector(4200, 3900, -10000))
+    faces = surf.toShape().common(trim).cut(hole).Faces
+    assert len(faces) == 1 and len(faces[0].Wires) == 2
+    return faces[0]

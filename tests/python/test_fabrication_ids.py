@@ -6,7 +6,6 @@ doubly curved B-spline patch trimmed by a circle, with a circular hole."""
 
 import csv
 import json
-import math
 import re
 import xml.etree.ElementTree as ET
 
@@ -16,6 +15,7 @@ import Part
 import pytest
 
 import freecad_workbench as tessella
+from conftest import make_round_trimmed_face
 from freecad_workbench import api
 from freecad_workbench.export import _arrange
 from freecad_workbench.export import members as mx
@@ -26,23 +26,9 @@ SVG = {"s": "http://www.w3.org/2000/svg"}
 AWKWARD = 'Dach/Süd:A*<1>?"|\\ ∑ é {:03d} ' + "x" * 120
 
 
-def trimmed_face():
-    surf = Part.BSplineSurface()
-    poles = [[FreeCAD.Vector(2000.0 * i, 1800.0 * j,
-                             900 * math.sin(0.8 * i + 0.3) * math.cos(0.9 * j) + 60 * i * j)
-              for j in range(5)] for i in range(5)]
-    surf.buildFromPolesMultsKnots(poles, [4, 1, 4], [4, 1, 4], [0, 0.4, 1], [0, 0.6, 1],
-                                  False, False, 3, 3)
-    trim = Part.makeCylinder(3800, 20000, FreeCAD.Vector(4000, 3600, -10000))
-    hole = Part.makeCylinder(1300, 20000, FreeCAD.Vector(4200, 3900, -10000))
-    faces = surf.toShape().common(trim).cut(hole).Faces
-    assert len(faces) == 1 and len(faces[0].Wires) == 2
-    return faces[0]
-
-
 @pytest.fixture(scope="module")
 def face():
-    return trimmed_face()
+    return make_round_trimmed_face()
 
 
 @pytest.fixture(scope="module")
@@ -125,7 +111,7 @@ def test_panel_schedule_rows_are_found_by_id(result, tmp_path):
     ("", "must be a text"),
 ])
 def test_formats_that_cannot_name_every_panel_are_refused(result, fmt, match):
-    r = tessella.panelize(trimmed_face(), method="iso_grid", size=1200.0)
+    r = tessella.panelize(make_round_trimmed_face(), method="iso_grid", size=1200.0)
     r.panel_id_format = fmt
     with pytest.raises(ValueError, match=match):
         r.panel_ids

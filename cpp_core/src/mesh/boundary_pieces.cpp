@@ -142,7 +142,7 @@ class PieceModeller {
       if (k > params_.max_bends + 3) {
         if (split(draft, nodes, origin)) return;
         if (round < kMaxRefinements && promote_middle(draft)) continue;
-        keep_unmodelled(draft, origin);
+        keep(draft, origin);
         return;
       }
       std::vector<Diagonal> bends;
@@ -150,7 +150,7 @@ class PieceModeller {
         // Every bend line would leave the panel (a trim curving into it):
         // a node in the middle of the longest trim run sees both its ends.
         if (round < kMaxRefinements && promote_middle(draft)) continue;
-        keep_unmodelled(draft, origin);
+        keep(draft, origin);
         return;
       }
       // Pieces and their planes; the trim points' offsets from them.
@@ -188,7 +188,7 @@ class PieceModeller {
       if (tangled && (worst < 0 || round >= kMaxRefinements)) {
         // Still crossing itself on its plane: not cuttable as a flat piece;
         // kept on the surface as before this stage (a curved piece).
-        keep_unmodelled(std::move(draft), origin);
+        keep(std::move(draft), origin);
         return;
       }
       if (worst >= 0 && (tangled || too_far) && round < kMaxRefinements) {
@@ -211,6 +211,9 @@ class PieceModeller {
     }
   }
 
+  // Kept as it is: not a piece panel, or one the stage cannot model (no bend
+  // line or split inside it, or an outline that stays crossed on its plane):
+  // left on the surface, triangulated in (u,v), as before this stage.
   void keep(Draft draft, int origin) { emit(std::move(draft), {}, origin, false); }
 
   bool rods_changed() const { return rods_changed_; }
@@ -227,9 +230,6 @@ class PieceModeller {
     report_.changed.push_back(changed ? 1 : 0);
   }
 
-  // No valid bend lines or split (a panel whose node diagonals all leave it):
-  // left as its triangulated outline, as before this stage.
-  void keep_unmodelled(Draft draft, int origin) { emit(std::move(draft), {}, origin, false); }
 
   // Deviation of the pieces' interiors: samples of each piece's node triangle
   // projected onto the surface (with the trim points' offsets this bounds the
