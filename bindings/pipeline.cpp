@@ -122,6 +122,11 @@ void bind_pipeline(py::module_& m) {
         d["merged_rods"] = s.merged_rods;
         d["short_rods"] = s.short_rods;
         d["shortest_rod"] = s.shortest_rod;
+        d["gap_fraction"] = s.gap_fraction;
+        d["overlap_fraction"] = s.overlap_fraction;
+        d["model_area_ratio"] = s.model_area_ratio;
+        d["zero_area_panels"] = s.zero_area_panels;
+        d["coverage_warning"] = s.coverage_warning;
         return d;
       });
 

@@ -18,7 +18,9 @@ METHODS = [
     ("equal_size_grid", {"size": 2000.0}),
     ("relaxed_grid", {"u_count": 9, "v_count": 7}),
     ("walking_agent", {"max_deviation": 60.0}),
-    ("boundary_driven", {"size": 2000.0}),
+    # (at 1700-2000 mm its network overlaps near the notch by 3.7% of the
+    # face: refused by the coverage check since issue 18)
+    ("boundary_driven", {"size": 1400.0}),
 ]
 
 
@@ -123,8 +125,8 @@ def test_unfolded_pieces_keep_their_lengths_and_cover_the_face(run, freeform_fac
         assert np.allclose(f.edge_lengths, e3, rtol=1e-9, atol=1e-9 * e3.max())
     total = sum(f.area for f in flat)
     if method in ("relaxed_grid", "boundary_driven"):
-        # these layouts do not follow this face's trims (issue 18: relaxed_grid
-        # ignores trims, boundary_driven overlaps near the notch): their own area
+        # relaxed_grid ignores trims (issue 18), boundary_driven's pieces are
+        # bilinear-like quads bent once: their own area
         # (bilinear quads: the unfolded triangles are close to, not equal to, them)
         total_model = float(np.sum(r.metrics["panel_area"]))
         assert abs(total / total_model - 1) < 0.005

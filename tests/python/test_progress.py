@@ -23,7 +23,8 @@ def test_progress_is_reported_and_result_unchanged(face):
     assert calls, "a job of this size reports at least once (every 50 ms)"
     assert all(0.0 <= f <= 1.0 for f, _ in calls)
     assert {s for _, s in calls} <= {"cutting the grid by the trim", "merging short rods",
-                                     "measuring panels", "modelling boundary pieces"}
+                                     "measuring panels", "modelling boundary pieces",
+                                     "checking coverage", "tightening max_deviation"}
     assert r.panels == plain.panels
     assert (r.metrics["panel_deviation"] == plain.metrics["panel_deviation"]).all()
 

@@ -26,7 +26,9 @@ def area(profile):
 
 @pytest.fixture(scope="module", params=["iso_grid", "boundary_driven"])
 def result(request, freeform_face):
-    return tessella.panelize(freeform_face, method=request.param, size=2000.0)
+    # boundary_driven at 2000 mm overlaps near the notch (refused since issue 18)
+    size = 1400.0 if request.param == "boundary_driven" else 2000.0
+    return tessella.panelize(freeform_face, method=request.param, size=size)
 
 
 def end_faces(solid, t):

@@ -6,6 +6,7 @@
 // Cancelled between (and inside) stages, for every method.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,6 +40,15 @@ struct PanelizeSummary {
   double min_rod_length = 0.0;
   int merged_rods = 0, short_rods = 0;
   double shortest_rod = 0.0;
+  // Coverage of the face (src/analysis/coverage.h), as shares of the face
+  // area: uncovered, covered twice or outside the trims, and the panels' 3D
+  // area over the face area. Checked before panelize returns.
+  double gap_fraction = 0.0, overlap_fraction = 0.0, model_area_ratio = 0.0;
+  // Methods that need not tile the face (MethodDeclaration::tiles_face):
+  // what is wrong with its coverage, empty if within 0.1%.
+  std::string coverage_warning;
+  // Panels of (next to) no area merged into a neighbour or dropped.
+  int zero_area_panels = 0;
 };
 
 struct PanelizeResult {

@@ -141,7 +141,7 @@ class PieceModeller {
       const int k = static_cast<int>(nodes.size());
       if (k > params_.max_bends + 3) {
         if (split(draft, nodes, origin)) return;
-        if (round < kMaxRefinements && promote_middle(draft)) continue;
+        if (round < kMaxRefinements && params_.may_add_nodes && promote_middle(draft)) continue;
         keep(draft, origin);
         return;
       }
@@ -149,7 +149,7 @@ class PieceModeller {
       if (k >= 4 && !choose_bends(draft, nodes, bends)) {
         // Every bend line would leave the panel (a trim curving into it):
         // a node in the middle of the longest trim run sees both its ends.
-        if (round < kMaxRefinements && promote_middle(draft)) continue;
+        if (round < kMaxRefinements && params_.may_add_nodes && promote_middle(draft)) continue;
         keep(draft, origin);
         return;
       }
@@ -189,6 +189,15 @@ class PieceModeller {
         // Still crossing itself on its plane: not cuttable as a flat piece;
         // kept on the surface as before this stage (a curved piece).
         keep(std::move(draft), origin);
+        return;
+      }
+      if (worst >= 0 && (tangled || too_far) && round < kMaxRefinements && !params_.may_add_nodes) {
+        // No new node allowed: a tangled piece stays curved on the surface,
+        // one too far is kept as it is (its deviation is reported).
+        if (tangled)
+          keep(std::move(draft), origin);
+        else
+          finish(std::move(draft), std::move(bends), placed, origin);
         return;
       }
       if (worst >= 0 && (tangled || too_far) && round < kMaxRefinements) {

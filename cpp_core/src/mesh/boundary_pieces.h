@@ -40,6 +40,10 @@ struct BoundaryPiecesParams {
   // max_deviation is a bound every panel must meet (walking_agent's): a piece
   // over it is refined even where that needs a closer node.
   bool hard_bound = false;
+  // Whether the stage may make trim points nodes (new rods): false keeps the
+  // layout's nodes (boundary_driven's all-quad layout); a panel that would
+  // need one stays a curved piece on the surface or keeps its deviation.
+  bool may_add_nodes = true;
   // Most bend lines per panel (2: a five-node panel is bent twice; a panel of
   // more nodes is split by a new rod).
   int max_bends = 2;

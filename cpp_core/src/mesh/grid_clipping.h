@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "mesh/sliver_merge.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_mesh.h"
 
@@ -14,10 +15,5 @@ class SurfaceFace;
 // u_lines and v_lines: strictly increasing, covering the face's uv bounds.
 PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
                     const std::vector<double>& v_lines, const GridClipParams& params);
-
-// Merges each panel p smaller than `fraction * reference_area[p]` into the
-// neighbour it shares the longest edge with (reference_area[p] = 0: never).
-// Returns how many were merged.
-int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& reference_area);
 
 }  // namespace tessella

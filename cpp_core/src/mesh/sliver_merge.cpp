@@ -1,12 +1,13 @@
 // Merging boundary slivers into a neighbour: a tiny panel cut off by a trim
 // curve is worse for a workshop than a slightly larger neighbour.
+#include "mesh/sliver_merge.h"
+
 #include <algorithm>
 #include <map>
 #include <numeric>
 
-#include "tessella/errors.h"
-#include "mesh/grid_clipping.h"
 #include "mesh/panel_model.h"
+#include "tessella/errors.h"
 
 namespace tessella {
 
@@ -42,6 +43,19 @@ bool merge_pair(const std::vector<int>& a, const std::vector<int>& b, std::vecto
   std::vector<int> sorted = out;
   std::sort(sorted.begin(), sorted.end());
   return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() && out.size() >= 3;
+}
+
+// Keeps the panels (and their corner_uv, folds stay) whose flag is set.
+void drop_panels(PanelMesh& mesh, const std::vector<char>& keep) {
+  std::vector<std::vector<int>> kept;
+  std::vector<std::vector<Vec2>> kept_uv;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+    if (!keep[p]) continue;
+    kept.push_back(std::move(mesh.panels[p]));
+    if (!mesh.corner_uv.empty()) kept_uv.push_back(std::move(mesh.corner_uv[p]));
+  }
+  mesh.panels = std::move(kept);
+  if (!mesh.corner_uv.empty()) mesh.corner_uv = std::move(kept_uv);
 }
 
 }  // namespace
@@ -86,6 +100,17 @@ int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& r
     for (auto& [neg_len, n] : candidates) {
       std::vector<int> joined;
       if (!merge_pair(mesh.panels[n], poly, joined)) continue;
+      if (!mesh.corner_uv.empty()) {
+        // Each corner keeps the (u,v) it had in the panel it came from (the
+        // neighbour's where both have it: the seam side the neighbour is on).
+        std::map<int, Vec2> seen;
+        for (std::size_t k = 0; k < poly.size(); ++k) seen[poly[k]] = mesh.corner_uv[s][k];
+        for (std::size_t k = 0; k < mesh.panels[n].size(); ++k)
+          seen[mesh.panels[n][k]] = mesh.corner_uv[n][k];
+        std::vector<Vec2> corner;
+        for (int v : joined) corner.push_back(seen.at(v));
+        mesh.corner_uv[n] = std::move(corner);
+      }
       mesh.panels[n] = joined;
       for (std::size_t k = 0; k < joined.size(); ++k)
         owner[{joined[k], joined[(k + 1) % joined.size()]}] = n;
@@ -95,11 +120,32 @@ int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& r
       break;
     }
   }
-  std::vector<std::vector<int>> kept;
-  for (std::size_t p = 0; p < mesh.panels.size(); ++p)
-    if (alive[p]) kept.push_back(std::move(mesh.panels[p]));
-  mesh.panels = std::move(kept);
+  drop_panels(mesh, alive);
   return merged;
+}
+
+int remove_zero_area_panels(PanelMesh& mesh, double model_size) {
+  const double min_area = mesh.nominal_area > 0
+                              ? kZeroAreaFraction * mesh.nominal_area
+                              : 1e-3 * kZeroAreaFraction * model_size * model_size;
+  std::vector<double> reference(mesh.panels.size(), min_area);
+  const std::size_t before = mesh.panels.size();
+  merge_slivers(mesh, 1.0, reference);
+  // What could not be merged (no neighbour along a contiguous edge chain)
+  // covers nothing: drop it.
+  std::vector<char> keep(mesh.panels.size(), 1);
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) keep[p] = panel_area(mesh, p) >= min_area;
+  drop_panels(mesh, keep);
+  const int removed = static_cast<int>(before - mesh.panels.size());
+  if (removed > 0) {
+    remove_unused_vertices(mesh);
+    // A fold whose two triangles both went has lost its vertices.
+    mesh.folds.erase(std::remove_if(mesh.folds.begin(), mesh.folds.end(),
+                                    [](const std::array<int, 2>& f) { return f[0] < 0; }),
+                     mesh.folds.end());
+    build_rods(mesh);
+  }
+  return removed;
 }
 
 }  // namespace tessella

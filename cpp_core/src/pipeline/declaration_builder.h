@@ -60,6 +60,12 @@ class MethodBuilder {
     decl_.doc = std::move(doc);
   }
 
+  // The method's panels need not tile the face (MethodDeclaration::tiles_face).
+  MethodBuilder& partial_coverage() {
+    decl_.tiles_face = false;
+    return *this;
+  }
+
   // A parameter stored in a field of P (default: the field's default).
   template <class T>
   MethodBuilder& param(T P::*field, ParamDeclaration d) {

@@ -8,9 +8,11 @@
 #include <map>
 #include <utility>
 
+#include "analysis/coverage.h"
 #include "mesh/boundary_pieces.h"
 #include "mesh/panel_model.h"
 #include "mesh/short_rod_merge.h"
+#include "mesh/sliver_merge.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
@@ -81,6 +83,114 @@ double allowed_boundary_deviation(const ParamValues& values, const MethodDeclara
   return worst;
 }
 
+// Sum over panels of deviation x perimeter (mm^2): how much larger than the
+// surface they cover the panel models may be (check_coverage).
+double deviation_band(const PanelMesh& mesh, const PanelMetrics& metrics) {
+  double band = 0;
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    const auto& p = mesh.panels[k];
+    double perimeter = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      perimeter += (mesh.xyz[p[(i + 1) % p.size()]] - mesh.xyz[p[i]]).norm();
+    if (std::isfinite(metrics.deviation[k])) band += metrics.deviation[k] * perimeter;
+  }
+  return band;
+}
+
+// Refuses a walking_agent result over its bound (after the retries).
+void check_hard_bound(const PanelMetrics& metrics, double bound) {
+  int over = 0;
+  double worst = 0;
+  for (double d : metrics.deviation) {
+    if (!(d <= bound)) ++over;
+    if (std::isfinite(d)) worst = std::max(worst, d);
+  }
+  if (over == 0) return;
+  throw GeometryFailure("walking_agent: " + std::to_string(over) +
+                        " panel(s) deviate more than max_deviation = " + std::to_string(bound) +
+                        " mm (largest " + std::to_string(worst) +
+                        " mm, measured densely): the bound cannot be met on this face; raise "
+                        "max_deviation or max_refinements");
+}
+
+// One run of the method and the stages that shape its panels: zero-area
+// panels, short rods, metrics, boundary pieces (the metrics of the pieces as
+// modelled).
+struct Modelled {
+  PanelMesh mesh;
+  PanelMetrics metrics;
+  ShortRodMergeReport merged;
+  BoundaryPiecesReport pieces;
+  int zero_area = 0;
+  double core_seconds = 0;  // the method and the short rods, not the metrics
+  std::uint64_t evaluations = 0;
+};
+
+Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
+                      const ParamValues& values) {
+  const std::string& method = decl.name;
+  Modelled out;
+  face.reset_evaluations();
+  const auto started = std::chrono::steady_clock::now();
+  out.mesh = decl.run(face, values);
+  // No method returns a panel without area (collinear or repeated corners).
+  out.zero_area = remove_zero_area_panels(out.mesh, face.model_size());
+  // No rod shorter than min_rod_length, whatever the method; walking_agent's
+  // max_deviation is a hard bound on every panel and is kept (gradient_descent's
+  // is a target).
+  report_stage(0.0, "merging short rods");
+  ShortRodMergeParams sp;
+  sp.min_rod_length = value_or<double>(values, decl, "min_rod_length");
+  sp.samples = value_or<int>(values, decl, "samples");
+  // boundary_driven's point is an all-quad layout: a collapse may not make a triangle.
+  sp.keep_quads = method == "boundary_driven";
+  if (method == "walking_agent") sp.max_deviation = value_or<double>(values, decl, "max_deviation");
+  out.merged = merge_short_rods(face, out.mesh, sp);
+  out.core_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  out.evaluations = face.evaluations();
+
+  MetricsParams mp;
+  mp.samples = value_or<int>(values, decl, "samples");
+  report_stage(0.0, "measuring panels");
+  // Full panels first (they fix the boundary pieces' allowance), then the
+  // boundary pieces once they are modelled.
+  std::vector<char> full(out.mesh.panels.size());
+  for (std::size_t k = 0; k < full.size(); ++k) full[k] = modelled_as_pieces(out.mesh, k) ? 0 : 1;
+  const PanelMetrics full_metrics = measure_panels(face, out.mesh, mp, full);
+  BoundaryPiecesParams bp;
+  bp.max_deviation = allowed_boundary_deviation(values, decl, full_metrics);
+  // boundary_driven's point is an all-quad layout: its boundary quads are
+  // bent along a diagonal, not refined with new trim nodes (which would make
+  // them pentagons and split them), unless boundary_deviation asks for it.
+  if (method == "boundary_driven" && !(value_or<double>(values, decl, "boundary_deviation") > 0)) {
+    bp.max_deviation = 0;
+    bp.may_add_nodes = false;
+  }
+  bp.samples = mp.samples;
+  // New nodes on the trim keep min_rod_length from the others.
+  bp.min_node_spacing = out.merged.min_rod_length;
+  bp.hard_bound =
+      method == "walking_agent" && !(value_or<double>(values, decl, "boundary_deviation") > 0);
+  report_stage(0.0, "modelling boundary pieces");
+  out.pieces = model_boundary_pieces(face, out.mesh, bp);
+  for (std::size_t k = 0; k < out.pieces.changed.size(); ++k)
+    if (!full[static_cast<std::size_t>(out.pieces.origin[k])]) out.pieces.changed[k] = 1;
+  out.metrics =
+      remeasure_panels(face, out.mesh, full_metrics, out.pieces.origin, out.pieces.changed, mp);
+  return out;
+}
+
+double largest(const std::vector<double>& values) {
+  double worst = 0;
+  for (double d : values)
+    if (std::isfinite(d)) worst = std::max(worst, d);
+  return worst;
+}
+
+// Runs of walking_agent with a tightened bound before it is refused.
+constexpr int kHardBoundRetries = 3;
+
 }  // namespace
 
 PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::string& method,
@@ -92,47 +202,34 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   PanelizeResult r;
   r.face = face;
   r.method = method;
-  face->reset_evaluations();
-  const auto started = std::chrono::steady_clock::now();
-  r.mesh = decl.run(*face, values);
-  // No rod shorter than min_rod_length, whatever the method; walking_agent's
-  // max_deviation is a hard bound on every panel and is kept (gradient_descent's
-  // is a target).
-  report_stage(0.0, "merging short rods");
-  ShortRodMergeParams sp;
-  sp.min_rod_length = value_or<double>(values, decl, "min_rod_length");
-  sp.samples = value_or<int>(values, decl, "samples");
-  // boundary_driven's point is an all-quad layout: a collapse may not make a triangle.
-  sp.keep_quads = method == "boundary_driven";
-  if (method == "walking_agent")
-    sp.max_deviation = value_or<double>(values, decl, "max_deviation");
-  const ShortRodMergeReport merged = merge_short_rods(*face, r.mesh, sp);
-  r.summary.core_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  r.summary.surface_evaluations = face->evaluations();
-
-  MetricsParams mp;
-  mp.samples = value_or<int>(values, decl, "samples");
-  report_stage(0.0, "measuring panels");
-  // Full panels first (they fix the boundary pieces' allowance), then the
-  // boundary pieces once they are modelled.
-  std::vector<char> full(r.mesh.panels.size());
-  for (std::size_t k = 0; k < full.size(); ++k) full[k] = modelled_as_pieces(r.mesh, k) ? 0 : 1;
-  const PanelMetrics full_metrics = measure_panels(*face, r.mesh, mp, full);
-  BoundaryPiecesParams bp;
-  bp.max_deviation = allowed_boundary_deviation(values, decl, full_metrics);
-  bp.samples = mp.samples;
-  // New nodes on the trim keep min_rod_length from the others.
-  bp.min_node_spacing = merged.min_rod_length;
-  bp.hard_bound = method == "walking_agent" && !(value_or<double>(values, decl, "boundary_deviation") > 0);
-  report_stage(0.0, "modelling boundary pieces");
-  BoundaryPiecesReport pieces = model_boundary_pieces(*face, r.mesh, bp);
-  for (std::size_t k = 0; k < pieces.changed.size(); ++k)
-    if (!full[static_cast<std::size_t>(pieces.origin[k])]) pieces.changed[k] = 1;
-  r.metrics = remeasure_panels(*face, r.mesh, full_metrics, pieces.origin, pieces.changed, mp);
-  r.summary.bend_count = pieces.bends;
-  r.summary.split_panels = pieces.split;
-  r.summary.boundary_nodes_added = pieces.refined;
+  Modelled m = model_panels(*face, decl, values);
+  if (method == "walking_agent") {
+    // walking_agent's max_deviation is a hard bound, kept on the pipeline's own
+    // measure (an upper bound within 1%), not on the method's estimate: where
+    // a panel came out over it (the estimate samples coarser; a boundary piece
+    // bends), the run is repeated with the bound tightened by the ratio found.
+    const double bound = value_or<double>(values, decl, "max_deviation");
+    ParamValues tighter = values;
+    double effective = bound;
+    for (int retry = 0; retry < kHardBoundRetries; ++retry) {
+      const double worst = largest(m.metrics.deviation);
+      if (worst <= bound) break;
+      effective *= 0.98 * bound / worst;
+      tighter["max_deviation"] = effective;
+      report_stage(0.0, "tightening max_deviation");
+      m = model_panels(*face, decl, tighter);
+    }
+    check_hard_bound(m.metrics, bound);
+  }
+  r.mesh = std::move(m.mesh);
+  r.metrics = std::move(m.metrics);
+  r.summary.zero_area_panels = m.zero_area;
+  r.summary.core_seconds = m.core_seconds;
+  r.summary.surface_evaluations = m.evaluations;
+  r.summary.bend_count = m.pieces.bends;
+  r.summary.split_panels = m.pieces.split;
+  r.summary.boundary_nodes_added = m.pieces.refined;
+  const ShortRodMergeReport& merged = m.merged;
 
   IrregularParams ip;
   ip.min_angle_deg = value_or<double>(values, decl, "min_angle");
@@ -149,7 +246,12 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   s.merged_slivers = r.mesh.merged_slivers;
   for (bool b : r.irregular) s.irregular_count += b ? 1 : 0;
   int quads = 0;
-  for (const auto& p : r.mesh.panels) quads += p.size() == 4 ? 1 : 0;
+  // A quad is a panel of four nodes (outline points along a trim do not count).
+  for (const auto& p : r.mesh.panels) {
+    int corners = 0;
+    for (int v : p) corners += is_node(r.mesh, v) ? 1 : 0;
+    quads += corners == 4 ? 1 : 0;
+  }
   s.quad_share = r.mesh.panels.empty() ? 0.0 : double(quads) / double(r.mesh.panels.size());
   s.nominal_area = r.mesh.nominal_area;
   s.face_area = face->area();
@@ -165,6 +267,17 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   // Still under the limit after both stages (no valid collapse).
   for (double length : r.metrics.rod_length) s.short_rods += length < merged.min_rod_length ? 1 : 0;
   s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
+
+  report_stage(0.0, "checking coverage");
+  const Coverage coverage = measure_coverage(*face, r.mesh, r.metrics.area);
+  s.gap_fraction = coverage.gap_fraction();
+  s.overlap_fraction = coverage.overlap_fraction();
+  s.model_area_ratio = coverage.face_area > 0 ? coverage.model_area / coverage.face_area : 0.0;
+  if (decl.tiles_face) {
+    check_coverage(coverage, deviation_band(r.mesh, r.metrics), method);
+  } else if (s.gap_fraction > kMaxCoverageError || s.overlap_fraction > kMaxCoverageError) {
+    s.coverage_warning = coverage_message(coverage, method);
+  }
   return r;
 }
 

@@ -82,7 +82,8 @@ std::vector<MethodDeclaration> guide_line_methods() {
                     "(false: the paper's equal chords on every curve)",
                     kGroup, "Stagger"))
         .shared("trim_deflection", &P::trim_deflection)
-        .shared("max_panels", &P::max_panels);
+        .shared("max_panels", &P::max_panels)
+        .partial_coverage();
     out.push_back(
         b.build([](const SurfaceFace& f, const P& p) { return guide_line_scaling(f, p); }));
   }
@@ -99,7 +100,8 @@ std::vector<MethodDeclaration> guide_line_methods() {
         .param(&P::guide_tolerance, guide_tolerance())
         .param(&P::max_curves, max_curves())
         .shared("trim_deflection", &P::trim_deflection)
-        .shared("max_panels", &P::max_panels);
+        .shared("max_panels", &P::max_panels)
+        .partial_coverage();
     out.push_back(b.build(&guide_line_diamond));
   }
   {
@@ -128,7 +130,8 @@ std::vector<MethodDeclaration> guide_line_methods() {
         .param(&P::guide_tolerance, guide_tolerance())
         .param(&P::max_curves, max_curves())
         .shared("trim_deflection", &P::trim_deflection)
-        .shared("max_panels", &P::max_panels);
+        .shared("max_panels", &P::max_panels)
+        .partial_coverage();
     out.push_back(b.build([](const SurfaceFace& f, const P& p) { return two_guide_lines(f, p); }));
   }
   return out;
