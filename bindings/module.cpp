@@ -21,6 +21,7 @@ using namespace tessella;
 using bindings::rows;
 using bindings::values;
 
+void bind_analysis(py::module_& m);
 void bind_boundary_driven(py::module_& m);
 void bind_fabrication(py::module_& m);
 void bind_pipeline(py::module_& m);
@@ -34,6 +35,7 @@ void bind_guide_lines(py::module_& m);
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
   bind_fabrication(m);
+  bind_analysis(m);
 
   // tessella's Cancelled (a RuntimeError, so FreeCAD's recompute reports it
   // like any failed feature).
