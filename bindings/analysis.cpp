@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "numpy_convert.h"
+#include "tessella/panel_mesh.h"
 #include "tessella/panel_types.h"
 #include "tessella/unfold.h"
 
@@ -42,4 +43,12 @@ void bind_analysis(py::module_& m) {
         return panel_types(flat, p);
       },
       py::arg("flat"), py::arg("params"));
+  // The panels of a mesh, unfolded with `unfold`.
+  m.def(
+      "mesh_panel_types",
+      [](const PanelMesh& mesh, const UnfoldParams& unfold, const PanelTypeParams& p) {
+        py::gil_scoped_release release;
+        return panel_types(mesh, unfold, p);
+      },
+      py::arg("mesh"), py::arg("unfold"), py::arg("params"));
 }

@@ -9,6 +9,7 @@
 All lengths are in mm.
 """
 
+import re
 import time
 from dataclasses import dataclass, field
 
@@ -43,6 +44,9 @@ ROD_ID_FORMAT = "R-{:04d}"
 NODE_ID_FORMAT = "N-{:04d}"
 
 
+_CONTROL = re.compile("[\x00-\x1f\x7f]")
+
+
 def format_ids(fmt, count, what="panel"):
     """IDs fmt.format(1), ..., fmt.format(count): any text a user can type around a
     number field (``ROOF/A:{:03d}``, spaces, unicode). Raises ValueError for a
@@ -59,7 +63,7 @@ def format_ids(fmt, count, what="panel"):
             text = fmt.format(k)
         except (IndexError, KeyError, ValueError, TypeError, AttributeError):
             raise ValueError(f"{name} {fmt!r} is not a format like P-{{:04d}}") from None
-        if not text.strip() or any(ord(c) < 32 or ord(c) == 127 for c in text):
+        if not text.strip() or _CONTROL.search(text):
             raise ValueError(f"{name} {fmt!r} gives {what} {k} the ID {text!r} "
                              "(empty or with a control character)")
         if text in seen:

@@ -8,7 +8,7 @@ sets (`guide_line_scaling_curves`, `two_guide_lines_curves` with their params
 structs), `boundary_driven_stages` (traced curves and the preliminary network),
 `iso_grid` + `measure_panels` (the coarsest-grid search of
 bench/compare_methods.py), `summarize`, `surface_evaluations`, `mesh_folds`,
-`fold_angle_deg`; `panel_types` / `flat_panel_types` (congruent flat panels).
+`fold_angle_deg`; `panel_types` / `flat_panel_types` / `mesh_panel_types` (congruent flat panels).
 """
 
 try:
@@ -31,6 +31,7 @@ from ._core import (  # noqa: E402,F401
     NestParams,
     PanelTypeParams,
     flat_panel_types,
+    mesh_panel_types,
     panel_types,
     OutlineOffsetParams,
     UnfoldParams,

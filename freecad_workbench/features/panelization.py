@@ -21,6 +21,7 @@ names `Panelization` and `PanelizationPart` are stored in every saved .FCStd.
 """
 
 import hashlib
+import itertools
 import json
 
 import FreeCAD
@@ -106,12 +107,32 @@ def children_of(parent):
 
 
 class _Cache:
-    """A panelization result and the shapes built from it (not saved)."""
+    """A panelization result and what is built from it (not saved): the
+    shapes, and the panel types per tolerance (computed on first use).
+    `serial` tells results apart: a child whose outputs came from this serial
+    (and the same ID format and tolerance) has nothing to redo."""
+
+    _serials = itertools.count(1)
 
     def __init__(self, signature, result, shapes):
         self.signature = signature
         self.result = result
         self.shapes = shapes
+        self.serial = next(self._serials)
+        self._types = {}
+
+    def panel_types(self, length_tol, angle_tol=0.5):
+        """(type index per panel, type count) of the unfolded panels
+        (members.panel_types' rule, in the core)."""
+        key = (float(length_tol), float(angle_tol))
+        if key not in self._types:
+            from .. import core
+
+            p = core.PanelTypeParams()
+            p.length_tol, p.angle_tol = key
+            t = core.mesh_panel_types(self.result._mesh, core.UnfoldParams(), p)
+            self._types[key] = (t.type.tolist(), int(t.count))
+        return self._types[key]
 
 
 class Panelization(_StateMixin):
@@ -412,23 +433,33 @@ class PanelizationPart(_StateMixin):
             raise
         res = cache.result
         role = obj.Role
+        # What this child's outputs depend on: the result, its ID format and
+        # (Panels) the type tolerance. Unchanged (a bare touch, or a parent
+        # change that left the result as it was): nothing to rebuild.
+        if role == "Panels":
+            tol = max(value_of(obj.TypeTolerance), 1e-6)
+            inputs = (cache.serial, res.panel_id_format, tol)
+        elif role == "Rods":
+            inputs = (cache.serial, res.rod_id_format)
+        else:
+            inputs = (cache.serial, res.node_id_format)
+        if getattr(self, "_applied", None) == inputs:
+            return
+        self._applied = None
         obj.Shape = cache.shapes[role]
         if role == "Panels":
             obj.PanelIds = res.panel_ids  # the parent's PanelIdFormat (checked there)
-            obj.Deviation = [float(x) for x in res.metrics["panel_deviation"]]
-            obj.Planarity = [float(x) for x in res.metrics["panel_planarity"]]
-            obj.Area = [float(x) for x in res.metrics["panel_area"]]
-            obj.Irregular = [int(x) for x in res.irregular]
-            from ..fabrication import unfold
-            from ..members import panel_types
-
-            kinds, count = panel_types(unfold(res), length_tol=max(value_of(obj.TypeTolerance), 1e-6))
-            obj.PanelType = [int(x) for x in kinds]
-            obj.TypeCount = int(count)
+            obj.Deviation = res.metrics["panel_deviation"].tolist()
+            obj.Planarity = res.metrics["panel_planarity"].tolist()
+            obj.Area = res.metrics["panel_area"].tolist()
+            obj.Irregular = res.irregular.astype(int).tolist()
+            kinds, count = cache.panel_types(tol)
+            obj.PanelType = kinds
+            obj.TypeCount = count
         elif role == "Rods":
             obj.RodIds = list(res.rod_ids)
-            obj.RodLengths = [float(x) for x in res.metrics["rod_length"]]
+            obj.RodLengths = res.metrics["rod_length"].tolist()
         elif role == "Nodes":
             obj.NodeIds = list(res.node_ids)
             obj.Valence = [int(x) for x in res.metrics["node_valence"]]
-
+        self._applied = inputs

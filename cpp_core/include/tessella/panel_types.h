@@ -52,4 +52,8 @@ double type_fold_angle(const FlatPanel& flat);
 // Types of unfolded panels (unfold_panels), fold angle by type_fold_angle.
 PanelTypes panel_types(const std::vector<FlatPanel>& flat, const PanelTypeParams& params = {});
 
+// Types of a mesh's panels: unfold_panels(mesh, unfold), then the above.
+PanelTypes panel_types(const PanelMesh& mesh, const UnfoldParams& unfold,
+                       const PanelTypeParams& params = {});
+
 }  // namespace tessella

@@ -166,4 +166,9 @@ PanelTypes panel_types(const std::vector<FlatPanel>& flat, const PanelTypeParams
   return panel_types(outlines, folds, params);
 }
 
+PanelTypes panel_types(const PanelMesh& mesh, const UnfoldParams& unfold,
+                       const PanelTypeParams& params) {
+  return panel_types(unfold_panels(mesh, unfold), params);
+}
+
 }  // namespace tessella
