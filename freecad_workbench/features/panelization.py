@@ -15,6 +15,10 @@ on its proxy; a child's execute takes its shape from that cache, recomputing it
 on demand (e.g. after a document was reopened and only a child is touched).
 The three shapes are all built inside the parent's execute, so a failure leaves
 every child as it was (never a half-built set).
+The cache is keyed by the inputs (the face's BRep and the parameters); the
+panel types are cached on it per tolerance, and each child remembers which
+result, ID format (and tolerance) its outputs came from, so a recompute that
+changes none of them (a bare touch) rebuilds nothing.
 
 FROZEN: the module path `freecad_workbench.features.panelization` and the class
 names `Panelization` and `PanelizationPart` are stored in every saved .FCStd.
