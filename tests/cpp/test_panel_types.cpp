@@ -140,7 +140,9 @@ TEST(PanelTypes, RejectsBadParameters) {
   PanelTypeParams p;
   p.length_tol = -1.0;
   EXPECT_THROW(types_of({rectangle(1, 1)}, {}, p), InvalidParameter);
-  EXPECT_THROW(panel_types({rectangle(1, 1)}, {}, {}), InvalidParameter);
+  p.length_tol = 1.0;  // one fold per outline
+  EXPECT_THROW(panel_types(std::vector<Outline>{rectangle(1, 1)}, std::vector<double>{}, p),
+               InvalidParameter);
 }
 
 TEST(PanelTypes, FoldAngleOfAnUnfoldedPanelIsItsLargestFold) {

@@ -6,15 +6,24 @@
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_BSplineCurve.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <ShapeFix_ShapeTolerance.hxx>
 #include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
 #include <algorithm>
 #include <gp_Pln.hxx>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -49,25 +58,139 @@ double off_plane(const std::vector<Vec3>& p, const Vec3& c, const Vec3& n) {
   return worst;
 }
 
+// One vertex per mesh vertex and one straight edge per vertex pair, shared by
+// every panel (and piece) that uses them: neighbouring panels meet on one
+// edge, and the compound is about a third smaller to write and to read than
+// one of independent faces (bench/document_speed.py).
+class SharedTopology {
+ public:
+  explicit SharedTopology(const PanelMesh& mesh) : mesh_(mesh) {}
+
+  // The edge from vertex a to vertex b, oriented a -> b. Its curve runs from
+  // the smaller index (parameter 0) to the larger (parameter = its length).
+  // Throws NotShareable when the two points coincide.
+  TopoDS_Edge edge(int a, int b) {
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    auto it = edges_.find(key);
+    if (it == edges_.end()) {
+      BRepBuilderAPI_MakeEdge make(vertex(key.first), vertex(key.second));
+      if (!make.IsDone()) throw NotShareable();
+      it = edges_.emplace(key, make.Edge()).first;
+    }
+    return a == key.first ? it->second : TopoDS::Edge(it->second.Reversed());
+  }
+
+  // The closed wire through the vertices, in order.
+  TopoDS_Wire wire(const std::vector<int>& ids) {
+    BRep_Builder builder;
+    TopoDS_Wire w;
+    builder.MakeWire(w);
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      builder.Add(w, edge(ids[k], ids[(k + 1) % ids.size()]));
+    w.Closed(Standard_True);
+    return w;
+  }
+
+  struct NotShareable {};
+
+ private:
+  const TopoDS_Vertex& vertex(int v) {
+    auto it = vertices_.find(v);
+    if (it == vertices_.end())
+      it = vertices_.emplace(v, BRepBuilderAPI_MakeVertex(pnt(mesh_.xyz[v])).Vertex()).first;
+    return it->second;
+  }
+
+  const PanelMesh& mesh_;
+  std::unordered_map<int, TopoDS_Vertex> vertices_;
+  std::map<std::pair<int, int>, TopoDS_Edge> edges_;
+};
+
+// Raises (never lowers: the edges are shared) the tolerance of the wire's
+// edges and vertices to `tolerance`.
+void raise_tolerance(const TopoDS_Wire& wire, double tolerance) {
+  BRep_Builder builder;
+  for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    if (BRep_Tool::Tolerance(edge) < tolerance) builder.UpdateEdge(edge, tolerance);
+  }
+  for (TopExp_Explorer v(wire, TopAbs_VERTEX); v.More(); v.Next()) {
+    const TopoDS_Vertex& vertex = TopoDS::Vertex(v.Current());
+    if (BRep_Tool::Tolerance(vertex) < tolerance) builder.UpdateVertex(vertex, tolerance);
+  }
+}
+
 // A flat face on the plane (c, n) bounded by the polygon; the polygon's corners
 // are within `tolerance` of the plane, which its edges are given so OCCT
 // accepts them. The face normal is n (the polygon runs counter-clockwise).
-TopoDS_Face flat_face(const std::vector<Vec3>& p, const Vec3& c, const Vec3& n, double tolerance) {
-  BRepBuilderAPI_MakePolygon polygon;
-  for (const Vec3& q : p) polygon.Add(pnt(q));
-  polygon.Close();
-  if (!polygon.IsDone()) throw GeometryFailure("cannot build a panel outline (repeated corners)");
-  TopoDS_Wire wire = polygon.Wire();
-  if (tolerance > 1e-7) ShapeFix_ShapeTolerance().SetTolerance(wire, tolerance);
+// With `topo`, the outline is made of its shared edges (`ids`: the corners'
+// mesh vertices).
+TopoDS_Face flat_face(const std::vector<Vec3>& p, const Vec3& c, const Vec3& n, double tolerance,
+                      SharedTopology* topo = nullptr, const std::vector<int>& ids = {}) {
+  TopoDS_Wire wire;
+  if (topo != nullptr) {
+    wire = topo->wire(ids);
+    if (tolerance > 1e-7) raise_tolerance(wire, tolerance);
+  } else {
+    BRepBuilderAPI_MakePolygon polygon;
+    for (const Vec3& q : p) polygon.Add(pnt(q));
+    polygon.Close();
+    if (!polygon.IsDone()) throw GeometryFailure("cannot build a panel outline (repeated corners)");
+    wire = polygon.Wire();
+    if (tolerance > 1e-7) ShapeFix_ShapeTolerance().SetTolerance(wire, tolerance);
+  }
   const gp_Pln plane(pnt(c), gp_Dir(n.x(), n.y(), n.z()));
   BRepBuilderAPI_MakeFace face(plane, wire, Standard_True);
   if (!face.IsDone()) throw GeometryFailure("cannot build a flat panel face");
   return face.Face();
 }
 
+// The bilinear patch of a bent quad bounded by its shared edges: each edge
+// gets its line on the patch (a side of the unit square, parameterized like
+// the edge: 0 at its smaller vertex index, its length at the other).
+TopoDS_Face shared_bilinear_face(const Handle(Geom_BezierSurface) & patch,
+                                 const std::vector<int>& ids, SharedTopology& topo) {
+  static const gp_Pnt2d corner[4] = {gp_Pnt2d(0, 0), gp_Pnt2d(1, 0), gp_Pnt2d(1, 1),
+                                     gp_Pnt2d(0, 1)};
+  BRep_Builder builder;
+  TopoDS_Face face;
+  builder.MakeFace(face, patch, 1e-7);
+  TopoDS_Wire wire;
+  builder.MakeWire(wire);
+  for (int k = 0; k < 4; ++k) {
+    const int a = ids[k], b = ids[(k + 1) % 4];
+    const TopoDS_Edge edge = topo.edge(a, b);
+    double first = 0, last = 0;
+    BRep_Tool::Range(edge, first, last);
+    TColgp_Array1OfPnt2d poles(1, 2);
+    poles(1) = corner[a < b ? k : (k + 1) % 4];
+    poles(2) = corner[a < b ? (k + 1) % 4 : k];
+    TColStd_Array1OfReal knots(1, 2);
+    knots(1) = first;
+    knots(2) = last;
+    TColStd_Array1OfInteger mults(1, 2);
+    mults(1) = mults(2) = 2;
+    builder.UpdateEdge(edge, new Geom2d_BSplineCurve(poles, knots, mults, 1), face,
+                       BRep_Tool::Tolerance(edge));
+    builder.Add(wire, edge);
+  }
+  wire.Closed(Standard_True);
+  builder.Add(face, wire);
+  return face;
+}
+
 // `pieces`: the corner lists of a panel modelled as flat pieces (empty: not).
+// With `topo`, faces are bounded by shared edges (`ids`: the corners' mesh
+// vertices); it throws SharedTopology::NotShareable for repeated corners.
 TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
-                         const std::vector<std::vector<int>>& pieces, double planar_tolerance) {
+                         const std::vector<std::vector<int>>& pieces, double planar_tolerance,
+                         SharedTopology* topo = nullptr, const std::vector<int>& ids = {}) {
+  auto ids_of = [&](const std::vector<int>& corners) {
+    std::vector<int> out;
+    if (topo != nullptr)
+      for (int i : corners) out.push_back(ids[static_cast<std::size_t>(i)]);
+    return out;
+  };
   if (pieces.size() > 1) {
     // Modelled as flat pieces (a boundary panel bent along node diagonals):
     // one flat face per piece, the model every figure is measured on.
@@ -77,12 +200,14 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
     for (const std::vector<int>& piece : pieces) {
       std::vector<Vec3> q;
       for (int i : piece) q.push_back(p[i]);
+      const std::vector<int> q_ids = ids_of(piece);
       Vec3 qc = Vec3::Zero();
       for (const Vec3& x : q) qc += x;
       qc /= double(q.size());
       const Vec3 qn = newell_normal(q);
       if (!(qn.norm() > 0)) continue;
-      builder.Add(sheet, flat_face(q, qc, qn.normalized(), off_plane(q, qc, qn.normalized()) * 1.01));
+      builder.Add(sheet, flat_face(q, qc, qn.normalized(), off_plane(q, qc, qn.normalized()) * 1.01,
+                                   topo, q_ids));
     }
     return sheet;
   }
@@ -95,7 +220,7 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
   if (newell.norm() > 0) {
     const Vec3 n = newell.normalized();
     const double off = off_plane(p, c, n);
-    if (off <= planar_tolerance) return flat_face(p, c, n, off * 1.01);
+    if (off <= planar_tolerance) return flat_face(p, c, n, off * 1.01, topo, ids);
   }
   if (p.size() == 4 && pieces.empty()) {
     // Bent quad: its bilinear patch, exact through the four corners; with the
@@ -109,6 +234,7 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
     poles(1, 2) = pnt(p[3]);
     Handle(Geom_BezierSurface) patch = new Geom_BezierSurface(poles);
 #pragma GCC diagnostic pop
+    if (topo != nullptr) return shared_bilinear_face(patch, ids, *topo);
     BRepBuilderAPI_MakeFace bilinear(patch, 0.0, 1.0, 0.0, 1.0, 1e-7);
     if (bilinear.IsDone()) return bilinear.Face();
   }
@@ -125,7 +251,8 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
     // Collinear outline points give zero-area ears whose rounding-noise
     // normal could point anywhere: they add nothing to the panel, skip them.
     if (!(n.norm() > 1e-9 * longest)) continue;
-    builder.Add(fan, flat_face(tri, (tri[0] + tri[1] + tri[2]) / 3.0, n.normalized(), 0.0));
+    builder.Add(fan, flat_face(tri, (tri[0] + tri[1] + tri[2]) / 3.0, n.normalized(), 0.0, topo,
+                               ids_of({t[0], t[1], t[2]})));
   }
   return fan;
 }
@@ -138,6 +265,7 @@ std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance) {
     BRep_Builder builder;
     TopoDS_Compound all;
     builder.MakeCompound(all);
+    SharedTopology topo(mesh);
     for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
       report_progress(double(k) / double(mesh.panels.size()), "building panel faces");
       std::vector<Vec3> p;
@@ -145,7 +273,15 @@ std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance) {
       std::vector<std::vector<int>> pieces;
       if (modelled_as_pieces(mesh, k))
         pieces = split_polygon(static_cast<int>(p.size()), panel_bends(mesh, k));
-      builder.Add(all, panel_shape(p, panel_corner_uv(mesh, k), pieces, planar_tolerance));
+      const std::vector<Vec2> uv = panel_corner_uv(mesh, k);
+      TopoDS_Shape shape;
+      try {
+        shape = panel_shape(p, uv, pieces, planar_tolerance, &topo, mesh.panels[k]);
+      } catch (const SharedTopology::NotShareable&) {
+        // Two corners at one point: a face of its own, as the outline allows.
+        shape = panel_shape(p, uv, pieces, planar_tolerance);
+      }
+      builder.Add(all, shape);
     }
     return to_brep(all);
   } catch (const Standard_Failure& e) {
