@@ -11,9 +11,11 @@ after a bare touch of the parent), save, reopen, and types (panel typing of
 the result as the document runs it: before, unfold + members.panel_types in
 Python; after, the core's grouping).
 
-"before" runs main's feature and typing code, loaded from git (`git show
-main:<file>`) into this process over the current package, for comparison only;
-every mode runs in its own interpreter. The sample face is
+"before" runs main's document code - features/panelization.py, the Python
+typing of members.py and api.format_ids - loaded from git (`git show
+main:<file>`) over the current package, for comparison only; the compiled core
+(panelize, the shape compounds) is today's in both modes. Every mode runs in
+its own interpreter. The sample face is
 examples/trimmed_bspline_holes.brep, iso_grid, size = sqrt(area / panels).
 """
 import argparse

@@ -329,20 +329,31 @@ class Panelization(_StateMixin):
 
     @staticmethod
     def _shapes(res):
-        """Panels, Rods and Nodes compounds of a result, checked against its counts."""
+        """Panels, Rods and Nodes compounds of a result, checked against its counts.
+
+        The core builds the panels' BRep (the longest) on a second thread while
+        this one builds and reads the rods and nodes (the core calls release
+        the GIL; each string is built alone, so the result is the same)."""
         import Part
+        from concurrent.futures import ThreadPoolExecutor
 
         expected = {"Panels": len(res.panels), "Rods": len(res.rods), "Nodes": len(res.nodes)}
         shapes = {}
-        for role, make in (("Panels", res.panels_brep), ("Rods", res.rods_brep),
-                           ("Nodes", res.nodes_brep)):
+
+        def read(role, text):
             shape = Part.Shape()
-            shape.importBrepFromString(make(), False)
+            shape.importBrepFromString(text, False)
             n = len(shape.childShapes()) if not shape.isNull() else 0
             if n != expected[role]:
                 raise RuntimeError(f"{role}: the core built {n} shapes for {expected[role]} items")
             shapes[role] = shape
-        return shapes
+
+        with ThreadPoolExecutor(max_workers=1) as pool:
+            panels = pool.submit(res.panels_brep)
+            read("Rods", res.rods_brep())
+            read("Nodes", res.nodes_brep())
+            read("Panels", panels.result())
+        return {role: shapes[role] for role in ROLES}
 
     def seed(self, obj, res):
         """Start from a result computed for exactly these properties (make_panelization
