@@ -52,6 +52,7 @@ from ._core import (  # noqa: E402,F401
     measure_panels,
     mesh_folds,
     nodes_to_brep,
+    panel_faces,
     panels_to_brep,
     rods_to_brep,
     summarize,

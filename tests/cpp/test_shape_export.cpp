@@ -12,6 +12,7 @@
 #include <TopoDS_Iterator.hxx>
 #include <sstream>
 
+#include "tessella/errors.h"
 #include "tessella/panel_mesh.h"
 #include "tessella/shape_export.h"
 
@@ -90,4 +91,24 @@ TEST(ShapeExport, BentQuadsKeepTheirBilinearArea) {
     }
   for (int k : {0, 1, 2, 5}) EXPECT_NEAR(area[k], 1e6, 1e-3) << k;
   for (int k : {3, 4}) EXPECT_NEAR(area[k], bent, 1e-6 * bent) << k;
+}
+
+TEST(ShapeExport, FaceListDescribesThePanelsAsBuilt) {
+  const PanelMesh m = grid(150.0);
+  const PanelFaceList f = panel_faces(m, 1e-3);
+  ASSERT_EQ(f.panel_offsets, (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(f.compound, (std::vector<char>{0, 0, 0, 0, 0, 0}));
+  // the two quads at the lifted node are bilinear, the others flat on z = 0
+  EXPECT_EQ(f.bilinear, (std::vector<char>{0, 0, 0, 1, 1, 0}));
+  ASSERT_EQ(f.corner_offsets.size(), 7u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const std::vector<int> corners(f.corners.begin() + f.corner_offsets[k],
+                                   f.corners.begin() + f.corner_offsets[k + 1]);
+    EXPECT_EQ(corners, m.panels[k]);
+    if (f.bilinear[k]) continue;
+    EXPECT_NEAR(f.normal[k].z(), 1.0, 1e-12);
+    EXPECT_NEAR(f.origin[k].z(), 0.0, 1e-12);
+    EXPECT_LE(f.tolerance[k], 1e-9);
+  }
+  EXPECT_THROW(panel_faces(m, 0.0), InvalidParameter);
 }

@@ -12,7 +12,7 @@ from freecad_workbench.features.panelization import children_of
 
 @pytest.fixture
 def counted(monkeypatch):
-    calls = {"panelize": 0, "types": 0, "panels_brep": 0}
+    calls = {"panelize": 0, "types": 0, "panel_faces": 0}
 
     def wrap(owner, name, key):
         original = getattr(owner, name)
@@ -25,7 +25,7 @@ def counted(monkeypatch):
 
     wrap(api, "panelize_brep", "panelize")
     wrap(core, "mesh_panel_types", "types")
-    wrap(core, "panels_to_brep", "panels_brep")
+    wrap(core, "panel_faces", "panel_faces")
     return calls
 
 
@@ -55,7 +55,7 @@ def test_bare_touch_rebuilds_nothing(doc, counted):
     before = dict(counted)
     p.touch()
     doc.recompute()
-    assert _delta(counted, before) == {"panelize": 0, "types": 0, "panels_brep": 0}
+    assert _delta(counted, before) == {"panelize": 0, "types": 0, "panel_faces": 0}
     assert all(o.isValid() and "Touched" not in o.State for o in (p, panels, rods, nodes))
     assert list(panels.PanelType) == types_before and panels.TypeCount == 1
     assert panels.Shape.isPartner(shape_before)  # the same shape, not rebuilt
@@ -63,7 +63,7 @@ def test_bare_touch_rebuilds_nothing(doc, counted):
     # touching a child alone redoes nothing either
     panels.touch()
     doc.recompute()
-    assert _delta(counted, before) == {"panelize": 0, "types": 0, "panels_brep": 0}
+    assert _delta(counted, before) == {"panelize": 0, "types": 0, "panel_faces": 0}
 
 
 def test_tolerance_change_retypes_only(doc, counted):
@@ -71,11 +71,11 @@ def test_tolerance_change_retypes_only(doc, counted):
     before = dict(counted)
     panels.TypeTolerance = 0.5
     doc.recompute()
-    assert _delta(counted, before) == {"panelize": 0, "types": 1, "panels_brep": 0}
+    assert _delta(counted, before) == {"panelize": 0, "types": 1, "panel_faces": 0}
     assert panels.TypeCount == 1 and panels.isValid()
     panels.TypeTolerance = 1.0  # back to a tolerance typed before: cached
     doc.recompute()
-    assert _delta(counted, before) == {"panelize": 0, "types": 1, "panels_brep": 0}
+    assert _delta(counted, before) == {"panelize": 0, "types": 1, "panel_faces": 0}
 
 
 def test_id_format_change_renames_without_recomputing(doc, counted):
@@ -83,7 +83,7 @@ def test_id_format_change_renames_without_recomputing(doc, counted):
     before = dict(counted)
     p.PanelIdFormat = "ROOF-{:03d}"
     doc.recompute()
-    assert _delta(counted, before) == {"panelize": 0, "types": 0, "panels_brep": 0}
+    assert _delta(counted, before) == {"panelize": 0, "types": 0, "panel_faces": 0}
     assert panels.PanelIds[0] == "ROOF-001" and panels.PanelIds[-1] == "ROOF-036"
 
 
@@ -92,6 +92,6 @@ def test_parameter_change_recomputes_everything_once(doc, counted):
     before = dict(counted)
     p.UCount = 16
     doc.recompute()
-    assert _delta(counted, before) == {"panelize": 1, "types": 1, "panels_brep": 1}
+    assert _delta(counted, before) == {"panelize": 1, "types": 1, "panel_faces": 1}
     assert p.PanelCount == 48 and len(panels.PanelIds) == 48 == len(panels.PanelType)
     assert len(panels.Shape.childShapes()) == 48

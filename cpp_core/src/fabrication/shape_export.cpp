@@ -180,37 +180,47 @@ TopoDS_Face shared_bilinear_face(const Handle(Geom_BezierSurface) & patch,
 }
 
 // `pieces`: the corner lists of a panel modelled as flat pieces (empty: not).
-// With `topo`, faces are bounded by shared edges (`ids`: the corners' mesh
-// vertices); it throws SharedTopology::NotShareable for repeated corners.
-TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
-                         const std::vector<std::vector<int>>& pieces, double planar_tolerance,
-                         SharedTopology* topo = nullptr, const std::vector<int>& ids = {}) {
-  auto ids_of = [&](const std::vector<int>& corners) {
-    std::vector<int> out;
-    if (topo != nullptr)
-      for (int i : corners) out.push_back(ids[static_cast<std::size_t>(i)]);
-    return out;
+// The faces of one panel (corner indices panel-local), see PanelFaceList.
+struct PanelSpec {
+  bool compound = false;
+  struct Face {
+    std::vector<int> corners;
+    bool bilinear = false;
+    Vec3 origin = Vec3::Zero(), normal = Vec3::Zero();
+    double tolerance = 0.0;
+  };
+  std::vector<Face> faces;
+};
+
+PanelSpec describe_panel(const std::vector<Vec3>& p, const std::vector<Vec2>& uv,
+                         const std::vector<std::vector<int>>& pieces, double planar_tolerance) {
+  PanelSpec spec;
+  auto flat = [&](std::vector<int> corners, const Vec3& c, const Vec3& n, double tolerance) {
+    PanelSpec::Face f;
+    f.corners = std::move(corners);
+    f.origin = c;
+    f.normal = n;
+    f.tolerance = tolerance;
+    spec.faces.push_back(std::move(f));
   };
   if (pieces.size() > 1) {
     // Modelled as flat pieces (a boundary panel bent along node diagonals):
     // one flat face per piece, the model every figure is measured on.
-    BRep_Builder builder;
-    TopoDS_Compound sheet;
-    builder.MakeCompound(sheet);
+    spec.compound = true;
     for (const std::vector<int>& piece : pieces) {
       std::vector<Vec3> q;
       for (int i : piece) q.push_back(p[i]);
-      const std::vector<int> q_ids = ids_of(piece);
       Vec3 qc = Vec3::Zero();
       for (const Vec3& x : q) qc += x;
       qc /= double(q.size());
       const Vec3 qn = newell_normal(q);
       if (!(qn.norm() > 0)) continue;
-      builder.Add(sheet, flat_face(q, qc, qn.normalized(), off_plane(q, qc, qn.normalized()) * 1.01,
-                                   topo, q_ids));
+      flat(piece, qc, qn.normalized(), off_plane(q, qc, qn.normalized()) * 1.01);
     }
-    return sheet;
+    return spec;
   }
+  std::vector<int> all(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) all[i] = static_cast<int>(i);
   // Planar within the tolerance: one flat face on the best plane through the
   // mean corner with Newell's normal (which follows the corner order).
   Vec3 c = Vec3::Zero();
@@ -220,28 +230,21 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
   if (newell.norm() > 0) {
     const Vec3 n = newell.normalized();
     const double off = off_plane(p, c, n);
-    if (off <= planar_tolerance) return flat_face(p, c, n, off * 1.01, topo, ids);
+    if (off <= planar_tolerance) {
+      flat(all, c, n, off * 1.01);
+      return spec;
+    }
   }
   if (p.size() == 4 && pieces.empty()) {
-    // Bent quad: its bilinear patch, exact through the four corners; with the
-    // poles in this order du x dv points along the counter-clockwise normal.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Warray-bounds"  // GCC 12 false positive in NCollection_Array2
-    TColgp_Array2OfPnt poles(1, 2, 1, 2);
-    poles(1, 1) = pnt(p[0]);
-    poles(2, 1) = pnt(p[1]);
-    poles(2, 2) = pnt(p[2]);
-    poles(1, 2) = pnt(p[3]);
-    Handle(Geom_BezierSurface) patch = new Geom_BezierSurface(poles);
-#pragma GCC diagnostic pop
-    if (topo != nullptr) return shared_bilinear_face(patch, ids, *topo);
-    BRepBuilderAPI_MakeFace bilinear(patch, 0.0, 1.0, 0.0, 1.0, 1e-7);
-    if (bilinear.IsDone()) return bilinear.Face();
+    // Bent quad: its bilinear patch, exact through the four corners.
+    PanelSpec::Face f;
+    f.corners = all;
+    f.bilinear = true;
+    spec.faces.push_back(f);
+    return spec;
   }
   // Bent n-gon: the flat triangles of its (u,v) triangulation, in a compound.
-  BRep_Builder builder;
-  TopoDS_Compound fan;
-  builder.MakeCompound(fan);
+  spec.compound = true;
   for (const auto& t : triangulate_polygon(uv)) {
     const std::vector<Vec3> tri = {p[t[0]], p[t[1]], p[t[2]]};
     const Vec3 n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
@@ -251,10 +254,63 @@ TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const std::vector<Vec2>& uv
     // Collinear outline points give zero-area ears whose rounding-noise
     // normal could point anywhere: they add nothing to the panel, skip them.
     if (!(n.norm() > 1e-9 * longest)) continue;
-    builder.Add(fan, flat_face(tri, (tri[0] + tri[1] + tri[2]) / 3.0, n.normalized(), 0.0, topo,
-                               ids_of({t[0], t[1], t[2]})));
+    flat({t[0], t[1], t[2]}, (tri[0] + tri[1] + tri[2]) / 3.0, n.normalized(), 0.0);
   }
-  return fan;
+  return spec;
+}
+
+// The shape of a described panel. With `topo`, faces are bounded by shared
+// edges (`ids`: the corners' mesh vertices); it throws
+// SharedTopology::NotShareable for repeated corners.
+TopoDS_Shape panel_shape(const std::vector<Vec3>& p, const PanelSpec& spec,
+                         SharedTopology* topo = nullptr, const std::vector<int>& ids = {}) {
+  BRep_Builder builder;
+  TopoDS_Compound compound;
+  if (spec.compound) builder.MakeCompound(compound);
+  for (const PanelSpec::Face& f : spec.faces) {
+    std::vector<Vec3> q;
+    std::vector<int> q_ids;
+    for (int i : f.corners) {
+      q.push_back(p[static_cast<std::size_t>(i)]);
+      if (topo != nullptr) q_ids.push_back(ids[static_cast<std::size_t>(i)]);
+    }
+    TopoDS_Face face;
+    if (f.bilinear) {
+      // With the poles in this order du x dv points along the counter-clockwise normal.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Warray-bounds"  // GCC 12 false positive in NCollection_Array2
+      TColgp_Array2OfPnt poles(1, 2, 1, 2);
+      poles(1, 1) = pnt(q[0]);
+      poles(2, 1) = pnt(q[1]);
+      poles(2, 2) = pnt(q[2]);
+      poles(1, 2) = pnt(q[3]);
+      Handle(Geom_BezierSurface) patch = new Geom_BezierSurface(poles);
+#pragma GCC diagnostic pop
+      if (topo != nullptr) {
+        face = shared_bilinear_face(patch, q_ids, *topo);
+      } else {
+        BRepBuilderAPI_MakeFace bilinear(patch, 0.0, 1.0, 0.0, 1.0, 1e-7);
+        if (!bilinear.IsDone()) throw GeometryFailure("cannot build a bilinear panel face");
+        face = bilinear.Face();
+      }
+    } else {
+      face = flat_face(q, f.origin, f.normal, f.tolerance, topo, q_ids);
+    }
+    if (!spec.compound) return face;
+    builder.Add(compound, face);
+  }
+  return compound;
+}
+
+// Panel k of the mesh: its corners and their (u,v), and how it is modelled.
+PanelSpec describe_panel(const PanelMesh& mesh, std::size_t k, double planar_tolerance,
+                         std::vector<Vec3>& p) {
+  p.clear();
+  for (int v : mesh.panels[k]) p.push_back(mesh.xyz[v]);
+  std::vector<std::vector<int>> pieces;
+  if (modelled_as_pieces(mesh, k))
+    pieces = split_polygon(static_cast<int>(p.size()), panel_bends(mesh, k));
+  return describe_panel(p, panel_corner_uv(mesh, k), pieces, planar_tolerance);
 }
 
 }  // namespace
@@ -266,20 +322,16 @@ std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance) {
     TopoDS_Compound all;
     builder.MakeCompound(all);
     SharedTopology topo(mesh);
+    std::vector<Vec3> p;
     for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
       report_progress(double(k) / double(mesh.panels.size()), "building panel faces");
-      std::vector<Vec3> p;
-      for (int v : mesh.panels[k]) p.push_back(mesh.xyz[v]);
-      std::vector<std::vector<int>> pieces;
-      if (modelled_as_pieces(mesh, k))
-        pieces = split_polygon(static_cast<int>(p.size()), panel_bends(mesh, k));
-      const std::vector<Vec2> uv = panel_corner_uv(mesh, k);
+      const PanelSpec spec = describe_panel(mesh, k, planar_tolerance, p);
       TopoDS_Shape shape;
       try {
-        shape = panel_shape(p, uv, pieces, planar_tolerance, &topo, mesh.panels[k]);
+        shape = panel_shape(p, spec, &topo, mesh.panels[k]);
       } catch (const SharedTopology::NotShareable&) {
         // Two corners at one point: a face of its own, as the outline allows.
-        shape = panel_shape(p, uv, pieces, planar_tolerance);
+        shape = panel_shape(p, spec);
       }
       builder.Add(all, shape);
     }
@@ -287,6 +339,28 @@ std::string panels_to_brep(const PanelMesh& mesh, double planar_tolerance) {
   } catch (const Standard_Failure& e) {
     throw GeometryFailure(std::string("building panel faces failed: ") + e.GetMessageString());
   }
+}
+
+PanelFaceList panel_faces(const PanelMesh& mesh, double planar_tolerance) {
+  require_in_range("planar_tolerance", planar_tolerance, 1e-7, 1e6);
+  PanelFaceList out;
+  out.panel_offsets.push_back(0);
+  out.corner_offsets.push_back(0);
+  std::vector<Vec3> p;
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    const PanelSpec spec = describe_panel(mesh, k, planar_tolerance, p);
+    out.compound.push_back(spec.compound ? 1 : 0);
+    for (const PanelSpec::Face& f : spec.faces) {
+      for (int i : f.corners) out.corners.push_back(mesh.panels[k][static_cast<std::size_t>(i)]);
+      out.corner_offsets.push_back(static_cast<int>(out.corners.size()));
+      out.bilinear.push_back(f.bilinear ? 1 : 0);
+      out.origin.push_back(f.origin);
+      out.normal.push_back(f.normal);
+      out.tolerance.push_back(f.tolerance);
+    }
+    out.panel_offsets.push_back(static_cast<int>(out.bilinear.size()));
+  }
+  return out;
 }
 
 std::string rods_to_brep(const PanelMesh& mesh) {
