@@ -53,6 +53,7 @@ demo: build
 bench: build
 	$(BUILD)/tessella_bench
 	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/preview_latency.py
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/document_speed.py
 
 # README pictures of the workbench (toolbar, task panel, preview, colours).
 screenshots: build

@@ -21,6 +21,7 @@ using namespace tessella;
 using bindings::rows;
 using bindings::values;
 
+void bind_analysis(py::module_& m);
 void bind_boundary_driven(py::module_& m);
 void bind_fabrication(py::module_& m);
 void bind_pipeline(py::module_& m);
@@ -34,6 +35,7 @@ void bind_guide_lines(py::module_& m);
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Tessella C++ core (see freecad_workbench.api for the user API)";
   bind_fabrication(m);
+  bind_analysis(m);
 
   // tessella's Cancelled (a RuntimeError, so FreeCAD's recompute reports it
   // like any failed feature).
@@ -166,6 +168,26 @@ PYBIND11_MODULE(_core, m) {
         return with_progress(progress, [&] { return panels_to_brep(mesh, tol); });
       },
       py::arg("mesh"), py::arg("planar_tolerance"), py::arg("progress") = py::none());
+  m.def(
+      "panel_faces",
+      [](const PanelMesh& mesh, double tol) {
+        const PanelFaceList f = nogil([&] { return panel_faces(mesh, tol); });
+        auto bytes = [](const std::vector<char>& v) {
+          std::vector<std::uint8_t> u(v.begin(), v.end());
+          return bindings::integers(u);
+        };
+        py::dict d;
+        d["panel_offsets"] = bindings::integers(f.panel_offsets);
+        d["compound"] = bytes(f.compound);
+        d["corner_offsets"] = bindings::integers(f.corner_offsets);
+        d["corners"] = bindings::integers(f.corners);
+        d["bilinear"] = bytes(f.bilinear);
+        d["origin"] = rows<3>(f.origin);
+        d["normal"] = rows<3>(f.normal);
+        d["tolerance"] = values(f.tolerance);
+        return d;
+      },
+      py::arg("mesh"), py::arg("planar_tolerance"));
   m.def("rods_to_brep",
         [](const PanelMesh& mesh) { return nogil([&] { return rods_to_brep(mesh); }); });
   m.def("nodes_to_brep",

@@ -9,6 +9,7 @@
 All lengths are in mm.
 """
 
+import re
 import time
 from dataclasses import dataclass, field
 
@@ -43,6 +44,9 @@ ROD_ID_FORMAT = "R-{:04d}"
 NODE_ID_FORMAT = "N-{:04d}"
 
 
+_CONTROL = re.compile("[\x00-\x1f\x7f]")
+
+
 def format_ids(fmt, count, what="panel"):
     """IDs fmt.format(1), ..., fmt.format(count): any text a user can type around a
     number field (``ROOF/A:{:03d}``, spaces, unicode). Raises ValueError for a
@@ -59,7 +63,7 @@ def format_ids(fmt, count, what="panel"):
             text = fmt.format(k)
         except (IndexError, KeyError, ValueError, TypeError, AttributeError):
             raise ValueError(f"{name} {fmt!r} is not a format like P-{{:04d}}") from None
-        if not text.strip() or any(ord(c) < 32 or ord(c) == 127 for c in text):
+        if not text.strip() or _CONTROL.search(text):
             raise ValueError(f"{name} {fmt!r} gives {what} {k} the ID {text!r} "
                              "(empty or with a control character)")
         if text in seen:
@@ -131,6 +135,42 @@ class PanelizeResult:
         if planar_tolerance is None:
             planar_tolerance = 1e-6 * max(self.summary.get("model_size", 1.0), 1.0)
         return core.panels_to_brep(self._mesh, planar_tolerance)
+
+    def panels_shape(self, planar_tolerance=None):
+        """The panels as one Part.Compound, one sub-shape per panel (panel order):
+        the faces of panels_brep() (the core decides each face: flat on its
+        plane, bilinear, pieces, fan; core.panel_faces), built in this process
+        without the BRep text round trip, which costs several times more
+        (bench/document_speed.py). Unlike panels_brep(), neighbours do not
+        share edges. Needs FreeCAD's Part module."""
+        import FreeCAD
+        import Part
+
+        if planar_tolerance is None:
+            planar_tolerance = 1e-6 * max(self.summary.get("model_size", 1.0), 1.0)
+        d = core.panel_faces(self._mesh, planar_tolerance)
+        vec = FreeCAD.Vector
+        xyz = [vec(*p) for p in self.vertices.tolist()]
+        corners, offsets = d["corners"].tolist(), d["corner_offsets"].tolist()
+        origin, normal = d["origin"].tolist(), d["normal"].tolist()
+        tolerance = d["tolerance"].tolist()
+        faces = []
+        for f, bilinear in enumerate(d["bilinear"].tolist()):
+            pts = [xyz[i] for i in corners[offsets[f]:offsets[f + 1]]]
+            if bilinear:
+                patch = Part.BezierSurface()  # degree 1 x 1, poles in corner order
+                for (i, j), q in zip(((1, 1), (2, 1), (2, 2), (1, 2)), pts):
+                    patch.setPole(i, j, q)
+                faces.append(patch.toShape())
+            else:
+                wire = Part.makePolygon(pts + pts[:1])
+                if tolerance[f] > 1e-7:
+                    wire.fixTolerance(tolerance[f])
+                faces.append(Part.Face(Part.Plane(vec(*origin[f]), vec(*normal[f])), wire))
+        first = d["panel_offsets"].tolist()
+        return Part.makeCompound([
+            Part.makeCompound(faces[first[k]:first[k + 1]]) if compound else faces[first[k]]
+            for k, compound in enumerate(d["compound"].tolist())])
 
     def rods_brep(self):
         """BRep string of a compound with one edge per rod (rod order)."""

@@ -8,7 +8,7 @@ sets (`guide_line_scaling_curves`, `two_guide_lines_curves` with their params
 structs), `boundary_driven_stages` (traced curves and the preliminary network),
 `iso_grid` + `measure_panels` (the coarsest-grid search of
 bench/compare_methods.py), `summarize`, `surface_evaluations`, `mesh_folds`,
-`fold_angle_deg`.
+`fold_angle_deg`; `panel_types` / `flat_panel_types` / `mesh_panel_types` (congruent flat panels).
 """
 
 try:
@@ -29,6 +29,10 @@ from ._core import (  # noqa: E402,F401
     FlattenParams,
     flatten_panels,
     NestParams,
+    PanelTypeParams,
+    flat_panel_types,
+    mesh_panel_types,
+    panel_types,
     OutlineOffsetParams,
     UnfoldParams,
     fold_angle_deg,
@@ -48,6 +52,7 @@ from ._core import (  # noqa: E402,F401
     measure_panels,
     mesh_folds,
     nodes_to_brep,
+    panel_faces,
     panels_to_brep,
     rods_to_brep,
     summarize,

@@ -219,32 +219,19 @@ def panel_types(flat, length_tol=1.0, angle_tol=0.5):
     """Flat panels congruent within length_tol (mm) and angle_tol (deg, corner
     angles and fold angle) share a type; corner order may start anywhere (a panel
     can be turned), mirror images differ (front and back differ).
-    Returns (type index per panel, number of types)."""
-    sigs = []
-    for f in flat:
-        p = np.asarray(f.outline)
-        e = np.roll(p, -1, axis=0) - p
-        prev = np.roll(e, 1, axis=0)
-        lengths = np.linalg.norm(e, axis=1)
-        ang = np.degrees(np.arctan2(np.cross(prev, e), np.sum(prev * e, axis=1)))
-        sigs.append((list(zip(lengths, ang)), f.fold_angle))
-    reps, types = [], []
-    for s, fold in sigs:
-        found = -1
-        for t, (rs, rfold) in enumerate(reps):
-            if abs(rfold - fold) > angle_tol or len(rs) != len(s):
-                continue
-            k = len(s)
-            if any(all(abs(s[i][0] - rs[(i + shift) % k][0]) <= length_tol
-                       and abs(s[i][1] - rs[(i + shift) % k][1]) <= angle_tol for i in range(k))
-                   for shift in range(k)):
-                found = t
-                break
-        if found < 0:
-            found = len(reps)
-            reps.append((s, fold))
-        types.append(found)
-    return types, len(reps)
+
+    Greedy in panel order: a panel joins the first type whose first panel it
+    matches, else starts a new one (types numbered by first appearance). The
+    grouping runs in the core (cpp_core/include/tessella/panel_types.h), in
+    O(n log n). Returns (type index per panel, number of types)."""
+    from . import core
+
+    p = core.PanelTypeParams()
+    p.length_tol = float(length_tol)
+    p.angle_tol = float(angle_tol)
+    t = core.panel_types([np.asarray(f.outline, dtype=float).reshape(-1, 2) for f in flat],
+                         [float(f.fold_angle) for f in flat], p)
+    return t.type.tolist(), int(t.count)
 
 
 def freegrid_planarity(result):

@@ -15,12 +15,17 @@ on its proxy; a child's execute takes its shape from that cache, recomputing it
 on demand (e.g. after a document was reopened and only a child is touched).
 The three shapes are all built inside the parent's execute, so a failure leaves
 every child as it was (never a half-built set).
+The cache is keyed by the inputs (the face's BRep and the parameters); the
+panel types are cached on it per tolerance, and each child remembers which
+result, ID format (and tolerance) its outputs came from, so a recompute that
+changes none of them (a bare touch) rebuilds nothing.
 
 FROZEN: the module path `freecad_workbench.features.panelization` and the class
 names `Panelization` and `PanelizationPart` are stored in every saved .FCStd.
 """
 
 import hashlib
+import itertools
 import json
 
 import FreeCAD
@@ -106,12 +111,32 @@ def children_of(parent):
 
 
 class _Cache:
-    """A panelization result and the shapes built from it (not saved)."""
+    """A panelization result and what is built from it (not saved): the
+    shapes, and the panel types per tolerance (computed on first use).
+    `serial` tells results apart: a child whose outputs came from this serial
+    (and the same ID format and tolerance) has nothing to redo."""
+
+    _serials = itertools.count(1)
 
     def __init__(self, signature, result, shapes):
         self.signature = signature
         self.result = result
         self.shapes = shapes
+        self.serial = next(self._serials)
+        self._types = {}
+
+    def panel_types(self, length_tol, angle_tol=0.5):
+        """(type index per panel, type count) of the unfolded panels
+        (members.panel_types' rule, in the core)."""
+        key = (float(length_tol), float(angle_tol))
+        if key not in self._types:
+            from .. import core
+
+            p = core.PanelTypeParams()
+            p.length_tol, p.angle_tol = key
+            t = core.mesh_panel_types(self.result._mesh, core.UnfoldParams(), p)
+            self._types[key] = (t.type.tolist(), int(t.count))
+        return self._types[key]
 
 
 class Panelization(_StateMixin):
@@ -304,20 +329,35 @@ class Panelization(_StateMixin):
 
     @staticmethod
     def _shapes(res):
-        """Panels, Rods and Nodes compounds of a result, checked against its counts."""
+        """Panels, Rods and Nodes compounds of a result, checked against its counts.
+
+        The panels are built here from the core's face list (res.panels_shape:
+        no BRep text round trip, measured several times cheaper), while the
+        core writes the rods' BRep on a second thread (its calls release the
+        GIL; each shape is built alone, so the result is the same)."""
         import Part
+        from concurrent.futures import ThreadPoolExecutor
 
         expected = {"Panels": len(res.panels), "Rods": len(res.rods), "Nodes": len(res.nodes)}
         shapes = {}
-        for role, make in (("Panels", res.panels_brep), ("Rods", res.rods_brep),
-                           ("Nodes", res.nodes_brep)):
-            shape = Part.Shape()
-            shape.importBrepFromString(make(), False)
+
+        def check(role, shape):
             n = len(shape.childShapes()) if not shape.isNull() else 0
             if n != expected[role]:
                 raise RuntimeError(f"{role}: the core built {n} shapes for {expected[role]} items")
             shapes[role] = shape
-        return shapes
+
+        def read(text):
+            shape = Part.Shape()
+            shape.importBrepFromString(text, False)
+            return shape
+
+        with ThreadPoolExecutor(max_workers=1) as pool:
+            rods = pool.submit(res.rods_brep)
+            check("Panels", res.panels_shape())
+            check("Nodes", read(res.nodes_brep()))
+            check("Rods", read(rods.result()))
+        return {role: shapes[role] for role in ROLES}
 
     def seed(self, obj, res):
         """Start from a result computed for exactly these properties (make_panelization
@@ -412,23 +452,33 @@ class PanelizationPart(_StateMixin):
             raise
         res = cache.result
         role = obj.Role
+        # What this child's outputs depend on: the result, its ID format and
+        # (Panels) the type tolerance. Unchanged (a bare touch, or a parent
+        # change that left the result as it was): nothing to rebuild.
+        if role == "Panels":
+            tol = max(value_of(obj.TypeTolerance), 1e-6)
+            inputs = (cache.serial, res.panel_id_format, tol)
+        elif role == "Rods":
+            inputs = (cache.serial, res.rod_id_format)
+        else:
+            inputs = (cache.serial, res.node_id_format)
+        if getattr(self, "_applied", None) == inputs:
+            return
+        self._applied = None
         obj.Shape = cache.shapes[role]
         if role == "Panels":
             obj.PanelIds = res.panel_ids  # the parent's PanelIdFormat (checked there)
-            obj.Deviation = [float(x) for x in res.metrics["panel_deviation"]]
-            obj.Planarity = [float(x) for x in res.metrics["panel_planarity"]]
-            obj.Area = [float(x) for x in res.metrics["panel_area"]]
-            obj.Irregular = [int(x) for x in res.irregular]
-            from ..fabrication import unfold
-            from ..members import panel_types
-
-            kinds, count = panel_types(unfold(res), length_tol=max(value_of(obj.TypeTolerance), 1e-6))
-            obj.PanelType = [int(x) for x in kinds]
-            obj.TypeCount = int(count)
+            obj.Deviation = res.metrics["panel_deviation"].tolist()
+            obj.Planarity = res.metrics["panel_planarity"].tolist()
+            obj.Area = res.metrics["panel_area"].tolist()
+            obj.Irregular = res.irregular.astype(int).tolist()
+            kinds, count = cache.panel_types(tol)
+            obj.PanelType = kinds
+            obj.TypeCount = count
         elif role == "Rods":
             obj.RodIds = list(res.rod_ids)
-            obj.RodLengths = [float(x) for x in res.metrics["rod_length"]]
+            obj.RodLengths = res.metrics["rod_length"].tolist()
         elif role == "Nodes":
             obj.NodeIds = list(res.node_ids)
             obj.Valence = [int(x) for x in res.metrics["node_valence"]]
-
+        self._applied = inputs

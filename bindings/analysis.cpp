@@ -1,0 +1,54 @@
+// Bindings of the analysis area: panel types.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "numpy_convert.h"
+#include "tessella/panel_mesh.h"
+#include "tessella/panel_types.h"
+#include "tessella/unfold.h"
+
+namespace py = pybind11;
+using namespace tessella;
+using bindings::DoubleArray;
+
+void bind_analysis(py::module_& m) {
+  py::class_<PanelTypeParams>(m, "PanelTypeParams")
+      .def(py::init<>())
+      .def_readwrite("length_tol", &PanelTypeParams::length_tol)
+      .def_readwrite("angle_tol", &PanelTypeParams::angle_tol);
+  py::class_<PanelTypes>(m, "PanelTypes")
+      .def_property_readonly("type", [](const PanelTypes& t) { return bindings::integers(t.type); })
+      .def_property_readonly(
+          "representative",
+          [](const PanelTypes& t) { return bindings::integers(t.representative); })
+      .def_property_readonly("count", &PanelTypes::count);
+  // outlines: one (k,2) array per panel; folds: one angle (deg) per panel.
+  m.def(
+      "panel_types",
+      [](const std::vector<DoubleArray>& outlines, const std::vector<double>& folds,
+         const PanelTypeParams& p) {
+        std::vector<std::vector<Vec2>> corners;
+        corners.reserve(outlines.size());
+        for (const auto& o : outlines) corners.push_back(bindings::points<2>(o, "an outline"));
+        py::gil_scoped_release release;
+        return panel_types(corners, folds, p);
+      },
+      py::arg("outlines"), py::arg("folds"), py::arg("params"));
+  // Unfolded panels as unfold_panels returns them.
+  m.def(
+      "flat_panel_types",
+      [](const std::vector<FlatPanel>& flat, const PanelTypeParams& p) {
+        py::gil_scoped_release release;
+        return panel_types(flat, p);
+      },
+      py::arg("flat"), py::arg("params"));
+  // The panels of a mesh, unfolded with `unfold`.
+  m.def(
+      "mesh_panel_types",
+      [](const PanelMesh& mesh, const UnfoldParams& unfold, const PanelTypeParams& p) {
+        py::gil_scoped_release release;
+        return panel_types(mesh, unfold, p);
+      },
+      py::arg("mesh"), py::arg("unfold"), py::arg("params"));
+}
