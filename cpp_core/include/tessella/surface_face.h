@@ -103,13 +103,19 @@ class SurfaceFace {
   // by threads still counts every evaluation.
   std::uint64_t evaluations() const;
   void reset_evaluations() const;
+  // How many projections took the global search (Newton failed): the search
+  // is costly on a big surface, so this should stay a small share.
+  std::uint64_t global_projections() const;
+  void reset_global_projections() const;
 
   // While a FastEvaluation of this face lives, point(), derivatives(),
   // normal() and project() called on the same thread evaluate through OCCT's
   // GeomAdaptor_Surface, which keeps the polynomial of the B-spline / Bezier
   // span last used (several times faster for the many nearby evaluations of
   // the agent methods; the results agree to rounding, ~1e-15 relative).
-  // Scopes nest; each thread needs its own. Evaluations are counted as before.
+  // The scope evaluates its own copy of the surface and keeps its own global
+  // search, so worker threads share nothing mutable: each thread opens its
+  // own scope. Scopes nest. Evaluations are counted as before.
   class FastEvaluation {
    public:
     explicit FastEvaluation(const SurfaceFace& face);

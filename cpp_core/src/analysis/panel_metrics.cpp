@@ -6,8 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "tessella/errors.h"
+#include "common/parallel_chunks.h"
 #include "mesh/panel_model.h"
+#include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
 
@@ -289,6 +290,27 @@ void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k
   m.max_angle[slot] = hi;
 }
 
+// Panels per chunk of the parallel loop: small enough to balance the threads,
+// large enough that claiming a chunk costs nothing.
+constexpr std::size_t kChunk = 8;
+
+// measure(k) for every panel k on `threads` threads, each in its own
+// FastEvaluation scope (span-cached evaluation, own surface copy and global
+// search); progress from the calling thread.
+template <class Measure>
+void for_each_panel(const SurfaceFace& face, std::size_t np, int threads, bool report,
+                    const Measure& measure) {
+  ChunkQueue queue(np, kChunk);
+  run_chunks(queue, worker_threads(threads), [&](bool calling) {
+    const SurfaceFace::FastEvaluation fast(face);
+    std::size_t begin = 0, end = 0;
+    while (queue.next(begin, end)) {
+      for (std::size_t k = begin; k < end; ++k) measure(k);
+      if (calling && report) report_progress(queue.claimed(), "measuring panels");
+    }
+  });
+}
+
 void resize(PanelMetrics& m, std::size_t np) {
   m.deviation.resize(np);
   m.deviation_unreliable.assign(np, 0);
@@ -313,10 +335,8 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
   PanelMetrics m;
   const std::size_t np = mesh.panels.size();
   resize(m, np);
-  for (std::size_t k = 0; k < np; ++k) {
-    report_progress(double(k) / double(np), "measuring panels");
-    measure_panel(face, mesh, k, params.samples, m, k);
-  }
+  for_each_panel(face, np, params.threads, true,
+                 [&](std::size_t k) { measure_panel(face, mesh, k, params.samples, m, k); });
   measure_rods(mesh, m);
   return m;
 }
@@ -330,13 +350,12 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
   const std::size_t np = mesh.panels.size();
   resize(m, np);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t k = 0; k < np; ++k) {
-    report_progress(double(k) / double(np), "measuring panels");
+  for_each_panel(face, np, params.threads, true, [&](std::size_t k) {
     if (which[k])
       measure_panel(face, mesh, k, params.samples, m, k);
     else
       m.deviation[k] = m.planarity[k] = m.area[k] = m.min_angle[k] = m.max_angle[k] = nan;
-  }
+  });
   measure_rods(mesh, m);
   return m;
 }
@@ -350,11 +369,14 @@ PanelMetrics remeasure_panels(const SurfaceFace& face, const PanelMesh& mesh,
     throw InvalidParameter("remeasure_panels: origin and changed must have one entry per panel");
   PanelMetrics m;
   resize(m, np);
+  std::vector<std::size_t> todo;
+  for (std::size_t k = 0; k < np; ++k)
+    if (changed[k]) todo.push_back(k);
+  for_each_panel(face, todo.size(), params.threads, false, [&](std::size_t i) {
+    measure_panel(face, mesh, todo[i], params.samples, m, todo[i]);
+  });
   for (std::size_t k = 0; k < np; ++k) {
-    if (changed[k]) {
-      measure_panel(face, mesh, k, params.samples, m, k);
-      continue;
-    }
+    if (changed[k]) continue;
     const std::size_t o = static_cast<std::size_t>(origin[k]);
     m.deviation[k] = before.deviation.at(o);
     m.deviation_unreliable[k] = before.deviation_unreliable.at(o);

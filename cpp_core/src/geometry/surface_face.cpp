@@ -27,19 +27,31 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
+#include "geometry/global_projection.h"
 #include "tessella/errors.h"
 
 namespace tessella {
 
 namespace {
 
-// The FastEvaluation scope active on this thread: which face (its Impl) and
-// the adaptor that caches the span polynomial.
+// What a FastEvaluation scope evaluates with: its own copy of the surface
+// (nothing mutable shared with other threads), the adaptor that caches the
+// span polynomial, and its own global search (built on first use).
+struct Objects {
+  Handle(Geom_Surface) surface;
+  GeomAdaptor_Surface adaptor;
+  std::unique_ptr<GlobalProjection> global;
+  explicit Objects(const Handle(Geom_Surface) & s)
+      : surface(Handle(Geom_Surface)::DownCast(s->Copy())), adaptor(surface) {}
+};
+
+// The FastEvaluation scope active on this thread: which face (its Impl) and its objects.
 struct FastScope {
   const void* impl = nullptr;
-  GeomAdaptor_Surface* adaptor = nullptr;
+  Objects* objects = nullptr;
 };
 thread_local FastScope tls_fast;
 
@@ -70,9 +82,18 @@ struct SurfaceFace::Impl {
   bool reversed = false;
   std::unique_ptr<BRepTopAdaptor_FClass2d> classifier;
   mutable std::atomic<std::uint64_t> evaluations{0};
+  mutable std::atomic<std::uint64_t> global_projections{0};
+  // The global search of callers outside a FastEvaluation scope, shared by
+  // them under the mutex (a scope has its own).
+  mutable std::mutex global_mutex;
+  mutable std::unique_ptr<GlobalProjection> global;
   void count(std::uint64_t n = 1) const { evaluations.fetch_add(n, std::memory_order_relaxed); }
-  // The adaptor of a FastEvaluation of this face on this thread, or null.
-  GeomAdaptor_Surface* fast() const { return tls_fast.impl == this ? tls_fast.adaptor : nullptr; }
+  // The objects of a FastEvaluation of this face on this thread, or null.
+  Objects* scope() const { return tls_fast.impl == this ? tls_fast.objects : nullptr; }
+  GeomAdaptor_Surface* fast() const {
+    Objects* o = scope();
+    return o ? &o->adaptor : nullptr;
+  }
   void d2(double u, double v, gp_Pnt& p, gp_Vec& su, gp_Vec& sv, gp_Vec& suu, gp_Vec& svv,
           gp_Vec& suv) const {
     if (GeomAdaptor_Surface* a = fast())
@@ -177,14 +198,14 @@ Vec3 SurfaceFace::point(double u, double v) const {
 
 struct SurfaceFace::FastEvaluation::State {
   FastScope previous;
-  GeomAdaptor_Surface adaptor;
-  explicit State(const Handle(Geom_Surface) & s) : adaptor(s) {}
+  Objects objects;
+  explicit State(const Handle(Geom_Surface) & s) : objects(s) {}
 };
 
 SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face)
     : state_(std::make_unique<State>(face.impl_->surface)) {
   state_->previous = tls_fast;
-  tls_fast = {face.impl_.get(), &state_->adaptor};
+  tls_fast = {face.impl_.get(), &state_->objects};
 }
 
 SurfaceFace::FastEvaluation::~FastEvaluation() { tls_fast = state_->previous; }
@@ -194,6 +215,13 @@ std::uint64_t SurfaceFace::evaluations() const {
 }
 void SurfaceFace::reset_evaluations() const {
   impl_->evaluations.store(0, std::memory_order_relaxed);
+}
+
+std::uint64_t SurfaceFace::global_projections() const {
+  return impl_->global_projections.load(std::memory_order_relaxed);
+}
+void SurfaceFace::reset_global_projections() const {
+  impl_->global_projections.store(0, std::memory_order_relaxed);
 }
 
 SurfacePoint SurfaceFace::derivatives(double u, double v) const {
@@ -409,20 +437,27 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
 
 Projection SurfaceFace::project(const Vec3& p) const {
   const Impl& s = *impl_;
+  s.global_projections.fetch_add(1, std::memory_order_relaxed);
   Projection result;
+  Vec2 uv;
+  bool found = false;
   try {
-    GeomAPI_ProjectPointOnSurf proj(gp_Pnt(p.x(), p.y(), p.z()), s.surface, s.search.u_min,
-                                    s.search.u_max, s.search.v_min, s.search.v_max);
-    if (proj.NbPoints() > 0) {
-      double u, v;
-      proj.LowerDistanceParameters(u, v);
-      result.uv = {u, v};
-      result.point = point(u, v);
-      result.distance = (result.point - p).norm();
-      return result;
+    if (Objects* o = s.scope()) {
+      if (!o->global) o->global = std::make_unique<GlobalProjection>(o->surface, s.search);
+      found = o->global->nearest(p, uv);
+    } else {
+      const std::lock_guard<std::mutex> lock(s.global_mutex);
+      if (!s.global) s.global = std::make_unique<GlobalProjection>(s.surface, s.search);
+      found = s.global->nearest(p, uv);
     }
   } catch (const Standard_Failure&) {
-    // fall through to sampling
+    found = false;  // fall through to sampling
+  }
+  if (found) {
+    result.uv = uv;
+    result.point = point(uv.x(), uv.y());
+    result.distance = (result.point - p).norm();
+    return result;
   }
   // No orthogonal foot point (e.g. the closest point is on the boundary of the
   // search range): best of a dense sample.

@@ -8,6 +8,7 @@
 #include <map>
 #include <utility>
 
+#include "common/parallel_chunks.h"
 #include "mesh/boundary_pieces.h"
 #include "mesh/panel_model.h"
 #include "mesh/short_rod_merge.h"
@@ -93,6 +94,7 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   r.face = face;
   r.method = method;
   face->reset_evaluations();
+  face->reset_global_projections();
   const auto started = std::chrono::steady_clock::now();
   r.mesh = decl.run(*face, values);
   // No rod shorter than min_rod_length, whatever the method; walking_agent's
@@ -111,6 +113,7 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   r.summary.surface_evaluations = face->evaluations();
 
+  const auto metrics_started = std::chrono::steady_clock::now();
   MetricsParams mp;
   mp.samples = value_or<int>(values, decl, "samples");
   report_stage(0.0, "measuring panels");
@@ -130,6 +133,9 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   for (std::size_t k = 0; k < pieces.changed.size(); ++k)
     if (!full[static_cast<std::size_t>(pieces.origin[k])]) pieces.changed[k] = 1;
   r.metrics = remeasure_panels(*face, r.mesh, full_metrics, pieces.origin, pieces.changed, mp);
+  r.summary.metrics_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - metrics_started).count();
+  r.summary.metrics_threads = worker_threads(mp.threads);
   r.summary.bend_count = pieces.bends;
   r.summary.split_panels = pieces.split;
   r.summary.boundary_nodes_added = pieces.refined;
@@ -165,6 +171,7 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   // Still under the limit after both stages (no valid collapse).
   for (double length : r.metrics.rod_length) s.short_rods += length < merged.min_rod_length ? 1 : 0;
   s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
+  s.global_projections = face->global_projections();
   return r;
 }
 
