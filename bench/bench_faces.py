@@ -11,13 +11,17 @@ import Part
 V = FreeCAD.Vector
 
 
-def height(x, y, extent):
+def height(x, y, extent, detail=0.0):
     """A smooth terrain-like height field (mm) on [0, extent]^2: a few long
-    waves, deterministic."""
+    waves, and hills `detail` times finer (about `detail` wavelengths across;
+    0: none), deterministic."""
     s = x / extent, y / extent
+    waves = [(0.08, 1.1, 0.7, 0.3), (0.04, 2.3, 1.9, 1.1), (0.02, 4.1, 3.7, 2.0),
+             (0.01, 7.3, 6.1, 0.5)]
+    if detail > 0:
+        waves += [(0.004, 0.61 * detail, 0.53 * detail, 0.7), (0.002, detail, 0.87 * detail, 1.3)]
     z = 0.0
-    for k, (a, fx, fy, ph) in enumerate(((0.08, 1.1, 0.7, 0.3), (0.04, 2.3, 1.9, 1.1),
-                                          (0.02, 4.1, 3.7, 2.0), (0.01, 7.3, 6.1, 0.5))):
+    for a, fx, fy, ph in waves:
         z += a * extent * math.sin(2 * math.pi * (fx * s[0] + ph)) * math.cos(
             2 * math.pi * (fy * s[1] - 0.5 * ph))
     return z
@@ -33,9 +37,11 @@ def _clamped_uniform(n, degree=3):
 
 def terrain_face(nu, nv, extent=100000.0):
     """Untrimmed bicubic B-spline face with nu x nv poles over an extent x extent
-    square: poles on a regular grid, heights from height()."""
+    square: poles on a regular grid, heights from height() with hills about
+    eight pole spacings wide (as fine as the poles can carry)."""
+    detail = min(nu, nv) / 8.0
     poles = [[V(extent * i / (nu - 1), extent * j / (nv - 1),
-                height(extent * i / (nu - 1), extent * j / (nv - 1), extent))
+                height(extent * i / (nu - 1), extent * j / (nv - 1), extent, detail))
               for j in range(nv)] for i in range(nu)]
     uk, um = _clamped_uniform(nu)
     vk, vm = _clamped_uniform(nv)

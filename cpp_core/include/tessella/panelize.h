@@ -35,6 +35,7 @@ struct PanelizeSummary {
   // Time of the metrics and boundary-piece stages, and the threads measuring.
   double metrics_seconds = 0.0;
   int metrics_threads = 1;
+  double pipeline_seconds = 0.0;  // the whole panelize() call
   SummaryStats deviation, planarity, area, rod_length;
   // Panels whose deviation is an upper bound without a foot point found
   // (PanelMetrics::deviation_unreliable).

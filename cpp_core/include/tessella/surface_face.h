@@ -37,6 +37,9 @@ struct ProjectionParams {
   double distance_tolerance = 1e-9;        // eps1 of seed 004 eq. 18, relative to model size
   double orthogonality_tolerance = 1e-10;  // eps2 of seed 004 eq. 18 (cosine)
   int max_iterations = 30;
+  // Where Newton fails, try again from the nearest of a local sample around
+  // the start before the costly global search (the metrics use it).
+  bool local_search = false;
 };
 
 struct Projection {

@@ -66,10 +66,11 @@ class Prober {
   Prober(const SurfaceFace& face, const std::vector<Vec2>& uv) : face_(face), uv_(uv) {
     for (const Vec2& q : uv) corner_.push_back(face.point(q.x(), q.y()));
     tiny_ = 1e-9 * face.model_size();
+    local_.local_search = true;
   }
 
   Probe operator()(const Vec3& x, const Vec2& start) const {
-    const Projection pr = face_.project(x, start);
+    const Projection pr = face_.project(x, start, local_);
     std::size_t near = 0;
     double bound = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < corner_.size(); ++k) {
@@ -84,7 +85,7 @@ class Prober {
     auto offer = [&](double d, bool reliable, const Vec2& foot) {
       if (d < best.distance) best = {d, reliable, foot};
     };
-    const Projection again = face_.project(x, uv_[near]);
+    const Projection again = face_.project(x, uv_[near], local_);
     offer(again.distance, !again.used_fallback || orthogonal(x, again), again.uv);
     offer((face_.point(start.x(), start.y()) - x).norm(), false, start);
     offer(bound, false, uv_[near]);
@@ -105,6 +106,7 @@ class Prober {
   const std::vector<Vec2>& uv_;
   std::vector<Vec3> corner_;
   double tiny_ = 0;
+  ProjectionParams local_;  // a local search before the global one
 };
 
 // A sample of the panel model: piece `tri` (-1: the bilinear quad) at

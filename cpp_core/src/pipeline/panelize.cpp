@@ -172,6 +172,8 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   for (double length : r.metrics.rod_length) s.short_rods += length < merged.min_rod_length ? 1 : 0;
   s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
   s.global_projections = face->global_projections();
+  s.pipeline_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
 
