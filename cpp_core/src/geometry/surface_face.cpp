@@ -12,7 +12,6 @@
 #include <Bnd_Box.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
-#include <Geom2dAPI_ProjectPointOnCurve.hxx>
 #include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Surface.hxx>
@@ -31,6 +30,7 @@
 #include <sstream>
 
 #include "geometry/global_projection.h"
+#include "geometry/pcurve_projection.h"
 #include "geometry/span_adaptors.h"
 #include "tessella/errors.h"
 
@@ -88,6 +88,10 @@ struct SurfaceFace::Impl {
   // them under the mutex (a scope has its own).
   mutable std::mutex global_mutex;
   mutable std::unique_ptr<GlobalProjection> global;
+  // snap_to_trim's projections, per wire (explorer order) and edge, built
+  // on first use and shared under the mutex.
+  mutable std::mutex trim_mutex;
+  mutable std::vector<std::vector<std::unique_ptr<PcurveProjection>>> trim_projections;
   void count(std::uint64_t n = 1) const { evaluations.fetch_add(n, std::memory_order_relaxed); }
   // The objects of a FastEvaluation of this face on this thread, or null.
   Objects* scope() const { return tls_fast.impl == this ? tls_fast.objects : nullptr; }
@@ -258,30 +262,33 @@ bool SurfaceFace::is_inside(double u, double v) const {
 }
 
 Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
-  int k = 0;
-  for (TopExp_Explorer wx(impl_->face, TopAbs_WIRE); wx.More(); wx.Next(), ++k) {
-    if (k != loop) continue;
-    Vec2 best = uv;
-    double best_d = std::numeric_limits<double>::infinity();
-    const gp_Pnt2d p(uv.x(), uv.y());
-    for (TopExp_Explorer ex(wx.Current(), TopAbs_EDGE); ex.More(); ex.Next()) {
-      const TopoDS_Edge& edge = TopoDS::Edge(ex.Current());
-      double first = 0, last = 0;
-      const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, impl_->face, first, last);
-      if (c.IsNull()) continue;
-      auto consider = [&](const gp_Pnt2d& q) {
-        const double d = q.Distance(p);
-        if (d < best_d) best_d = d, best = Vec2(q.X(), q.Y());
-      };
-      consider(c->Value(first));
-      consider(c->Value(last));
-      Geom2dAPI_ProjectPointOnCurve proj(p, c, first, last);
-      for (int i = 1; i <= proj.NbPoints(); ++i) consider(proj.Point(i));
+  const Impl& s = *impl_;
+  const std::lock_guard<std::mutex> lock(s.trim_mutex);
+  if (s.trim_projections.empty()) {
+    for (TopExp_Explorer wx(s.face, TopAbs_WIRE); wx.More(); wx.Next()) {
+      s.trim_projections.emplace_back();
+      for (TopExp_Explorer ex(wx.Current(), TopAbs_EDGE); ex.More(); ex.Next()) {
+        double first = 0, last = 0;
+        const Handle(Geom2d_Curve) c =
+            BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), s.face, first, last);
+        if (c.IsNull()) continue;
+        s.trim_projections.back().push_back(std::make_unique<PcurveProjection>(c, first, last));
+      }
     }
-    return best;
   }
-  require_in_range("trim loop index", loop, 0, k - 1);
-  return uv;
+  require_in_range("trim loop index", loop, 0, static_cast<int>(s.trim_projections.size()) - 1);
+  Vec2 best = uv;
+  double best_d = std::numeric_limits<double>::infinity();
+  const gp_Pnt2d p(uv.x(), uv.y());
+  std::vector<gp_Pnt2d> candidates;
+  for (const auto& edge : s.trim_projections[static_cast<std::size_t>(loop)]) {
+    edge->candidates(p, candidates);
+    for (const gp_Pnt2d& q : candidates) {
+      const double d = q.Distance(p);
+      if (d < best_d) best_d = d, best = Vec2(q.X(), q.Y());
+    }
+  }
+  return best;
 }
 
 std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
