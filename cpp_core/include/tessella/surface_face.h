@@ -103,7 +103,8 @@ class SurfaceFace {
   // How many times the surface was evaluated (point, derivatives, one Newton
   // step of project) since construction or the last reset: the cost measure of
   // the methods' comparison. Counted with a relaxed atomic, so a face shared
-  // by threads still counts every evaluation.
+  // by threads still counts every evaluation (those inside a FastEvaluation
+  // scope once the scope ends).
   std::uint64_t evaluations() const;
   void reset_evaluations() const;
   // How many projections took the global search (Newton failed): the search
@@ -118,7 +119,8 @@ class SurfaceFace {
   // the agent methods; the results agree to rounding, ~1e-15 relative).
   // The scope evaluates its own copy of the surface and keeps its own global
   // search, so worker threads share nothing mutable: each thread opens its
-  // own scope. Scopes nest. Evaluations are counted as before.
+  // own scope. Scopes nest. Evaluations are counted in the scope and added
+  // to evaluations() when it ends.
   class FastEvaluation {
    public:
     explicit FastEvaluation(const SurfaceFace& face);

@@ -45,6 +45,10 @@ struct Objects {
   Handle(Geom_Surface) surface;
   SpanAdaptors adaptor;
   std::unique_ptr<GlobalProjection> global;
+  // Evaluations counted here and added to the face's counter when the scope
+  // ends: an atomic add per evaluation from several threads on one cache
+  // line cost more than the evaluation.
+  std::uint64_t evaluations = 0;
   explicit Objects(const Handle(Geom_Surface) & s)
       : surface(Handle(Geom_Surface)::DownCast(s->Copy())), adaptor(surface) {}
 };
@@ -92,7 +96,12 @@ struct SurfaceFace::Impl {
   // on first use and shared under the mutex.
   mutable std::mutex trim_mutex;
   mutable std::vector<std::vector<std::unique_ptr<PcurveProjection>>> trim_projections;
-  void count(std::uint64_t n = 1) const { evaluations.fetch_add(n, std::memory_order_relaxed); }
+  void count(std::uint64_t n = 1) const {
+    if (Objects* o = scope())
+      o->evaluations += n;
+    else
+      evaluations.fetch_add(n, std::memory_order_relaxed);
+  }
   // The objects of a FastEvaluation of this face on this thread, or null.
   Objects* scope() const { return tls_fast.impl == this ? tls_fast.objects : nullptr; }
   GeomAdaptor_Surface* fast(double u, double v) const {
@@ -213,7 +222,11 @@ SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face)
   tls_fast = {face.impl_.get(), &state_->objects};
 }
 
-SurfaceFace::FastEvaluation::~FastEvaluation() { tls_fast = state_->previous; }
+SurfaceFace::FastEvaluation::~FastEvaluation() {
+  static_cast<const Impl*>(tls_fast.impl)
+      ->evaluations.fetch_add(state_->objects.evaluations, std::memory_order_relaxed);
+  tls_fast = state_->previous;
+}
 
 std::uint64_t SurfaceFace::evaluations() const {
   return impl_->evaluations.load(std::memory_order_relaxed);
