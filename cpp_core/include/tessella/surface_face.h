@@ -117,13 +117,16 @@ class SurfaceFace {
   // GeomAdaptor_Surface, which keeps the polynomial of the B-spline / Bezier
   // span last used (several times faster for the many nearby evaluations of
   // the agent methods; the results agree to rounding, ~1e-15 relative).
-  // The scope evaluates its own copy of the surface and keeps its own global
-  // search, so worker threads share nothing mutable: each thread opens its
-  // own scope. Scopes nest. Evaluations are counted in the scope and added
+  // The scope keeps its own span caches and global search; with
+  // `own_surface` it also evaluates its own copy of the surface
+  // (Geom_Surface::Copy), so a worker thread shares nothing mutable with the
+  // others: each thread opens its own scope. Scopes nest. Evaluations are counted in the scope and added
   // to evaluations() when it ends.
   class FastEvaluation {
    public:
-    explicit FastEvaluation(const SurfaceFace& face);
+    explicit FastEvaluation(const SurfaceFace& face, bool own_surface = false);
+    // Whether a scope of `face` is open on this thread.
+    static bool active(const SurfaceFace& face);
     ~FastEvaluation();
     FastEvaluation(const FastEvaluation&) = delete;
     FastEvaluation& operator=(const FastEvaluation&) = delete;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "common/parallel_chunks.h"
 #include "mesh/panel_model.h"
@@ -296,15 +297,17 @@ void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k
 // large enough that claiming a chunk costs nothing.
 constexpr std::size_t kChunk = 8;
 
-// measure(k) for every panel k on `threads` threads, each in its own
-// FastEvaluation scope (span-cached evaluation, own surface copy and global
-// search); progress from the calling thread.
+// measure(k) for every panel k on `threads` threads, each in a FastEvaluation
+// scope (span-cached evaluation and its own global search; the other threads
+// on their own copy of the surface; the calling thread keeps an open scope);
+// progress from the calling thread.
 template <class Measure>
 void for_each_panel(const SurfaceFace& face, std::size_t np, int threads, bool report,
                     const Measure& measure) {
   ChunkQueue queue(np, kChunk);
   run_chunks(queue, worker_threads(threads), [&](bool calling) {
-    const SurfaceFace::FastEvaluation fast(face);
+    std::optional<SurfaceFace::FastEvaluation> fast;
+    if (!calling || !SurfaceFace::FastEvaluation::active(face)) fast.emplace(face, !calling);
     std::size_t begin = 0, end = 0;
     while (queue.next(begin, end)) {
       for (std::size_t k = begin; k < end; ++k) measure(k);

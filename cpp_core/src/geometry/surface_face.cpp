@@ -49,8 +49,8 @@ struct Objects {
   // ends: an atomic add per evaluation from several threads on one cache
   // line cost more than the evaluation.
   std::uint64_t evaluations = 0;
-  explicit Objects(const Handle(Geom_Surface) & s)
-      : surface(Handle(Geom_Surface)::DownCast(s->Copy())), adaptor(surface) {}
+  Objects(const Handle(Geom_Surface) & s, bool copy)
+      : surface(copy ? Handle(Geom_Surface)::DownCast(s->Copy()) : s), adaptor(surface) {}
 };
 
 // The FastEvaluation scope active on this thread: which face (its Impl) and its objects.
@@ -213,11 +213,15 @@ Vec3 SurfaceFace::point(double u, double v) const {
 struct SurfaceFace::FastEvaluation::State {
   FastScope previous;
   Objects objects;
-  explicit State(const Handle(Geom_Surface) & s) : objects(s) {}
+  State(const Handle(Geom_Surface) & s, bool copy) : objects(s, copy) {}
 };
 
-SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face)
-    : state_(std::make_unique<State>(face.impl_->surface)) {
+bool SurfaceFace::FastEvaluation::active(const SurfaceFace& face) {
+  return tls_fast.impl == face.impl_.get();
+}
+
+SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face, bool own_surface)
+    : state_(std::make_unique<State>(face.impl_->surface, own_surface)) {
   state_->previous = tls_fast;
   tls_fast = {face.impl_.get(), &state_->objects};
 }
