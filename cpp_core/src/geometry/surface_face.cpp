@@ -38,9 +38,10 @@ namespace tessella {
 
 namespace {
 
-// What a FastEvaluation scope evaluates with: its own copy of the surface
-// (nothing mutable shared with other threads), the adaptors that cache the
-// span polynomials, and its own global search (built on first use).
+// What a FastEvaluation scope evaluates with: the surface (for a worker
+// thread its own copy: nothing mutable shared with other threads), the
+// adaptors that cache the span polynomials, and its own global search
+// (built on first use).
 struct Objects {
   Handle(Geom_Surface) surface;
   SpanAdaptors adaptor;
@@ -465,8 +466,9 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
   if (!converged && params.local_search) {
     // Before the global search (100 ms a call on a 312 x 323-pole surface):
     // Newton again from the nearest of 9 x 9 samples around the start, over
-    // the parameter box that holds every surface point within twice the
-    // start's distance (the foot point is one of them).
+    // the parameter box that (to first order in the start's tangents) holds
+    // every surface point within twice the start's distance, the foot point
+    // among them. Kept only if it is no farther than the nearest sample.
     const double u0 = s.wrap_u(start.x()), v0 = s.wrap_v(start.y());
     const SurfacePoint sp = derivatives(u0, v0);
     const double reach = 2.0 * (sp.point - p).norm();
