@@ -83,7 +83,7 @@ def _circle(cx, cy, r, n=48, wobble=0.0):
 
 
 def dome_with_opening(radius=20000.0):
-    """A shallow dome (a spherical cap as a B-spline) trimmed by a wavy outline,
+    """A shallow dome (a paraboloid as a B-spline) trimmed by a wavy outline,
     with an oculus off the centre."""
     def fn(s, t):
         x, y = radius * (2 * s - 1), radius * (2 * t - 1)

@@ -47,8 +47,7 @@ struct Objects {
   SpanAdaptors adaptor;
   std::unique_ptr<GlobalProjection> global;
   // Evaluations counted here and added to the face's counter when the scope
-  // ends: an atomic add per evaluation from several threads on one cache
-  // line cost more than the evaluation.
+  // ends, so the threads do not contend for one atomic on every evaluation.
   std::uint64_t evaluations = 0;
   Objects(const Handle(Geom_Surface) & s, bool copy)
       : surface(copy ? Handle(Geom_Surface)::DownCast(s->Copy()) : s), adaptor(surface) {}
