@@ -12,12 +12,17 @@ DEB_PACKAGES := g++ make cmake freecad freecad-python3 \
   libgtest-dev libbenchmark-dev \
   python3-numpy python3-matplotlib python3-ezdxf python3-pytest xvfb xauth
 
-.PHONY: all deps build test test-cpp test-python test-gui demo bench screenshots install uninstall format clean
+# Only for `make bench` (the Gmsh comparison), never for the build or the tests.
+BENCH_PACKAGES := python3-gmsh
+
+.PHONY: all deps bench-deps build test test-cpp test-python test-gui demo bench screenshots install uninstall format clean
 
 all: build
 
-deps:
-	@missing=""; for p in $(DEB_PACKAGES); do \
+deps bench-deps: PACKAGES = $(DEB_PACKAGES)
+bench-deps: PACKAGES = $(BENCH_PACKAGES)
+deps bench-deps:
+	@missing=""; for p in $(PACKAGES); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
@@ -50,10 +55,15 @@ demo: build
 	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) examples/demo.py --out out
 	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) examples/fabrication_demo.py --out out/fabrication
 
-bench: build
+# Speed: google-benchmark, preview latency, no cliff on a big surface,
+# Tessella vs Gmsh vs MeshPart, and the scaling to 128k panels.
+bench: build bench-deps
 	$(BUILD)/tessella_bench
 	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/preview_latency.py
 	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/document_speed.py
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/no_cliff.py
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/gmsh_compare.py
+	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) bench/scaling.py
 
 # README pictures of the workbench (toolbar, task panel, preview, colours).
 screenshots: build

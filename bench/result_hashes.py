@@ -149,18 +149,36 @@ def result_sha(r):
     return h.hexdigest()
 
 
-def run_case(method, face):
+def result_arrays(r):
+    """Every hashed array by name (for --dump / --compare-dump)."""
+    out = {
+        "vertices": np.asarray(r.vertices, dtype=np.float64),
+        "uv": np.asarray(r.uv, dtype=np.float64),
+        "panels": np.asarray([x for p in r.panels for x in (len(p), *p)], dtype=np.int64),
+        "rods": np.asarray(r.rods, dtype=np.int64),
+        "nodes": np.asarray(r.nodes, dtype=np.int64),
+        "folds": np.asarray(r.folds, dtype=np.int64),
+        "irregular": np.asarray(r.irregular, dtype=np.int64),
+    }
+    for key in sorted(r.metrics):
+        out["metrics." + key] = np.asarray(r.metrics[key])
+    return out
+
+
+def run_case(method, face, dump=None):
     try:
         params = case_params(method, face)
         r = tessella.panelize(face, method=method, **params)
     except (ValueError, RuntimeError) as exc:
         msg = (str(exc).strip().splitlines() or [""])[0]
         return f"error: {msg}"
+    if dump is not None:
+        dump(result_arrays(r))
     return (f"panels={len(r.panels)} rods={len(r.rods)} nodes={len(r.nodes)} "
             f"sha={result_sha(r)}")
 
 
-def run_all(verbose=True, echo=True):
+def run_all(verbose=True, echo=True, dump_dir=None):
     methods = getattr(tessella, "METHODS", None)
     if methods is not None:
         extra = sorted(set(methods) - set(METHOD_NAMES))
@@ -175,7 +193,11 @@ def run_all(verbose=True, echo=True):
             if (name, method) in SKIP:
                 outcome = "skipped: slow"
             else:
-                outcome = run_case(method, face)
+                dump = None
+                if dump_dir:
+                    path = os.path.join(dump_dir, f"{name}__{method}.npz")
+                    dump = lambda arrays, path=path: np.savez(path, **arrays)  # noqa: E731
+                outcome = run_case(method, face, dump)
             line = f"{name} {method} {outcome}"
             lines.append(line)
             if echo:
@@ -213,14 +235,67 @@ def compare(lines, path):
     return differs
 
 
+def compare_dumps(before_dir, after_dir, rtol):
+    """Arrays of two --dump runs: integer arrays equal, float arrays bit for bit or
+    within rtol relative (of the array's largest magnitude). Returns the count of
+    cases that differ beyond rtol; prints the largest relative difference."""
+    differs = 0
+    worst_all = 0.0
+    for path in sorted(glob.glob(os.path.join(before_dir, "*.npz"))):
+        name = os.path.basename(path)
+        other = os.path.join(after_dir, name)
+        if not os.path.exists(other):
+            print(f"{name}: missing now")
+            differs += 1
+            continue
+        a, b = np.load(path), np.load(other)
+        bad, worst, exact = [], 0.0, True
+        for key in a.files:
+            x, y = a[key], b[key] if key in b.files else None
+            if y is None or x.shape != y.shape:
+                bad.append(f"{key} shape")
+                continue
+            if x.dtype.kind != "f":
+                if not np.array_equal(x, y):
+                    bad.append(key)
+                continue
+            same = np.array_equal(x, y, equal_nan=True)
+            exact = exact and same
+            if same:
+                continue
+            fin = np.isfinite(x)
+            if not np.array_equal(fin, np.isfinite(y)):
+                bad.append(f"{key} nan")
+                continue
+            scale = max(np.abs(x[fin]).max(initial=0.0), 1e-300)
+            rel = float(np.abs(x[fin] - y[fin]).max(initial=0.0) / scale)
+            worst = max(worst, rel)
+            if rel > rtol:
+                bad.append(f"{key} rel {rel:.2e}")
+        worst_all = max(worst_all, worst)
+        state = "bit-identical" if exact and not bad else (f"max rel {worst:.2e}" if not bad else "DIFFERS: " + ", ".join(bad))
+        print(f"{name}: {state}")
+        differs += 1 if bad else 0
+    print(f"largest relative difference {worst_all:.3e}; {differs} cases beyond {rtol:g}")
+    return differs
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", help="also write the lines to this file")
     ap.add_argument("--compare", help="compare with the lines of this file; exit 1 if any differs")
     ap.add_argument("--quiet", action="store_true", help="no per-case timings on stderr")
     # With --compare, stdout holds only the per-line report (identical / different).
+    ap.add_argument("--dump", help="also save every case's arrays to DIR/<example>__<method>.npz")
+    ap.add_argument("--compare-dump", nargs=2, metavar=("BEFORE", "AFTER"),
+                    help="only compare two --dump folders (exit 1 beyond --rtol)")
+    ap.add_argument("--rtol", type=float, default=1e-9)
     args = ap.parse_args(argv)
-    lines = run_all(verbose=not args.quiet, echo=not args.compare)
+    if args.compare_dump:
+        return 1 if compare_dumps(*args.compare_dump, args.rtol) else 0
+    if args.dump:
+        os.makedirs(args.dump, exist_ok=True)
+    lines = run_all(verbose=not args.quiet, echo=not args.compare, dump_dir=args.dump)
     if args.out:
         with open(args.out, "w", encoding="utf-8") as f:
             f.write("\n".join(lines) + "\n")

@@ -101,7 +101,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("size", &IsoGridParams::size);
   py::class_<MetricsParams>(m, "MetricsParams")
       .def(py::init<>())
-      .def_readwrite("samples", &MetricsParams::samples);
+      .def_readwrite("samples", &MetricsParams::samples)
+      .def_readwrite("threads", &MetricsParams::threads);
 
   py::class_<PanelMesh>(m, "PanelMesh")
       .def_property_readonly("uv", [](const PanelMesh& mesh) { return rows<2>(mesh.uv); })
@@ -196,6 +197,7 @@ PYBIND11_MODULE(_core, m) {
   bind_guide_lines(m);
   // The cost counter of a face and the folds of a mesh (benchmarks, tests).
   m.def("surface_evaluations", [](const SurfaceFace& f) { return f.evaluations(); });
+  m.def("global_projections", [](const SurfaceFace& f) { return f.global_projections(); });
   m.def("mesh_folds", [](const PanelMesh& mesh) {
     py::array_t<long long> a({static_cast<py::ssize_t>(mesh.folds.size()), py::ssize_t(2)});
     auto r = a.mutable_unchecked<2>();

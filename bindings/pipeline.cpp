@@ -113,6 +113,10 @@ void bind_pipeline(py::module_& m) {
         d["boundary_nodes_added"] = s.boundary_nodes_added;
         d["surface_evaluations"] = s.surface_evaluations;
         d["core_seconds"] = s.core_seconds;
+        d["global_projections"] = s.global_projections;
+        d["metrics_seconds"] = s.metrics_seconds;
+        d["metrics_threads"] = s.metrics_threads;
+        d["pipeline_seconds"] = s.pipeline_seconds;
         d["panel_deviation"] = stats(s.deviation);
         d["unreliable_deviation"] = s.unreliable_deviation;
         d["panel_planarity"] = stats(s.planarity);

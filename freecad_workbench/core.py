@@ -7,7 +7,7 @@ small stage-level console API for plots and benchmarks: the guide-line curve
 sets (`guide_line_scaling_curves`, `two_guide_lines_curves` with their params
 structs), `boundary_driven_stages` (traced curves and the preliminary network),
 `iso_grid` + `measure_panels` (the coarsest-grid search of
-bench/compare_methods.py), `summarize`, `surface_evaluations`, `mesh_folds`,
+bench/compare_methods.py), `summarize`, `surface_evaluations`, `global_projections`, `mesh_folds`,
 `fold_angle_deg`; `panel_types` / `flat_panel_types` / `mesh_panel_types` (congruent flat panels).
 """
 
@@ -58,4 +58,5 @@ from ._core import (  # noqa: E402,F401
     summarize,
     two_guide_lines_curves,
     surface_evaluations,
+    global_projections,
 )

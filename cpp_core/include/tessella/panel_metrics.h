@@ -15,6 +15,9 @@ namespace tessella {
 struct MetricsParams {
   // Samples per panel edge direction (quad: n x n; each fan triangle: n(n+1)/2).
   int samples = 8;
+  // Threads measuring panels (0: TESSELLA_THREADS, else every core). Each
+  // panel's figures are the same bit for bit for any count.
+  int threads = 0;
 };
 
 struct PanelMetrics {

@@ -30,6 +30,13 @@ struct PanelizeSummary {
   // Cost of the method call alone (no metrics).
   std::uint64_t surface_evaluations = 0;
   double core_seconds = 0.0;
+  // Whole run (method and metrics): projections where Newton failed and the
+  // global search answered (costly on big surfaces: should stay rare).
+  std::uint64_t global_projections = 0;
+  // Time of the metrics and boundary-piece stages, and the threads measuring.
+  double metrics_seconds = 0.0;
+  int metrics_threads = 1;
+  double pipeline_seconds = 0.0;  // the whole panelize() call
   SummaryStats deviation, planarity, area, rod_length;
   // Panels whose deviation is an upper bound without a foot point found
   // (PanelMetrics::deviation_unreliable).

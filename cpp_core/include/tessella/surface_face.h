@@ -37,6 +37,9 @@ struct ProjectionParams {
   double distance_tolerance = 1e-9;        // eps1 of seed 004 eq. 18, relative to model size
   double orthogonality_tolerance = 1e-10;  // eps2 of seed 004 eq. 18 (cosine)
   int max_iterations = 30;
+  // Where Newton fails, try again from the nearest of a local sample around
+  // the start before the costly global search (the metrics use it).
+  bool local_search = false;
 };
 
 struct Projection {
@@ -100,19 +103,30 @@ class SurfaceFace {
   // How many times the surface was evaluated (point, derivatives, one Newton
   // step of project) since construction or the last reset: the cost measure of
   // the methods' comparison. Counted with a relaxed atomic, so a face shared
-  // by threads still counts every evaluation.
+  // by threads still counts every evaluation (those inside a FastEvaluation
+  // scope once the scope ends).
   std::uint64_t evaluations() const;
   void reset_evaluations() const;
+  // How many projections took the global search (Newton failed): the search
+  // is costly on a big surface, so this should stay a small share.
+  std::uint64_t global_projections() const;
+  void reset_global_projections() const;
 
   // While a FastEvaluation of this face lives, point(), derivatives(),
   // normal() and project() called on the same thread evaluate through OCCT's
   // GeomAdaptor_Surface, which keeps the polynomial of the B-spline / Bezier
   // span last used (several times faster for the many nearby evaluations of
   // the agent methods; the results agree to rounding, ~1e-15 relative).
-  // Scopes nest; each thread needs its own. Evaluations are counted as before.
+  // The scope keeps its own span caches and global search; with
+  // `own_surface` it also evaluates its own copy of the surface
+  // (Geom_Surface::Copy), so a worker thread shares nothing mutable with the
+  // others: each thread opens its own scope. Scopes nest. Evaluations are counted in the scope and added
+  // to evaluations() when it ends.
   class FastEvaluation {
    public:
-    explicit FastEvaluation(const SurfaceFace& face);
+    explicit FastEvaluation(const SurfaceFace& face, bool own_surface = false);
+    // Whether a scope of `face` is open on this thread.
+    static bool active(const SurfaceFace& face);
     ~FastEvaluation();
     FastEvaluation(const FastEvaluation&) = delete;
     FastEvaluation& operator=(const FastEvaluation&) = delete;

@@ -5,9 +5,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
-#include "tessella/errors.h"
+#include "common/parallel_chunks.h"
 #include "mesh/panel_model.h"
+#include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
 
@@ -65,10 +67,11 @@ class Prober {
   Prober(const SurfaceFace& face, const std::vector<Vec2>& uv) : face_(face), uv_(uv) {
     for (const Vec2& q : uv) corner_.push_back(face.point(q.x(), q.y()));
     tiny_ = 1e-9 * face.model_size();
+    local_.local_search = true;
   }
 
   Probe operator()(const Vec3& x, const Vec2& start) const {
-    const Projection pr = face_.project(x, start);
+    const Projection pr = face_.project(x, start, local_);
     std::size_t near = 0;
     double bound = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < corner_.size(); ++k) {
@@ -83,7 +86,7 @@ class Prober {
     auto offer = [&](double d, bool reliable, const Vec2& foot) {
       if (d < best.distance) best = {d, reliable, foot};
     };
-    const Projection again = face_.project(x, uv_[near]);
+    const Projection again = face_.project(x, uv_[near], local_);
     offer(again.distance, !again.used_fallback || orthogonal(x, again), again.uv);
     offer((face_.point(start.x(), start.y()) - x).norm(), false, start);
     offer(bound, false, uv_[near]);
@@ -104,6 +107,7 @@ class Prober {
   const std::vector<Vec2>& uv_;
   std::vector<Vec3> corner_;
   double tiny_ = 0;
+  ProjectionParams local_;  // a local search before the global one
 };
 
 // A sample of the panel model: piece `tri` (-1: the bilinear quad) at
@@ -289,6 +293,29 @@ void measure_panel(const SurfaceFace& face, const PanelMesh& mesh, std::size_t k
   m.max_angle[slot] = hi;
 }
 
+// Panels per chunk of the parallel loop: small enough to balance the threads,
+// large enough that claiming a chunk costs nothing.
+constexpr std::size_t kChunk = 8;
+
+// measure(k) for every panel k on `threads` threads, each in a FastEvaluation
+// scope (span-cached evaluation and its own global search; the other threads
+// on their own copy of the surface; the calling thread keeps an open scope);
+// progress from the calling thread.
+template <class Measure>
+void for_each_panel(const SurfaceFace& face, std::size_t np, int threads, bool report,
+                    const Measure& measure) {
+  ChunkQueue queue(np, kChunk);
+  run_chunks(queue, worker_threads(threads), [&](bool calling) {
+    std::optional<SurfaceFace::FastEvaluation> fast;
+    if (!calling || !SurfaceFace::FastEvaluation::active(face)) fast.emplace(face, !calling);
+    std::size_t begin = 0, end = 0;
+    while (queue.next(begin, end)) {
+      for (std::size_t k = begin; k < end; ++k) measure(k);
+      if (calling && report) report_progress(queue.claimed(), "measuring panels");
+    }
+  });
+}
+
 void resize(PanelMetrics& m, std::size_t np) {
   m.deviation.resize(np);
   m.deviation_unreliable.assign(np, 0);
@@ -313,10 +340,8 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
   PanelMetrics m;
   const std::size_t np = mesh.panels.size();
   resize(m, np);
-  for (std::size_t k = 0; k < np; ++k) {
-    report_progress(double(k) / double(np), "measuring panels");
-    measure_panel(face, mesh, k, params.samples, m, k);
-  }
+  for_each_panel(face, np, params.threads, true,
+                 [&](std::size_t k) { measure_panel(face, mesh, k, params.samples, m, k); });
   measure_rods(mesh, m);
   return m;
 }
@@ -330,13 +355,12 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
   const std::size_t np = mesh.panels.size();
   resize(m, np);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t k = 0; k < np; ++k) {
-    report_progress(double(k) / double(np), "measuring panels");
+  for_each_panel(face, np, params.threads, true, [&](std::size_t k) {
     if (which[k])
       measure_panel(face, mesh, k, params.samples, m, k);
     else
       m.deviation[k] = m.planarity[k] = m.area[k] = m.min_angle[k] = m.max_angle[k] = nan;
-  }
+  });
   measure_rods(mesh, m);
   return m;
 }
@@ -350,11 +374,14 @@ PanelMetrics remeasure_panels(const SurfaceFace& face, const PanelMesh& mesh,
     throw InvalidParameter("remeasure_panels: origin and changed must have one entry per panel");
   PanelMetrics m;
   resize(m, np);
+  std::vector<std::size_t> todo;
+  for (std::size_t k = 0; k < np; ++k)
+    if (changed[k]) todo.push_back(k);
+  for_each_panel(face, todo.size(), params.threads, false, [&](std::size_t i) {
+    measure_panel(face, mesh, todo[i], params.samples, m, todo[i]);
+  });
   for (std::size_t k = 0; k < np; ++k) {
-    if (changed[k]) {
-      measure_panel(face, mesh, k, params.samples, m, k);
-      continue;
-    }
+    if (changed[k]) continue;
     const std::size_t o = static_cast<std::size_t>(origin[k]);
     m.deviation[k] = before.deviation.at(o);
     m.deviation_unreliable[k] = before.deviation_unreliable.at(o);

@@ -12,7 +12,6 @@
 #include <Bnd_Box.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
-#include <Geom2dAPI_ProjectPointOnCurve.hxx>
 #include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Surface.hxx>
@@ -27,19 +26,37 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
+#include "geometry/global_projection.h"
+#include "geometry/pcurve_projection.h"
+#include "geometry/span_adaptors.h"
 #include "tessella/errors.h"
 
 namespace tessella {
 
 namespace {
 
-// The FastEvaluation scope active on this thread: which face (its Impl) and
-// the adaptor that caches the span polynomial.
+// What a FastEvaluation scope evaluates with: the surface (for a worker
+// thread its own copy: nothing mutable shared with other threads), the
+// adaptors that cache the span polynomials, and its own global search
+// (built on first use).
+struct Objects {
+  Handle(Geom_Surface) surface;
+  SpanAdaptors adaptor;
+  std::unique_ptr<GlobalProjection> global;
+  // Evaluations counted here and added to the face's counter when the scope
+  // ends, so the threads do not contend for one atomic on every evaluation.
+  std::uint64_t evaluations = 0;
+  Objects(const Handle(Geom_Surface) & s, bool copy)
+      : surface(copy ? Handle(Geom_Surface)::DownCast(s->Copy()) : s), adaptor(surface) {}
+};
+
+// The FastEvaluation scope active on this thread: which face (its Impl) and its objects.
 struct FastScope {
   const void* impl = nullptr;
-  GeomAdaptor_Surface* adaptor = nullptr;
+  Objects* objects = nullptr;
 };
 thread_local FastScope tls_fast;
 
@@ -70,12 +87,30 @@ struct SurfaceFace::Impl {
   bool reversed = false;
   std::unique_ptr<BRepTopAdaptor_FClass2d> classifier;
   mutable std::atomic<std::uint64_t> evaluations{0};
-  void count(std::uint64_t n = 1) const { evaluations.fetch_add(n, std::memory_order_relaxed); }
-  // The adaptor of a FastEvaluation of this face on this thread, or null.
-  GeomAdaptor_Surface* fast() const { return tls_fast.impl == this ? tls_fast.adaptor : nullptr; }
+  mutable std::atomic<std::uint64_t> global_projections{0};
+  // The global search of callers outside a FastEvaluation scope, shared by
+  // them under the mutex (a scope has its own).
+  mutable std::mutex global_mutex;
+  mutable std::unique_ptr<GlobalProjection> global;
+  // snap_to_trim's projections, per wire (explorer order) and edge, built
+  // on first use and shared under the mutex.
+  mutable std::mutex trim_mutex;
+  mutable std::vector<std::vector<std::unique_ptr<PcurveProjection>>> trim_projections;
+  void count(std::uint64_t n = 1) const {
+    if (Objects* o = scope())
+      o->evaluations += n;
+    else
+      evaluations.fetch_add(n, std::memory_order_relaxed);
+  }
+  // The objects of a FastEvaluation of this face on this thread, or null.
+  Objects* scope() const { return tls_fast.impl == this ? tls_fast.objects : nullptr; }
+  GeomAdaptor_Surface* fast(double u, double v) const {
+    Objects* o = scope();
+    return o ? &o->adaptor.at(u, v) : nullptr;
+  }
   void d2(double u, double v, gp_Pnt& p, gp_Vec& su, gp_Vec& sv, gp_Vec& suu, gp_Vec& svv,
           gp_Vec& suv) const {
-    if (GeomAdaptor_Surface* a = fast())
+    if (GeomAdaptor_Surface* a = fast(u, v))
       a->D2(u, v, p, su, sv, suu, svv, suv);
     else
       surface->D2(u, v, p, su, sv, suu, svv, suv);
@@ -171,23 +206,31 @@ double SurfaceFace::area() const { return impl_->area; }
 
 Vec3 SurfaceFace::point(double u, double v) const {
   impl_->count();
-  if (GeomAdaptor_Surface* a = impl_->fast()) return to_vec(a->Value(u, v));
+  if (GeomAdaptor_Surface* a = impl_->fast(u, v)) return to_vec(a->Value(u, v));
   return to_vec(impl_->surface->Value(u, v));
 }
 
 struct SurfaceFace::FastEvaluation::State {
   FastScope previous;
-  GeomAdaptor_Surface adaptor;
-  explicit State(const Handle(Geom_Surface) & s) : adaptor(s) {}
+  Objects objects;
+  State(const Handle(Geom_Surface) & s, bool copy) : objects(s, copy) {}
 };
 
-SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face)
-    : state_(std::make_unique<State>(face.impl_->surface)) {
-  state_->previous = tls_fast;
-  tls_fast = {face.impl_.get(), &state_->adaptor};
+bool SurfaceFace::FastEvaluation::active(const SurfaceFace& face) {
+  return tls_fast.impl == face.impl_.get();
 }
 
-SurfaceFace::FastEvaluation::~FastEvaluation() { tls_fast = state_->previous; }
+SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face, bool own_surface)
+    : state_(std::make_unique<State>(face.impl_->surface, own_surface)) {
+  state_->previous = tls_fast;
+  tls_fast = {face.impl_.get(), &state_->objects};
+}
+
+SurfaceFace::FastEvaluation::~FastEvaluation() {
+  static_cast<const Impl*>(tls_fast.impl)
+      ->evaluations.fetch_add(state_->objects.evaluations, std::memory_order_relaxed);
+  tls_fast = state_->previous;
+}
 
 std::uint64_t SurfaceFace::evaluations() const {
   return impl_->evaluations.load(std::memory_order_relaxed);
@@ -196,11 +239,18 @@ void SurfaceFace::reset_evaluations() const {
   impl_->evaluations.store(0, std::memory_order_relaxed);
 }
 
+std::uint64_t SurfaceFace::global_projections() const {
+  return impl_->global_projections.load(std::memory_order_relaxed);
+}
+void SurfaceFace::reset_global_projections() const {
+  impl_->global_projections.store(0, std::memory_order_relaxed);
+}
+
 SurfacePoint SurfaceFace::derivatives(double u, double v) const {
   gp_Pnt p;
   gp_Vec du, dv;
   impl_->count();
-  if (GeomAdaptor_Surface* a = impl_->fast())
+  if (GeomAdaptor_Surface* a = impl_->fast(u, v))
     a->D1(u, v, p, du, dv);
   else
     impl_->surface->D1(u, v, p, du, dv);
@@ -229,30 +279,33 @@ bool SurfaceFace::is_inside(double u, double v) const {
 }
 
 Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
-  int k = 0;
-  for (TopExp_Explorer wx(impl_->face, TopAbs_WIRE); wx.More(); wx.Next(), ++k) {
-    if (k != loop) continue;
-    Vec2 best = uv;
-    double best_d = std::numeric_limits<double>::infinity();
-    const gp_Pnt2d p(uv.x(), uv.y());
-    for (TopExp_Explorer ex(wx.Current(), TopAbs_EDGE); ex.More(); ex.Next()) {
-      const TopoDS_Edge& edge = TopoDS::Edge(ex.Current());
-      double first = 0, last = 0;
-      const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(edge, impl_->face, first, last);
-      if (c.IsNull()) continue;
-      auto consider = [&](const gp_Pnt2d& q) {
-        const double d = q.Distance(p);
-        if (d < best_d) best_d = d, best = Vec2(q.X(), q.Y());
-      };
-      consider(c->Value(first));
-      consider(c->Value(last));
-      Geom2dAPI_ProjectPointOnCurve proj(p, c, first, last);
-      for (int i = 1; i <= proj.NbPoints(); ++i) consider(proj.Point(i));
+  const Impl& s = *impl_;
+  const std::lock_guard<std::mutex> lock(s.trim_mutex);
+  if (s.trim_projections.empty()) {
+    for (TopExp_Explorer wx(s.face, TopAbs_WIRE); wx.More(); wx.Next()) {
+      s.trim_projections.emplace_back();
+      for (TopExp_Explorer ex(wx.Current(), TopAbs_EDGE); ex.More(); ex.Next()) {
+        double first = 0, last = 0;
+        const Handle(Geom2d_Curve) c =
+            BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), s.face, first, last);
+        if (c.IsNull()) continue;
+        s.trim_projections.back().push_back(std::make_unique<PcurveProjection>(c, first, last));
+      }
     }
-    return best;
   }
-  require_in_range("trim loop index", loop, 0, k - 1);
-  return uv;
+  require_in_range("trim loop index", loop, 0, static_cast<int>(s.trim_projections.size()) - 1);
+  Vec2 best = uv;
+  double best_d = std::numeric_limits<double>::infinity();
+  const gp_Pnt2d p(uv.x(), uv.y());
+  std::vector<gp_Pnt2d> candidates;
+  for (const auto& edge : s.trim_projections[static_cast<std::size_t>(loop)]) {
+    edge->candidates(p, candidates);
+    for (const gp_Pnt2d& q : candidates) {
+      const double d = q.Distance(p);
+      if (d < best_d) best_d = d, best = Vec2(q.X(), q.Y());
+    }
+  }
+  return best;
 }
 
 std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
@@ -344,10 +397,14 @@ std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
   return loops;
 }
 
-Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
-                                const ProjectionParams& params) const {
-  const Impl& s = *impl_;
-  double u = s.wrap_u(start.x()), v = s.wrap_v(start.y());
+namespace {
+
+// Newton iteration of seed 004 section 4 (eq. 10-18) from (u, v); true with
+// (u, v) a foot point (an orthogonal minimum of the distance), false where it
+// does not converge, stops at a maximum or saddle, or stalls at a pole.
+template <class Impl>
+bool newton_foot(const Impl& s, const Vec3& p, double& u, double& v,
+                 const ProjectionParams& params) {
   const double eps1 = params.distance_tolerance * s.model_size;
   bool converged = false;
   for (int it = 0; it <= params.max_iterations; ++it) {
@@ -395,6 +452,41 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
       break;
     }
   }
+  return converged;
+}
+
+}  // namespace
+
+Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
+                                const ProjectionParams& params) const {
+  const Impl& s = *impl_;
+  double u = s.wrap_u(start.x()), v = s.wrap_v(start.y());
+  bool converged = newton_foot(s, p, u, v, params);
+  if (!converged && params.local_search) {
+    // Before the global search (100 ms a call on a 312 x 323-pole surface):
+    // Newton again from the nearest of 9 x 9 samples around the start, over
+    // the parameter box that (to first order in the start's tangents) holds
+    // every surface point within twice the start's distance, the foot point
+    // among them. Kept only if it is no farther than the nearest sample.
+    const double u0 = s.wrap_u(start.x()), v0 = s.wrap_v(start.y());
+    const SurfacePoint sp = derivatives(u0, v0);
+    const double reach = 2.0 * (sp.point - p).norm();
+    const double su = sp.du.norm(), sv = sp.dv.norm();
+    if (su > 0 && sv > 0 && reach > 0) {
+      const double ru = std::min(reach / su, s.search.u_max - s.search.u_min);
+      const double rv = std::min(reach / sv, s.search.v_max - s.search.v_min);
+      double best = std::numeric_limits<double>::infinity();
+      const int n = 4;
+      for (int i = -n; i <= n; ++i) {
+        for (int j = -n; j <= n; ++j) {
+          const double a = s.wrap_u(u0 + ru * i / n), b = s.wrap_v(v0 + rv * j / n);
+          const double d = (point(a, b) - p).norm();
+          if (d < best) best = d, u = a, v = b;
+        }
+      }
+      converged = newton_foot(s, p, u, v, params) && (point(u, v) - p).norm() <= best;
+    }
+  }
   Projection result;
   if (converged) {
     result.uv = {u, v};
@@ -409,20 +501,27 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
 
 Projection SurfaceFace::project(const Vec3& p) const {
   const Impl& s = *impl_;
+  s.global_projections.fetch_add(1, std::memory_order_relaxed);
   Projection result;
+  Vec2 uv;
+  bool found = false;
   try {
-    GeomAPI_ProjectPointOnSurf proj(gp_Pnt(p.x(), p.y(), p.z()), s.surface, s.search.u_min,
-                                    s.search.u_max, s.search.v_min, s.search.v_max);
-    if (proj.NbPoints() > 0) {
-      double u, v;
-      proj.LowerDistanceParameters(u, v);
-      result.uv = {u, v};
-      result.point = point(u, v);
-      result.distance = (result.point - p).norm();
-      return result;
+    if (Objects* o = s.scope()) {
+      if (!o->global) o->global = std::make_unique<GlobalProjection>(o->surface, s.search);
+      found = o->global->nearest(p, uv);
+    } else {
+      const std::lock_guard<std::mutex> lock(s.global_mutex);
+      if (!s.global) s.global = std::make_unique<GlobalProjection>(s.surface, s.search);
+      found = s.global->nearest(p, uv);
     }
   } catch (const Standard_Failure&) {
-    // fall through to sampling
+    found = false;  // fall through to sampling
+  }
+  if (found) {
+    result.uv = uv;
+    result.point = point(uv.x(), uv.y());
+    result.distance = (result.point - p).norm();
+    return result;
   }
   // No orthogonal foot point (e.g. the closest point is on the boundary of the
   // search range): best of a dense sample.

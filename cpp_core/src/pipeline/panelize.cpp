@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "analysis/coverage.h"
+#include "common/parallel_chunks.h"
 #include "mesh/boundary_pieces.h"
 #include "mesh/panel_model.h"
 #include "mesh/short_rod_merge.h"
@@ -123,6 +124,8 @@ struct Modelled {
   BoundaryPiecesReport pieces;
   int zero_area = 0;
   double core_seconds = 0;  // the method and the short rods, not the metrics
+  double metrics_seconds = 0;
+  int metrics_threads = 1;
   std::uint64_t evaluations = 0;
 };
 
@@ -150,6 +153,7 @@ Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   out.evaluations = face.evaluations();
 
+  const auto metrics_started = std::chrono::steady_clock::now();
   MetricsParams mp;
   mp.samples = value_or<int>(values, decl, "samples");
   report_stage(0.0, "measuring panels");
@@ -178,6 +182,9 @@ Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
     if (!full[static_cast<std::size_t>(out.pieces.origin[k])]) out.pieces.changed[k] = 1;
   out.metrics =
       remeasure_panels(face, out.mesh, full_metrics, out.pieces.origin, out.pieces.changed, mp);
+  out.metrics_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - metrics_started).count();
+  out.metrics_threads = worker_threads(mp.threads);
   return out;
 }
 
@@ -202,6 +209,8 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   PanelizeResult r;
   r.face = face;
   r.method = method;
+  face->reset_global_projections();
+  const auto started = std::chrono::steady_clock::now();
   Modelled m = model_panels(*face, decl, values);
   if (method == "walking_agent") {
     // walking_agent's max_deviation is a hard bound, kept on the pipeline's own
@@ -225,6 +234,8 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   r.metrics = std::move(m.metrics);
   r.summary.zero_area_panels = m.zero_area;
   r.summary.core_seconds = m.core_seconds;
+  r.summary.metrics_seconds = m.metrics_seconds;
+  r.summary.metrics_threads = m.metrics_threads;
   r.summary.surface_evaluations = m.evaluations;
   r.summary.bend_count = m.pieces.bends;
   r.summary.split_panels = m.pieces.split;
@@ -278,6 +289,9 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   } else if (s.gap_fraction > kMaxCoverageError || s.overlap_fraction > kMaxCoverageError) {
     s.coverage_warning = coverage_message(coverage, method);
   }
+  s.global_projections = face->global_projections();
+  s.pipeline_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
 

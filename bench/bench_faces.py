@@ -1,0 +1,141 @@
+"""Faces for the speed benchmarks, built in code (deterministic, not the bundled
+examples): smooth terrain-like bicubic B-spline patches with any pole count,
+and trimmed doubly curved faces (a dome with an opening, a saddle trimmed by a
+curve, a roof with a drum hole). Import FreeCAD before this module."""
+
+import math
+
+import FreeCAD
+import Part
+
+V = FreeCAD.Vector
+
+
+def height(x, y, extent, detail=0.0):
+    """A smooth terrain-like height field (mm) on [0, extent]^2: a few long
+    waves, and hills `detail` times finer (about `detail` wavelengths across;
+    0: none), deterministic."""
+    s = x / extent, y / extent
+    waves = [(0.08, 1.1, 0.7, 0.3), (0.04, 2.3, 1.9, 1.1), (0.02, 4.1, 3.7, 2.0),
+             (0.01, 7.3, 6.1, 0.5)]
+    if detail > 0:
+        waves += [(0.004, 0.61 * detail, 0.53 * detail, 0.7), (0.002, detail, 0.87 * detail, 1.3)]
+    z = 0.0
+    for a, fx, fy, ph in waves:
+        z += a * extent * math.sin(2 * math.pi * (fx * s[0] + ph)) * math.cos(
+            2 * math.pi * (fy * s[1] - 0.5 * ph))
+    return z
+
+
+def _clamped_uniform(n, degree=3):
+    """Knots and multiplicities of a clamped uniform B-spline with n poles."""
+    spans = n - degree
+    knots = [float(i) / spans for i in range(spans + 1)]
+    mults = [degree + 1] + [1] * (spans - 1) + [degree + 1]
+    return knots, mults
+
+
+def terrain_face(nu, nv, extent=100000.0):
+    """Untrimmed bicubic B-spline face with nu x nv poles over an extent x extent
+    square: poles on a regular grid, heights from height() with hills about
+    eight pole spacings wide (as fine as the poles can carry)."""
+    detail = min(nu, nv) / 8.0
+    poles = [[V(extent * i / (nu - 1), extent * j / (nv - 1),
+                height(extent * i / (nu - 1), extent * j / (nv - 1), extent, detail))
+              for j in range(nv)] for i in range(nu)]
+    uk, um = _clamped_uniform(nu)
+    vk, vm = _clamped_uniform(nv)
+    s = Part.BSplineSurface()
+    s.buildFromPolesMultsKnots(poles, um, vm, uk, vk, False, False, 3, 3)
+    return s.toShape().Faces[0]
+
+
+def _approx_surface(fn, nu, nv):
+    """A bicubic B-spline through fn(s, t) sampled on an nu x nv grid, s, t in [0,1]."""
+    pts = [[fn(i / (nu - 1), j / (nv - 1)) for j in range(nv)] for i in range(nu)]
+    s = Part.BSplineSurface()
+    s.interpolate(pts)
+    return s
+
+
+def _trimmed(surface, outer_uv, holes_uv=()):
+    """Face of `surface` trimmed by closed uv loops (lists of (u,v)), each made a
+    periodic 2D B-spline on the surface."""
+    def wire(loop):
+        pts = [FreeCAD.Base.Vector2d(u, v) for u, v in loop]
+        c = Part.Geom2d.BSplineCurve2d()
+        c.interpolate(pts, PeriodicFlag=True)
+        return Part.Wire([c.toShape(surface)])
+
+    face = Part.Face(surface, wire(outer_uv))
+    if holes_uv:
+        face.cutHoles([wire(h) for h in holes_uv])
+    face.validate()
+    if not face.isValid():
+        raise RuntimeError("benchmark face is not valid")
+    return face
+
+
+def _circle(cx, cy, r, n=48, wobble=0.0):
+    return [(cx + r * (1 + wobble * math.sin(3 * a)) * math.cos(a),
+             cy + r * (1 + wobble * math.sin(3 * a)) * math.sin(a))
+            for a in (2 * math.pi * k / n for k in range(n))]
+
+
+def dome_with_opening(radius=20000.0):
+    """A shallow dome (a paraboloid as a B-spline) trimmed by a wavy outline,
+    with an oculus off the centre."""
+    def fn(s, t):
+        x, y = radius * (2 * s - 1), radius * (2 * t - 1)
+        return V(x, y, 0.5 * radius * (1 - 0.35 * (x * x + y * y) / radius ** 2))
+    surf = _approx_surface(fn, 9, 9)
+    u0, u1, v0, v1 = surf.bounds()
+    cu, cv, ru, rv = 0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.5 * (u1 - u0), 0.5 * (v1 - v0)
+    outer = [(cu + 0.95 * ru * p, cv + 0.95 * rv * q) for p, q in _circle(0, 0, 1, 64, 0.04)]
+    hole = list(reversed([(cu + 0.2 * ru + 0.15 * ru * p, cv + 0.1 * rv + 0.15 * rv * q)
+                          for p, q in _circle(0, 0, 1, 32)]))
+    return _trimmed(surf, outer, [hole])
+
+
+def saddle_trimmed(extent=30000.0):
+    """A hyperbolic paraboloid trimmed by a smooth closed curve (no hole)."""
+    def fn(s, t):
+        x, y = extent * (s - 0.5), extent * (t - 0.5)
+        return V(x, y, 0.6 * (x * x - y * y) / extent + 0.05 * extent * math.sin(3 * s))
+    surf = _approx_surface(fn, 9, 9)
+    u0, u1, v0, v1 = surf.bounds()
+    cu, cv, ru, rv = 0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.5 * (u1 - u0), 0.5 * (v1 - v0)
+    outer = [(cu + 0.9 * ru * (math.cos(a) + 0.08 * math.cos(2 * a)),
+              cv + 0.8 * rv * (math.sin(a) + 0.1 * math.sin(3 * a)))
+             for a in (2 * math.pi * k / 72 for k in range(72))]
+    return _trimmed(surf, outer)
+
+
+def roof_with_drum(width=70000.0, depth=50000.0, drum=22000.0):
+    """A British-Museum-like roof: a doubly curved canopy over a rectangle with a
+    round drum hole in the middle, rising towards the drum."""
+    def fn(s, t):
+        x, y = width * (s - 0.5), depth * (t - 0.5)
+        r = math.hypot(x / width, y / depth)
+        return V(x, y, 6000.0 * (1 - 1.6 * r * r) + 900.0 * math.cos(3 * math.pi * s))
+    surf = _approx_surface(fn, 11, 9)
+    u0, u1, v0, v1 = surf.bounds()
+    cu, cv, ru, rv = 0.5 * (u0 + u1), 0.5 * (v0 + v1), 0.5 * (u1 - u0), 0.5 * (v1 - v0)
+    # Rounded rectangle outline (superellipse) and a circular drum in 3D terms.
+    outer = []
+    n = 96
+    for k in range(n):
+        a = 2 * math.pi * k / n
+        c, s = math.cos(a), math.sin(a)
+        outer.append((cu + 0.97 * ru * math.copysign(abs(c) ** 0.25, c),
+                      cv + 0.97 * rv * math.copysign(abs(s) ** 0.25, s)))
+    hu, hv = 0.5 * drum / width * 2 * ru, 0.5 * drum / depth * 2 * rv
+    hole = list(reversed([(cu + hu * p, cv + hv * q) for p, q in _circle(0, 0, 1, 48)]))
+    return _trimmed(surf, outer, [hole])
+
+
+TRIMMED = {
+    "dome_with_opening": dome_with_opening,
+    "saddle_trimmed": saddle_trimmed,
+    "roof_with_drum": roof_with_drum,
+}

@@ -1,0 +1,66 @@
+#include "common/parallel_chunks.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <mutex>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace tessella {
+
+int worker_threads(int requested) {
+  if (requested > 0) return requested;
+  if (const char* env = std::getenv("TESSELLA_THREADS")) {
+    const int n = std::atoi(env);
+    if (n > 0) return n;
+  }
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? static_cast<int>(hw) : 1;
+}
+
+bool ChunkQueue::next(std::size_t& begin, std::size_t& end) {
+  if (stop_.load(std::memory_order_relaxed)) return false;
+  const std::size_t c = next_.fetch_add(1, std::memory_order_relaxed);
+  if (c >= chunks()) return false;
+  begin = c * chunk_;
+  end = std::min(count_, begin + chunk_);
+  return true;
+}
+
+double ChunkQueue::claimed() const {
+  if (count_ == 0) return 1.0;
+  const std::size_t c = std::min(next_.load(std::memory_order_relaxed), chunks());
+  return std::min(1.0, double(c * chunk_) / double(count_));
+}
+
+void run_chunks(ChunkQueue& queue, int threads, const std::function<void(bool)>& worker) {
+  const std::size_t n =
+      std::max<std::size_t>(1, std::min<std::size_t>(std::max(threads, 1), queue.chunks()));
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto guarded = [&](bool calling) {
+    try {
+      worker(calling);
+    } catch (...) {
+      queue.stop();
+      const std::lock_guard<std::mutex> lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  };
+  std::vector<std::thread> others;
+  others.reserve(n - 1);
+  for (std::size_t t = 1; t < n; ++t) {
+    try {
+      others.emplace_back(guarded, false);
+    } catch (const std::system_error&) {
+      break;  // no more threads: the ones running take the remaining chunks
+    }
+  }
+  guarded(true);
+  for (std::thread& t : others) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace tessella

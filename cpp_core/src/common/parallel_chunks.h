@@ -1,0 +1,40 @@
+// A loop over fixed chunks of indices on several threads. Chunks are claimed
+// in order from a shared counter, so each index is computed exactly once by
+// some thread; a result that depends only on its own index (each thread with
+// its own evaluators) is the same for any thread count.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <functional>
+
+namespace tessella {
+
+// Threads for a parallel loop: `requested` if > 0, else the environment
+// variable TESSELLA_THREADS if set (> 0), else std::thread::hardware_concurrency().
+int worker_threads(int requested = 0);
+
+class ChunkQueue {
+ public:
+  ChunkQueue(std::size_t count, std::size_t chunk) : count_(count), chunk_(chunk ? chunk : 1) {}
+  // The next chunk [begin, end); false when all are claimed or the loop stops.
+  bool next(std::size_t& begin, std::size_t& end);
+  // Share of indices claimed so far (for progress).
+  double claimed() const;
+  std::size_t chunks() const { return (count_ + chunk_ - 1) / chunk_; }
+  void stop() { stop_.store(true, std::memory_order_relaxed); }
+
+ private:
+  std::size_t count_, chunk_;
+  std::atomic<std::size_t> next_{0};
+  std::atomic<bool> stop_{false};
+};
+
+// Runs worker(on_calling_thread) on min(threads, queue.chunks()) threads, the
+// calling thread being one of them (only it may report progress: the progress
+// sink is the caller's). Each worker takes chunks from `queue` until it is
+// empty. The first exception stops the queue, the others finish their chunk,
+// and it is rethrown here.
+void run_chunks(ChunkQueue& queue, int threads, const std::function<void(bool)>& worker);
+
+}  // namespace tessella

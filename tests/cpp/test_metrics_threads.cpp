@@ -1,0 +1,129 @@
+// Metrics on several threads (MetricsParams::threads): every panel's figures
+// are the same bit for bit for any thread count, a failure or a cancel on any
+// thread reaches the caller, and the global projection is counted.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "common/parallel_chunks.h"
+#include "tessella/grid_methods.h"
+#include "tessella/panel_metrics.h"
+#include "tessella/panelize.h"
+#include "tessella/progress.h"
+#include "test_faces.h"
+
+namespace tessella {
+namespace {
+
+std::shared_ptr<const SurfaceFace> example(const std::string& name) {
+  std::ifstream in(std::string(TESSELLA_EXAMPLES_DIR "/") + name + ".brep");
+  std::stringstream text;
+  text << in.rdbuf();
+  return std::make_shared<const SurfaceFace>(SurfaceFace::from_brep_string(text.str()));
+}
+
+void expect_identical(const PanelMetrics& a, const PanelMetrics& b) {
+  // EXPECT_EQ on vectors of doubles: exact, bit for bit (no NaN here).
+  EXPECT_EQ(a.deviation, b.deviation);
+  EXPECT_EQ(a.deviation_unreliable, b.deviation_unreliable);
+  EXPECT_EQ(a.planarity, b.planarity);
+  EXPECT_EQ(a.area, b.area);
+  EXPECT_EQ(a.min_angle, b.min_angle);
+  EXPECT_EQ(a.max_angle, b.max_angle);
+  EXPECT_EQ(a.rod_length, b.rod_length);
+}
+
+TEST(MetricsThreads, OneAndTwoThreadsGiveIdenticalMetrics) {
+  for (const char* name : {"trimmed_bspline_holes", "bezier_patch", "vault_openings"}) {
+    SCOPED_TRACE(name);
+    const auto face = example(name);
+    IsoGridParams g;
+    g.u_count = 23;  // boundary panels (n-gons) and quads, many chunks
+    g.v_count = 19;
+    const PanelMesh mesh = iso_grid(*face, g);
+    ASSERT_GT(mesh.panels.size(), 100u);
+    MetricsParams one, two;
+    one.threads = 1;
+    two.threads = 2;
+    const PanelMetrics a = measure_panels(*face, mesh, one);
+    const PanelMetrics b = measure_panels(*face, mesh, two);
+    ASSERT_EQ(a.deviation.size(), mesh.panels.size());
+    expect_identical(a, b);
+    MetricsParams three = two;
+    three.threads = 3;  // more threads than cores: still the same
+    expect_identical(a, measure_panels(*face, mesh, three));
+  }
+}
+
+TEST(MetricsThreads, ThePipelineIsIdenticalOnOneAndTwoThreads) {
+  const auto face = example("trimmed_bspline_holes");
+  // (coarser, its network overlaps an opening: refused by the coverage check)
+  const ParamValues v{{"size", 0.04 * face->model_size()}};
+  setenv("TESSELLA_THREADS", "1", 1);
+  const PanelizeResult a = panelize(face, "boundary_driven", v);
+  setenv("TESSELLA_THREADS", "2", 1);
+  const PanelizeResult b = panelize(face, "boundary_driven", v);
+  unsetenv("TESSELLA_THREADS");
+  EXPECT_EQ(a.summary.metrics_threads, 1);
+  EXPECT_EQ(b.summary.metrics_threads, 2);
+  ASSERT_EQ(a.mesh.panels, b.mesh.panels);
+  expect_identical(a.metrics, b.metrics);
+  EXPECT_EQ(a.summary.global_projections, b.summary.global_projections);
+}
+
+TEST(MetricsThreads, WorkerThreadsFollowTheParameterThenTheEnvironment) {
+  EXPECT_EQ(worker_threads(3), 3);
+  setenv("TESSELLA_THREADS", "5", 1);
+  EXPECT_EQ(worker_threads(0), 5);
+  EXPECT_EQ(worker_threads(2), 2);
+  unsetenv("TESSELLA_THREADS");
+  EXPECT_GE(worker_threads(0), 1);
+}
+
+TEST(MetricsThreads, AFailureOnAnyThreadReachesTheCaller) {
+  ChunkQueue queue(1000, 8);
+  EXPECT_THROW(run_chunks(queue, 2,
+                          [&](bool calling) {
+                            std::size_t b, e;
+                            while (queue.next(b, e))
+                              if (!calling && b >= 80) throw std::runtime_error("worker");
+                            if (!calling) throw std::runtime_error("worker");
+                          }),
+               std::runtime_error);
+}
+
+TEST(MetricsThreads, CancelStopsTheParallelMetrics) {
+  const auto face = example("trimmed_bspline_holes");
+  IsoGridParams g;
+  g.u_count = 30;
+  g.v_count = 30;
+  const PanelMesh mesh = iso_grid(*face, g);
+  MetricsParams two;
+  two.threads = 2;
+  ProgressScope scope([](double, const char*) { return false; });
+  EXPECT_THROW(measure_panels(*face, mesh, two), Cancelled);
+}
+
+TEST(MetricsThreads, GlobalProjectionsAreCountedAndAgreeWithAFreshSearch) {
+  const auto face = example("bezier_patch");
+  const UvBounds b = face->bounds();
+  face->reset_global_projections();
+  const Vec3 far = face->point(0.3 * (b.u_min + b.u_max), 0.5 * (b.v_min + b.v_max)) +
+                   Vec3(0, 0, 0.3 * face->model_size());
+  const Projection once = face->project(far);
+  const Projection again = face->project(far);  // the reused search
+  EXPECT_EQ(face->global_projections(), 2u);
+  EXPECT_EQ(once.uv, again.uv);
+  {
+    const SurfaceFace::FastEvaluation fast(*face);  // the scope's own search
+    const Projection scoped = face->project(far);
+    EXPECT_NEAR((scoped.point - once.point).norm(), 0.0, 1e-9 * face->model_size());
+  }
+  EXPECT_EQ(face->global_projections(), 3u);
+}
+
+}  // namespace
+}  // namespace tessella
