@@ -17,6 +17,7 @@ import pytest
 from matplotlib.path import Path
 
 import freecad_workbench as tessella
+from conftest import dense_quad_deviation
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 TILING = ("iso_grid", "equal_size_grid", "walking_agent", "gradient_descent", "boundary_driven")
@@ -98,19 +99,6 @@ def test_a_partial_guide_line_grid_reports_its_gap():
     assert abs(s["gap_fraction"] - gap) < 0.03, (s["gap_fraction"], gap)
 
 
-def _dense_quad_deviation(surface, p, n=30):
-    s = np.linspace(0.0, 1.0, n + 1)
-    S, T = np.meshgrid(s, s)
-    S, T = S.ravel()[:, None], T.ravel()[:, None]
-    pts = (1 - S) * (1 - T) * p[0] + S * (1 - T) * p[1] + S * T * p[2] + (1 - S) * T * p[3]
-    worst = 0.0
-    for x in pts:
-        u, v = surface.parameter(FreeCAD.Vector(*x))
-        q = surface.value(u, v)
-        worst = max(worst, math.dist((q.x, q.y, q.z), x))
-    return worst
-
-
 @pytest.mark.parametrize("name", ("british_museum_roof", "trimmed_bspline_holes"))
 def test_walking_agent_bound_holds_on_the_pipeline_measure(name):
     """On these two faces the agent's own estimate let panels through 2% and
@@ -123,7 +111,7 @@ def test_walking_agent_bound_holds_on_the_pipeline_measure(name):
     assert dev.max() <= bound, (dev.max(), bound)
     quads = sorted((k for k, p in enumerate(r.panels) if len(p) == 4), key=lambda k: -dev[k])
     for k in quads[:5]:
-        dense = _dense_quad_deviation(face.Surface, r.vertices[list(r.panels[k])])
+        dense = dense_quad_deviation(face.Surface, r.vertices[list(r.panels[k])], 30)
         assert dense <= bound * (1 + 1e-9), (k, dense, bound)
         assert dense <= dev[k] * (1 + 1e-6) + 1e-9, (k, dense, dev[k])
 

@@ -3,29 +3,20 @@ to the surface, within 1%: checked against an independent dense re-measure with
 FreeCAD's own projection (Surface.parameter + Surface.value) of 41 x 41 points
 of each quad's bilinear patch, on the freeform face (not a bundled example)."""
 
-import math
 
 import FreeCAD  # noqa: F401  (before Part)
 import numpy as np
 import pytest
 
 import freecad_workbench as tessella
+from conftest import dense_quad_deviation
 
 DENSE = 40
 
 
 def dense_deviation(surface, p):
     """Largest distance of the bilinear patch of the quad p (4 x 3) to the surface."""
-    s = np.linspace(0.0, 1.0, DENSE + 1)
-    S, T = np.meshgrid(s, s)
-    S, T = S.ravel()[:, None], T.ravel()[:, None]
-    pts = (1 - S) * (1 - T) * p[0] + S * (1 - T) * p[1] + S * T * p[2] + (1 - S) * T * p[3]
-    worst = 0.0
-    for x in pts:
-        u, v = surface.parameter(FreeCAD.Vector(*x))
-        q = surface.value(u, v)
-        worst = max(worst, math.dist((q.x, q.y, q.z), x))
-    return worst
+    return dense_quad_deviation(surface, p, DENSE)
 
 
 def quads_to_check(result, worst=15, others=15):
