@@ -56,7 +56,7 @@ namespace {
 struct Probe {
   double distance = 0;
   bool reliable = true;
-  Vec2 foot;
+  Vec2 foot = Vec2::Zero();
 };
 
 // Every distance here is that of x to a true surface point, so each is an
@@ -70,7 +70,27 @@ class Prober {
     local_.local_search = true;
   }
 
-  Probe operator()(const Vec3& x, const Vec2& start) const {
+  // A cheap upper bound of the probe at x (sample parameters q): the distance
+  // to the surface point at q itself, one evaluation and no projection. A
+  // probe never returns more than this + slack(), so a sample whose bound
+  // cannot beat a distance already found is not projected.
+  double cheap_bound(const Vec3& x, const Vec2& q) const {
+    return (face_.point(q.x(), q.y()) - x).norm();
+  }
+  double slack() const { return tiny_; }
+
+  // The distance from x (model parameters q) to the surface, projecting from
+  // `start`. Never more than cheap_bound(x, q), S(q) being a real surface
+  // point: a Newton run that ended farther found no nearer foot point.
+  Probe operator()(const Vec3& x, const Vec2& start, const Vec2& q) const {
+    const Probe p = project(x, start);
+    const double at_q = cheap_bound(x, q);
+    if (at_q + tiny_ < p.distance) return {at_q, false, q};
+    return p;
+  }
+
+ private:
+  Probe project(const Vec3& x, const Vec2& start) const {
     const Projection pr = face_.project(x, start, local_);
     std::size_t near = 0;
     double bound = std::numeric_limits<double>::infinity();
@@ -88,12 +108,10 @@ class Prober {
     };
     const Projection again = face_.project(x, uv_[near], local_);
     offer(again.distance, !again.used_fallback || orthogonal(x, again), again.uv);
-    offer((face_.point(start.x(), start.y()) - x).norm(), false, start);
     offer(bound, false, uv_[near]);
     return best;
   }
 
- private:
   bool orthogonal(const Vec3& x, const Projection& pr) const {
     if (pr.distance <= tiny_) return true;
     const SurfacePoint sp = face_.derivatives(pr.uv.x(), pr.uv.y());
@@ -175,7 +193,8 @@ Sample refine(const PanelModel& model, const Prober& probe, Sample s, double h0)
         Vec2 q;
         model.at(s.tri, a, b, x, q);
         --budget;
-        const Probe pr = probe(x, s.probe.reliable ? s.probe.foot : q);
+        if (probe.cheap_bound(x, q) + probe.slack() <= s.probe.distance) continue;  // no gain
+        const Probe pr = probe(x, s.probe.reliable ? s.probe.foot : q, q);
         if (pr.distance > s.probe.distance) {
           s = {s.tri, a, b, pr};
           moved = true;
@@ -195,7 +214,10 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
   const Prober probe(face, uv);
   const PanelModel model(p, uv, tris);
   std::vector<Sample> grid;
-  std::vector<double> step;  // grid step of each piece, in its parameters
+  std::vector<Vec3> grid_x;
+  std::vector<Vec2> grid_q;
+  std::vector<double> grid_bound;  // cheap_bound of each sample
+  std::vector<double> step;        // grid step of each piece, in its parameters
   auto sample_piece = [&](int tri, int n) {
     step.push_back(1.0 / n);
     for (int i = 0; i <= n; ++i) {
@@ -204,8 +226,10 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
         Vec3 x;
         Vec2 q;
         model.at(tri, s.a, s.b, x, q);
-        s.probe = probe(x, q);
         grid.push_back(s);
+        grid_x.push_back(x);
+        grid_q.push_back(q);
+        grid_bound.push_back(probe.cheap_bound(x, q));
       }
     }
   };
@@ -225,10 +249,27 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
       sample_piece(static_cast<int>(k), n);
     }
   }
+  // Project the samples in order of their cheap bounds, down to 70% of the
+  // largest distance found: the rest can be neither the largest nor a seed
+  // below (their distance is under their bound), so the figures are those of
+  // projecting every sample, at a few projections a panel instead of ~80.
+  std::vector<std::size_t> by_bound(grid.size());
+  for (std::size_t k = 0; k < by_bound.size(); ++k) by_bound[k] = k;
+  std::stable_sort(by_bound.begin(), by_bound.end(),
+                   [&](std::size_t x, std::size_t y) { return grid_bound[x] > grid_bound[y]; });
+  std::vector<char> probed(grid.size(), 0);
+  double top = 0;
+  for (std::size_t k : by_bound) {
+    if (grid_bound[k] + probe.slack() < 0.7 * top) break;
+    grid[k].probe = probe(grid_x[k], grid_q[k], grid_q[k]);
+    probed[k] = 1;
+    top = std::max(top, grid[k].probe.distance);
+  }
   // Refine around the largest samples of distinct places (at most three, at
   // least 70% of the largest): the maximum usually lies between grid points.
-  std::vector<std::size_t> order(grid.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < grid.size(); ++k)
+    if (probed[k]) order.push_back(k);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
     return grid[x].probe.distance > grid[y].probe.distance;
   });
