@@ -385,6 +385,10 @@ class Panelization(_StateMixin):
         obj.QuadShare = float(s.get("quad_share", 0.0))
         if "Folds" in obj.PropertiesList:
             obj.Folds = int(s.get("fold_count", 0))
+        # Methods that need not tile the face (guide lines, relaxed_grid) say
+        # where they leave it uncovered or overlap (summary coverage_warning).
+        if s.get("coverage_warning"):
+            FreeCAD.Console.PrintWarning(f"Tessella: {obj.Label}: {s['coverage_warning']}\n")
 
 
 class PanelizationPart(_StateMixin):
