@@ -317,3 +317,21 @@ TEST(IsoGrid, AHoleInTheMiddleCellOfAThreeByThreeGridLeavesNoGap) {
   for (double a : measure_panels(f, m).area) area += a;
   EXPECT_NEAR(area, 1e6 - 200.0 * 200.0, 1e-6);
 }
+
+TEST(PanelModel, ADentedQuadOfFourNodesIsFlatPiecesNotAFoldedBilinearPatch) {
+  // Half of a cell split around an opening, split again by a new rod, can be
+  // a quad dented at one node; its bilinear patch folds over itself and
+  // counted the dent twice (the vault's and the plate's model_area refused).
+  PanelMesh m;
+  for (const Vec2& q : {Vec2(0, 0), Vec2(300, 100), Vec2(100, 100), Vec2(0, 300)}) {
+    m.uv.push_back(q);
+    m.xyz.push_back(Vec3(q.x(), q.y(), 0));
+  }
+  m.panels.push_back({0, 1, 2, 3});
+  EXPECT_TRUE(modelled_as_pieces(m, 0));
+  EXPECT_NEAR(panel_area(m, 0), signed_area(panel_corner_uv(m, 0)), 1e-9);
+  EXPECT_NEAR(panel_area(m, 0), 25000.0, 1e-9);
+  // A convex quad stays a bilinear patch.
+  m.uv[2] = Vec2(200, 200), m.xyz[2] = Vec3(200, 200, 0);
+  EXPECT_FALSE(modelled_as_pieces(m, 0));
+}
