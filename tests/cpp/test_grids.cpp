@@ -2,6 +2,11 @@
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepLib.hxx>
+#include <GCE2d_MakeSegment.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
 #include <cmath>
 #include <gp_Circ.hxx>
 #include <set>
@@ -306,9 +311,15 @@ TEST(IsoGrid, AHoleInsideOneCellIsSplitWithoutOverlap) {
 
 TEST(IsoGrid, AHoleInTheMiddleCellOfAThreeByThreeGridLeavesNoGap) {
   // Square hole in the middle cell: the split's ends (500, 333) and
-  // (500, 667) used to be pulled onto the hole's edges.
+  // (500, 667) used to be pulled onto the hole's edges, into the rows of
+  // cells below and above (a spike in each).
   const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
   const PanelMesh m = iso_grid(f, counts(3, 3));
+  for (const Vec2& end : {Vec2(500, 1000.0 / 3), Vec2(500, 2000.0 / 3)}) {
+    bool found = false;
+    for (const Vec2& q : m.uv) found = found || (q - end).norm() < 1e-9;
+    EXPECT_TRUE(found) << end.transpose();
+  }
   const Coverage c = measure_coverage(f, m, measure_panels(f, m).area);
   EXPECT_NEAR(c.face_area, 1e6 - 200.0 * 200.0, 1e-6 * 1e6);
   EXPECT_LT(c.gap_fraction(), 1e-9);
@@ -334,4 +345,54 @@ TEST(PanelModel, ADentedQuadOfFourNodesIsFlatPiecesNotAFoldedBilinearPatch) {
   // A convex quad stays a bilinear patch.
   m.uv[2] = Vec2(200, 200), m.xyz[2] = Vec3(200, 200, 0);
   EXPECT_FALSE(modelled_as_pieces(m, 0));
+}
+
+namespace {
+// A closed polygon of straight (u,v) segments on `surface`.
+TopoDS_Wire uv_polygon(const Handle(Geom_Surface) & surface, const std::vector<gp_Pnt2d>& pts) {
+  BRepBuilderAPI_MakeWire wire;
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const gp_Pnt2d& a = pts[k];
+    const gp_Pnt2d& b = pts[(k + 1) % pts.size()];
+    wire.Add(BRepBuilderAPI_MakeEdge(GCE2d_MakeSegment(a, b).Value(), surface).Edge());
+  }
+  return wire.Wire();
+}
+}  // namespace
+
+TEST(IsoGrid, AHoleInOneCellOfAStretchedParameterizationDoesNotWrapTheNeighbour) {
+  // The plate [0,1000]^2 with u = x / 1000 and v = y (as vault_openings: u
+  // spans 1, v thousands), an opening u in [0.4, 0.6], v in [200, 400] inside
+  // the cell [0.1, 0.7] x [100, 500], split at u = 0.5. In (u,v) the split's
+  // ends (0.5, 100) and (0.5, 500) are nearest the edge u = 0, at the grid
+  // nodes (0, 100) and (0, 500): snapped there, they welded onto them and the
+  // half-cells wrapped around the full cells of the first column.
+  TColgp_Array2OfPnt poles(1, 3, 1, 2);
+  for (int i = 1; i <= 3; ++i) {
+    poles(i, 1) = gp_Pnt(500.0 * (i - 1), 0, 0);
+    poles(i, 2) = gp_Pnt(500.0 * (i - 1), 1000, 0);
+  }
+  TColStd_Array1OfReal uk(1, 3), vk(1, 2);
+  uk(1) = 0, uk(2) = 0.5, uk(3) = 1, vk(1) = 0, vk(2) = 1000;
+  TColStd_Array1OfInteger umult(1, 3), vmult(1, 2);
+  umult(1) = 2, umult(2) = 1, umult(3) = 2, vmult(1) = vmult(2) = 2;
+  Handle(Geom_BSplineSurface) surface = new Geom_BSplineSurface(poles, uk, vk, umult, vmult, 1, 1);
+  BRepBuilderAPI_MakeFace mk(surface, uv_polygon(surface, {{0, 0}, {1, 0}, {1, 1000}, {0, 1000}}),
+                             true);
+  mk.Add(uv_polygon(surface, {{0.4, 200}, {0.4, 400}, {0.6, 400}, {0.6, 200}}));
+  TopoDS_Face face = mk.Face();
+  BRepLib::BuildCurves3d(face);
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(face));
+  GridClipParams params;
+  params.sliver_fraction = 0.0;
+  const PanelMesh m = clip_grid(f, {0, 0.1, 0.7, 1}, {0, 100, 500, 1000}, params);
+  const Coverage c = measure_coverage(f, m, measure_panels(f, m).area);
+  EXPECT_NEAR(c.face_area, 1e6 - 200.0 * 200.0, 1e-6 * 1e6);
+  EXPECT_LT(c.gap_fraction(), 1e-9);
+  EXPECT_LT(c.overlap_fraction(), 1e-9);
+  double area = 0;
+  for (double a : measure_panels(f, m).area) area += a;
+  EXPECT_NEAR(area, 1e6 - 200.0 * 200.0, 1e-6);
+  // No panel repeats a vertex (wrapping around a neighbour welds its corners in).
+  for (const auto& p : m.panels) EXPECT_EQ(std::set<int>(p.begin(), p.end()).size(), p.size());
 }
