@@ -2,14 +2,21 @@
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepLib.hxx>
+#include <GCE2d_MakeSegment.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
 #include <cmath>
 #include <gp_Circ.hxx>
 #include <set>
 
+#include "analysis/coverage.h"
+#include "mesh/grid_clipping.h"
+#include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_metrics.h"
-#include "mesh/panel_model.h"
 #include "test_faces.h"
 
 using namespace tessella;
@@ -227,4 +234,165 @@ TEST(IsoGrid, OnlyCrossingsAndCornersOfACurvedTrimAreNodes) {
       EXPECT_TRUE(on_line || std::abs(x.norm() - 500.0) < 1e-6);
     }
   }
+}
+
+namespace {
+// Signed (u,v) area of a polygon (counter-clockwise > 0).
+double signed_area(const std::vector<Vec2>& q) {
+  double a = 0;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const Vec2& p = q[k];
+    const Vec2& r = q[(k + 1) % q.size()];
+    a += p.x() * r.y() - p.y() * r.x();
+  }
+  return 0.5 * a;
+}
+
+// Strictly inside a simple polygon (even-odd), at least `margin` from its edges.
+bool strictly_inside(const std::vector<Vec2>& q, const Vec2& x, double margin) {
+  bool in = false;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const Vec2& a = q[k];
+    const Vec2& b = q[(k + 1) % q.size()];
+    const Vec2 d = b - a;
+    const double t = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    if ((a + t * d - x).norm() < margin) return false;
+    if ((a.y() > x.y()) != (b.y() > x.y()) &&
+        x.x() < a.x() + (x.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+      in = !in;
+  }
+  return in;
+}
+}  // namespace
+
+// A whole opening inside one grid cell: the cell is split through the hole,
+// and the split line's ends on the cell's grid lines are no trim crossings.
+// They used to be snapped onto the nearest trim (here the plate's edge x = 0,
+// across the neighbouring cell), so panels wrapped around their neighbours.
+TEST(IsoGrid, AHoleInsideOneCellIsSplitWithoutOverlap) {
+  BRepBuilderAPI_MakeFace mk(gp_Pln(), rect_wire(0, 0, 1000, 1000, false));
+  mk.Add(rect_wire(400, 300, 600, 700, true));
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(mk.Face()));
+  const double hole_free = 1000.0 * 1000.0 - 200.0 * 400.0;
+  // The tall cell [100,700] x [100,900] holds the hole and is split at y = 500,
+  // whose ends (100,500) and (700,500) are nearer the plate's edges than the hole.
+  for (double sliver : {0.0, 0.25}) {
+    GridClipParams params;
+    params.sliver_fraction = sliver;
+    const PanelMesh m = clip_grid(f, {0, 100, 700, 1000}, {0, 100, 900, 1000}, params);
+    // Independent of the coverage scan: on a plane the panels' (u,v) areas
+    // (u,v = x,y) tile the face only if they add up to it and no panel holds
+    // another's vertex.
+    double area = 0;
+    std::vector<std::vector<Vec2>> polys;
+    for (std::size_t p = 0; p < m.panels.size(); ++p) {
+      polys.push_back(panel_corner_uv(m, p));
+      const double a = signed_area(polys.back());
+      EXPECT_GT(a, 0.0) << "panel " << p;
+      area += a;
+    }
+    EXPECT_NEAR(area, hole_free, 1e-6 * hole_free);
+    for (std::size_t p = 0; p < polys.size(); ++p)
+      for (std::size_t v = 0; v < m.uv.size(); ++v)
+        EXPECT_FALSE(strictly_inside(polys[p], m.uv[v], 1e-6))
+            << "panel " << p << " holds vertex " << m.uv[v].transpose();
+    // The split line's ends stay where the split put them.
+    for (const Vec2& end : {Vec2(100, 500), Vec2(700, 500)}) {
+      bool found = false;
+      for (const Vec2& q : m.uv) found = found || (q - end).norm() < 1e-9;
+      EXPECT_TRUE(found) << end.transpose();
+    }
+    const Coverage c = measure_coverage(f, m, measure_panels(f, m).area);
+    EXPECT_LT(c.gap_fraction(), 1e-9);
+    EXPECT_LT(c.overlap_fraction(), 1e-9);
+    EXPECT_NO_THROW(check_coverage(c, 0.0, "test"));
+  }
+}
+
+TEST(IsoGrid, AHoleInTheMiddleCellOfAThreeByThreeGridLeavesNoGap) {
+  // Square hole in the middle cell: the split's ends (500, 333) and
+  // (500, 667) used to be pulled onto the hole's edges, into the rows of
+  // cells below and above (a spike in each).
+  const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
+  const PanelMesh m = iso_grid(f, counts(3, 3));
+  for (const Vec2& end : {Vec2(500, 1000.0 / 3), Vec2(500, 2000.0 / 3)}) {
+    bool found = false;
+    for (const Vec2& q : m.uv) found = found || (q - end).norm() < 1e-9;
+    EXPECT_TRUE(found) << end.transpose();
+  }
+  const Coverage c = measure_coverage(f, m, measure_panels(f, m).area);
+  EXPECT_NEAR(c.face_area, 1e6 - 200.0 * 200.0, 1e-6 * 1e6);
+  EXPECT_LT(c.gap_fraction(), 1e-9);
+  EXPECT_LT(c.overlap_fraction(), 1e-9);
+  double area = 0;
+  for (double a : measure_panels(f, m).area) area += a;
+  EXPECT_NEAR(area, 1e6 - 200.0 * 200.0, 1e-6);
+}
+
+TEST(PanelModel, ADentedQuadOfFourNodesIsFlatPiecesNotAFoldedBilinearPatch) {
+  // Half of a cell split around an opening, split again by a new rod, can be
+  // a quad dented at one node; its bilinear patch folds over itself and
+  // counted the dent twice (the vault's and the plate's model_area refused).
+  PanelMesh m;
+  for (const Vec2& q : {Vec2(0, 0), Vec2(300, 100), Vec2(100, 100), Vec2(0, 300)}) {
+    m.uv.push_back(q);
+    m.xyz.push_back(Vec3(q.x(), q.y(), 0));
+  }
+  m.panels.push_back({0, 1, 2, 3});
+  EXPECT_TRUE(modelled_as_pieces(m, 0));
+  EXPECT_NEAR(panel_area(m, 0), signed_area(panel_corner_uv(m, 0)), 1e-9);
+  EXPECT_NEAR(panel_area(m, 0), 25000.0, 1e-9);
+  // A convex quad stays a bilinear patch.
+  m.uv[2] = Vec2(200, 200), m.xyz[2] = Vec3(200, 200, 0);
+  EXPECT_FALSE(modelled_as_pieces(m, 0));
+}
+
+namespace {
+// A closed polygon of straight (u,v) segments on `surface`.
+TopoDS_Wire uv_polygon(const Handle(Geom_Surface) & surface, const std::vector<gp_Pnt2d>& pts) {
+  BRepBuilderAPI_MakeWire wire;
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const gp_Pnt2d& a = pts[k];
+    const gp_Pnt2d& b = pts[(k + 1) % pts.size()];
+    wire.Add(BRepBuilderAPI_MakeEdge(GCE2d_MakeSegment(a, b).Value(), surface).Edge());
+  }
+  return wire.Wire();
+}
+}  // namespace
+
+TEST(IsoGrid, AHoleInOneCellOfAStretchedParameterizationDoesNotWrapTheNeighbour) {
+  // The plate [0,1000]^2 with u = x / 1000 and v = y (as vault_openings: u
+  // spans 1, v thousands), an opening u in [0.4, 0.6], v in [200, 400] inside
+  // the cell [0.1, 0.7] x [100, 500], split at u = 0.5. In (u,v) the split's
+  // ends (0.5, 100) and (0.5, 500) are nearest the edge u = 0, at the grid
+  // nodes (0, 100) and (0, 500): snapped there, they welded onto them and the
+  // half-cells wrapped around the full cells of the first column.
+  TColgp_Array2OfPnt poles(1, 3, 1, 2);
+  for (int i = 1; i <= 3; ++i) {
+    poles(i, 1) = gp_Pnt(500.0 * (i - 1), 0, 0);
+    poles(i, 2) = gp_Pnt(500.0 * (i - 1), 1000, 0);
+  }
+  TColStd_Array1OfReal uk(1, 3), vk(1, 2);
+  uk(1) = 0, uk(2) = 0.5, uk(3) = 1, vk(1) = 0, vk(2) = 1000;
+  TColStd_Array1OfInteger umult(1, 3), vmult(1, 2);
+  umult(1) = 2, umult(2) = 1, umult(3) = 2, vmult(1) = vmult(2) = 2;
+  Handle(Geom_BSplineSurface) surface = new Geom_BSplineSurface(poles, uk, vk, umult, vmult, 1, 1);
+  BRepBuilderAPI_MakeFace mk(surface, uv_polygon(surface, {{0, 0}, {1, 0}, {1, 1000}, {0, 1000}}),
+                             true);
+  mk.Add(uv_polygon(surface, {{0.4, 200}, {0.4, 400}, {0.6, 400}, {0.6, 200}}));
+  TopoDS_Face face = mk.Face();
+  BRepLib::BuildCurves3d(face);
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(face));
+  GridClipParams params;
+  params.sliver_fraction = 0.0;
+  const PanelMesh m = clip_grid(f, {0, 0.1, 0.7, 1}, {0, 100, 500, 1000}, params);
+  const Coverage c = measure_coverage(f, m, measure_panels(f, m).area);
+  EXPECT_NEAR(c.face_area, 1e6 - 200.0 * 200.0, 1e-6 * 1e6);
+  EXPECT_LT(c.gap_fraction(), 1e-9);
+  EXPECT_LT(c.overlap_fraction(), 1e-9);
+  double area = 0;
+  for (double a : measure_panels(f, m).area) area += a;
+  EXPECT_NEAR(area, 1e6 - 200.0 * 200.0, 1e-6);
+  // No panel repeats a vertex (wrapping around a neighbour welds its corners in).
+  for (const auto& p : m.panels) EXPECT_EQ(std::set<int>(p.begin(), p.end()).size(), p.size());
 }

@@ -49,13 +49,8 @@ def _base(method, doc_edges):
         return {"rod_length": STEP, "guides": [doc_edges[1]]}
     if method in ("two_guide_lines", "guide_line_diamond"):
         return {"rod_length": STEP, "guides": list(doc_edges)}
-    if method == "walking_agent":
+    if method in ("walking_agent", "gradient_descent"):
         return {"max_deviation": DEVIATION}
-    if method == "gradient_descent":
-        # At 0.004 x the diagonal one grid cell holds a whole opening, and the
-        # split around it overlaps its neighbour (refused by the coverage
-        # check; issue 18): a finer target here.
-        return {"max_deviation": 0.75 * DEVIATION}
     return {"u_count": 5, "v_count": 4}  # relaxed_grid
 
 
@@ -65,7 +60,6 @@ SPECIAL = {
     ("iso_grid", "v_count"): {"u_count": 5, "v_count": 6, "size": None},
     # finer than the generic 1.2 x STEP (see _base: coarser runs are refused)
     ("boundary_driven", "size"): {"size": 0.7 * STEP},
-    ("gradient_descent", "max_deviation"): {"max_deviation": 0.6 * DEVIATION},
     "trim_deflection": 1e-6 * 2 * FACE.BoundBox.DiagonalLength,
     "guide_tolerance": 0.1 * FACE.BoundBox.DiagonalLength,
     "advance": 0.9 * STEP,

@@ -46,6 +46,10 @@ struct PointEq {
 };
 
 constexpr double kIntRange = 1125899906842624.0;  // 2^50
+// A point this close (integer units, ~1e-14 of the span) to a trim polyline
+// lies on it: Clipper rounds each crossing to the nearest integer point; the
+// margin covers the double arithmetic of the distance at 2^50.
+constexpr double kOnTrimUnits = 64.0;
 
 // Affine map between (u,v) and Clipper's integer plane.
 struct IntegerFrame {
@@ -381,6 +385,12 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   // Crossings of a grid line (or a hole's split line) with a trim lie on the
   // trim polyline's chord; move them onto the trim edges' own curves, so every
   // boundary vertex is on the true trim (the polyline's own points already are).
+  // Only points on the polyline (within Clipper's rounding) are crossings: a
+  // hole's split line also ends on a grid line away from any trim, and moving
+  // that point to the nearest trim would drag both halves' corners (and the
+  // neighbour's T-junction) across other panels.
+  const Vec2 origin(frame.u0, frame.v0), scale(frame.su, frame.sv);
+  auto to_units = [&](const Vec2& x) { return Vec2((x - origin).cwiseProduct(scale)); };
   for (std::size_t v = 0; v < int_points.size(); ++v) {
     const IntPoint& p = int_points[v];
     const bool grid_node = x_line.count(p.X) && y_line.count(p.Y);
@@ -391,13 +401,16 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
     for (std::size_t l = 0; l < loops.size(); ++l) {
       const auto& uv = loops[l].uv;
       for (std::size_t k = 0; k < uv.size(); ++k) {
-        const Vec2 a = uv[k], d = uv[(k + 1) % uv.size()] - a;
-        const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-        const double dist = (a + t * d - q).squaredNorm();
+        // In integer units, where the crossings were rounded.
+        const Vec2 a = to_units(uv[k]);
+        const Vec2 d = to_units(uv[(k + 1) % uv.size()]) - a;
+        const Vec2 qs = to_units(q);
+        const double t = std::clamp((qs - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        const double dist = (a + t * d - qs).squaredNorm();
         if (dist < best) best = dist, best_loop = int(l);
       }
     }
-    if (best_loop < 0) continue;
+    if (best_loop < 0 || best > kOnTrimUnits * kOnTrimUnits) continue;
     const Vec2 snapped = face.snap_to_trim(best_loop, q);
     mesh.uv[v] = snapped;
     mesh.xyz[v] = face.point(snapped.x(), snapped.y());

@@ -161,13 +161,32 @@ double panel_model_area(const std::vector<Vec3>& xyz, const std::vector<Vec2>& u
   return area;
 }
 
+namespace {
+// Whether a quad's (u,v) corners turn the other way at some corner (a dent):
+// its bilinear patch would fold over itself, counting the dent twice.
+bool dented_quad(const std::vector<Vec2>& q) {
+  double turn[4], largest = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2 a = q[(i + 1) % 4] - q[i], b = q[(i + 2) % 4] - q[(i + 1) % 4];
+    turn[i] = a.x() * b.y() - a.y() * b.x();
+    largest = std::max(largest, std::abs(turn[i]));
+  }
+  const double tol = 1e-12 * largest;
+  bool left = false, right = false;
+  for (double t : turn) left = left || t > tol, right = right || t < -tol;
+  return left && right;
+}
+}  // namespace
+
 bool modelled_as_pieces(const PanelMesh& mesh, std::size_t k) {
   const std::vector<int>& panel = mesh.panels[k];
   if (panel.size() > 4) return true;
   if (panel.size() < 4) return false;
   for (int v : panel)
     if (!is_node(mesh, v)) return true;
-  return false;
+  // A dented quad of four nodes (e.g. half of a cell split around an opening,
+  // split again) is no bilinear panel: it is bent along its inside diagonal.
+  return dented_quad(panel_corner_uv(mesh, k));
 }
 
 const std::vector<std::array<int, 2>>& panel_bends(const PanelMesh& mesh, std::size_t k) {

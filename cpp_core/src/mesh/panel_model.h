@@ -1,5 +1,6 @@
 // The panel a workshop builds, as every measurement and export models it:
-// triangle -> flat triangle; quad of four nodes -> bilinear patch of its corners;
+// triangle -> flat triangle; quad of four nodes -> bilinear patch of its corners
+// (unless it is dented: then flat pieces, as below);
 // any other panel (a boundary panel whose outline follows a trim, a polygon of
 // more than four nodes) -> flat pieces: its outline cut along its bend lines
 // (PanelMesh::bends), each piece flat (mesh/boundary_pieces.h puts the outline
