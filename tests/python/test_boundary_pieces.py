@@ -73,7 +73,7 @@ def test_flat_pieces_are_flat_and_their_trim_edge_lies_on_the_plane(run, freefor
         if not f.folds and f.max_fold < 1e-6:
             # flat: every outline point (trim edge included) on one plane
             assert plane_distance(xyz[list(p)]) < 1e-7 * size, method
-    if method not in ("boundary_driven", "relaxed_grid"):  # these keep quads at the trim
+    if method != "boundary_driven":  # it keeps quads at the trim
         assert boundary > 0
 
 
@@ -124,9 +124,8 @@ def test_unfolded_pieces_keep_their_lengths_and_cover_the_face(run, freeform_fac
         # exact up to rounding along a chain of triangles: 1e-9 of the panel's size
         assert np.allclose(f.edge_lengths, e3, rtol=1e-9, atol=1e-9 * e3.max())
     total = sum(f.area for f in flat)
-    if method in ("relaxed_grid", "boundary_driven"):
-        # relaxed_grid ignores trims (issue 18), boundary_driven's pieces are
-        # bilinear-like quads bent once: their own area
+    if method == "boundary_driven":
+        # boundary_driven's pieces are bilinear-like quads bent once: their own area
         # (bilinear quads: the unfolded triangles are close to, not equal to, them)
         total_model = float(np.sum(r.metrics["panel_area"]))
         assert abs(total / total_model - 1) < 0.005

@@ -20,11 +20,11 @@ METHODS = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent",
            "two_guide_lines")
 # Methods whose panels do not cover the face to 0.5% before any merge (their own
 # coverage, not this stage's): for them the stage must keep the area it got.
-COVERAGE_OF_THE_METHOD = {"boundary_driven", "relaxed_grid", "guide_line_scaling",
-                          "guide_line_diamond", "two_guide_lines"}
-# Methods whose own boundary nodes are not all on the trim (relaxed_grid relaxes
-# them, guide_line_scaling stops short of it): for them the stage must keep the positions it got.
-TRIM_OF_THE_METHOD = {"relaxed_grid", "guide_line_scaling"}
+COVERAGE_OF_THE_METHOD = {"boundary_driven", "guide_line_scaling", "guide_line_diamond",
+                          "two_guide_lines"}
+# Methods whose own boundary nodes are not all on the trim (guide_line_scaling
+# stops short of it): for them the stage must keep the positions it got.
+TRIM_OF_THE_METHOD = {"guide_line_scaling"}
 
 
 def make_face():

@@ -124,9 +124,13 @@ def test_rivals_run_and_report_their_cost(freeform_face):
         assert r.summary["panel_count"] > 0
         assert r.summary["surface_evaluations"] > 0
         assert r.summary["core_seconds"] > 0
-    # Fixed topology: 12 x 10 cells, those whose middle is in the face kept.
-    assert rg.summary["panel_count"] <= 120
-    assert rg.summary["quad_share"] == 1.0
+    # Fixed topology: 12 x 10 cells cut by the trims (slivers merged, a cell
+    # around an opening split): whole cells stay quads, and the panels tile
+    # the face (measured 123 panels, 85% quads; the coverage is enforced).
+    assert 100 <= rg.summary["panel_count"] <= 130
+    assert 0.7 < rg.summary["quad_share"] < 1.0
+    assert rg.summary["gap_fraction"] <= 1e-3 and rg.summary["overlap_fraction"] <= 1e-3
+    assert rg.summary["coverage_warning"] == ""
 
 
 @pytest.mark.parametrize(
@@ -174,7 +178,9 @@ def test_document_object_uses_the_agent_methods(freeform_face):
         p.Method = "relaxed_grid"
         p.UCount, p.VCount = 10, 8
         doc.recompute()
-        assert 0 < p.PanelCount <= 80 and p.QuadShare == 1.0
+        # 10 x 8 cells cut by the trims: whole cells stay quads, cut ones follow
+        # the trims (measured 90 panels, 78% quads)
+        assert 70 < p.PanelCount <= 100 and 0.6 < p.QuadShare < 1.0
         p.Method = "gradient_descent"
         doc.recompute()
         assert p.PanelCount > 0

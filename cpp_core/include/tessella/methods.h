@@ -74,9 +74,8 @@ struct MethodDeclaration {
   // Whether the method's panels tile the face (no gap, no overlap): then the
   // pipeline refuses a result whose coverage is off by more than 0.1% of the
   // face (analysis/coverage.h). The guide-line methods grow curve networks
-  // from their guides that stop short of some trims, and relaxed_grid keeps
-  // whole cells: their coverage is measured and reported (summary
-  // coverage_warning), not yet enforced.
+  // from their guides that stop short of some trims: their coverage is
+  // measured and reported (summary coverage_warning), not yet enforced.
   bool tiles_face = true;
 
   const ParamDeclaration* find(const std::string& param) const;

@@ -10,9 +10,9 @@
 // Border nodes slide along their border, corners stay. The number of nodes
 // never changes, so the method equalizes the deviation but cannot bound it.
 //
-// Trimmed faces: the relaxed layout is no longer a tensor grid, so it is not
-// cut by the trim curves; the cells whose middle lies in the face are kept
-// whole (a jagged border). Use it for comparison, not for production.
+// Trimmed faces: the relaxed cells tile the whole (u,v) bounds, and each is
+// cut by the trims (mesh/cell_clipping.h): whole cells stay quads, cells at a
+// trim follow it, so the panels tile the face as the grids' do.
 #pragma once
 
 #include "tessella/grid_methods.h"
@@ -30,7 +30,8 @@ struct RelaxedGridParams {
   double tolerance = 1e-4;
   // Step of one iteration: a node moves at most weight x its mean rod length.
   double weight = 0.2;
-  int max_panels = kDefaultMaxPanels;
+  // Slivers, trim polylines and the panel limit, as for the grids.
+  GridClipParams clip;
 };
 
 struct RelaxedGridReport {

@@ -89,12 +89,9 @@ std::vector<MethodDeclaration> agent_methods() {
         .param(&P::weight,
                decl("weight", ParamKind::Real, "", 1e-6, 1.0, "Step weight",
                     "A node moves at most this fraction of its mean rod length per iteration",
-                    kGroup, "Weight"))
-        .shared("max_panels", &P::max_panels)
-        // Keeps the relaxed cells whose middle lies in the face: on a trimmed
-        // face the outline is ragged (reported, not yet cut to the trims).
-        .partial_coverage();
-    out.push_back(b.build([](const SurfaceFace& f, const P& p) { return relaxed_grid(f, p); }));
+                    kGroup, "Weight"));
+    out.push_back(
+        with_clip(b).build([](const SurfaceFace& f, const P& p) { return relaxed_grid(f, p); }));
   }
   return out;
 }

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/cell_clipping.h"
 #include "methods/agents/agent_walk.h"
 #include "tessella/errors.h"
-#include "mesh/panel_model.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -17,12 +17,13 @@ PanelMesh relaxed_grid(const SurfaceFace& face, const RelaxedGridParams& params,
   require_in_range("max_iterations", params.max_iterations, 0, 1e6);
   require_in_range("tolerance", params.tolerance, 0.0, 1.0);
   require_in_range("weight", params.weight, 1e-6, 1.0);
-  require_in_range("max_panels", params.max_panels, 1, 1e8);
+  require_in_range("max_panels", params.clip.max_panels, 1, 1e8);
   const double cells = double(params.u_count) * double(params.v_count);
-  if (cells > params.max_panels) {
-    throw LimitExceeded("the grid would have " + std::to_string(static_cast<long long>(cells)) +
-                        " panels, more than max_panels = " + std::to_string(params.max_panels) +
-                        ": choose smaller counts or raise max_panels");
+  if (cells > params.clip.max_panels) {
+    throw LimitExceeded(
+        "the grid would have " + std::to_string(static_cast<long long>(cells)) +
+        " panels, more than max_panels = " + std::to_string(params.clip.max_panels) +
+        ": choose smaller counts or raise max_panels");
   }
   const UvBounds b = face.bounds();
   const int nu = params.u_count + 1, nv = params.v_count + 1;
@@ -103,29 +104,9 @@ PanelMesh relaxed_grid(const SurfaceFace& face, const RelaxedGridParams& params,
   }
   if (params.max_iterations == 0) rep.converged = true;
 
-  PanelMesh mesh;
-  mesh.uv = uv;
-  mesh.xyz.resize(uv.size());
-  for (std::size_t k = 0; k < uv.size(); ++k) mesh.xyz[k] = face.point(uv[k].x(), uv[k].y());
-  const UvTrimClassifier trim = agents::agent_trim(face);
-  for (int j = 0; j + 1 < nv; ++j) {
-    for (int i = 0; i + 1 < nu; ++i) {
-      const std::vector<int> c = {int(at(i, j)), int(at(i + 1, j)), int(at(i + 1, j + 1)),
-                                  int(at(i, j + 1))};
-      Vec2 mid = Vec2::Zero();
-      for (int x : c) mid += 0.25 * uv[x];
-      if (!trim.contains(mid)) continue;
-      mesh.panels.push_back(c);
-    }
-  }
-  if (mesh.panels.empty()) throw InvalidGeometry("relaxed_grid: no grid cell lies in the face");
-  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
-  if (face.reversed()) reverse_panels(mesh);
-  remove_unused_vertices(mesh);
-  build_rods(mesh);
-  double area = 0;
-  for (std::size_t p = 0; p < mesh.panels.size(); ++p) area += panel_area(mesh, p);
-  mesh.nominal_area = area / double(mesh.panels.size());
+  // The relaxed cells cover the bounds rectangle exactly (border nodes slide
+  // along it): cut by the trims, they tile the face.
+  PanelMesh mesh = clip_cells(face, uv, nu, nv, params.clip);
   if (report) *report = rep;
   return mesh;
 }

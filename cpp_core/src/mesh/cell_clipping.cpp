@@ -1,0 +1,642 @@
+// Cutting a grid of general quad cells by the trim loops (mesh/cell_clipping.h).
+//
+// Why Clipper (libpolyclipping): its exact integer predicates survive the
+// degenerate cases (a trim running along a cell edge, as the natural boundary
+// does along the border cells; a loop through a node). (u,v) maps affinely
+// onto a 2^50 integer range, ~1e-15 of the span.
+//
+// Vertex identity: a grid node and a trim polyline point keep their integer
+// point in every cell's output. A crossing of a trim with a slanted cell edge
+// is rounded by Clipper, and the two cells beside that edge may round it
+// differently: every output point within kOnEdge of a cell edge is recorded
+// on that edge, and the points of one edge closer than kOnEdge become one
+// vertex. Each edge's vertices then go into every panel side running along
+// it, so a vertex that one cell has on the edge (where an opening split it)
+// is in its neighbour's outline too.
+#include "mesh/cell_clipping.h"
+
+#include <algorithm>
+#include <array>
+#include <clipper.hpp>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include "geometry/trim_deflection.h"
+#include "geometry/uv_trim_classifier.h"
+#include "mesh/panel_model.h"
+#include "mesh/sliver_merge.h"
+#include "tessella/errors.h"
+#include "tessella/progress.h"
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+namespace {
+
+using ClipperLib::cInt;
+using ClipperLib::IntPoint;
+using ClipperLib::Path;
+using ClipperLib::Paths;
+
+constexpr double kIntRange = 1125899906842624.0;  // 2^50
+// ~1e-11 of the span: far above Clipper's rounding of a crossing (a few
+// units), far below any length that matters for a panel.
+constexpr double kOnEdge = 1e-11 * kIntRange;
+// An opening in a cell is split off by at most this many nested splits.
+constexpr int kMaxSplits = 16;
+
+struct PointHash {
+  std::size_t operator()(const IntPoint& p) const {
+    return std::hash<unsigned long long>()(static_cast<unsigned long long>(p.X) * 1000003ULL ^
+                                           static_cast<unsigned long long>(p.Y));
+  }
+};
+struct PointEq {
+  bool operator()(const IntPoint& a, const IntPoint& b) const { return a.X == b.X && a.Y == b.Y; }
+};
+template <class T>
+using PointMap = std::unordered_map<IntPoint, T, PointHash, PointEq>;
+using PointSet = std::unordered_set<IntPoint, PointHash, PointEq>;
+
+// Affine map of the (u,v) box holding the nodes and the trims onto
+// [0, 2^50]^2.
+struct Frame {
+  double u0 = 0, v0 = 0, su = 1, sv = 1;
+  IntPoint to_int(const Vec2& p) const {
+    return IntPoint(static_cast<cInt>(std::llround((p.x() - u0) * su)),
+                    static_cast<cInt>(std::llround((p.y() - v0) * sv)));
+  }
+  Vec2 to_uv(const IntPoint& p) const { return {u0 + double(p.X) / su, v0 + double(p.Y) / sv}; }
+  // Parameter of the foot of (u,v) point q on the line ab (not clamped).
+  double parameter_on(const Vec2& q, const IntPoint& a, const IntPoint& b) const {
+    const double dx = double(b.X - a.X), dy = double(b.Y - a.Y);
+    const double px = (q.x() - u0) * su - double(a.X), py = (q.y() - v0) * sv - double(a.Y);
+    const double l2 = dx * dx + dy * dy;
+    return l2 > 0 ? (px * dx + py * dy) / l2 : 0.0;
+  }
+};
+
+Frame frame_of(const std::vector<Vec2>& nodes, const std::vector<TrimLoop>& loops) {
+  Vec2 lo = nodes.front(), hi = nodes.front();
+  auto add = [&](const Vec2& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); };
+  for (const Vec2& p : nodes) add(p);
+  for (const TrimLoop& l : loops)
+    for (const Vec2& p : l.uv) add(p);
+  Frame f;
+  f.u0 = lo.x(), f.v0 = lo.y();
+  f.su = kIntRange / (hi.x() > lo.x() ? hi.x() - lo.x() : 1.0);
+  f.sv = kIntRange / (hi.y() > lo.y() ? hi.y() - lo.y() : 1.0);
+  return f;
+}
+
+Path box(cInt x0, cInt y0, cInt x1, cInt y1) {
+  return {IntPoint(x0, y0), IntPoint(x1, y0), IntPoint(x1, y1), IntPoint(x0, y1)};
+}
+
+// The trim loops in integers.
+struct Domain {
+  Paths paths;
+  std::vector<int> loop;  // trim_loops index of each path
+  PointMap<Vec2> exact_uv;
+  PointSet corner;
+};
+
+// Drops the trim points strictly inside an axis-parallel straight run (not
+// trim corners): the natural boundary of an untrimmed face is four such runs,
+// finely discretized because the edges bend in 3D; kept, every point would
+// become an outline point of a border cell along its straight side. A run may
+// be off the axis by kRunSlack units, ~1e-12 of the span (a cylinder's seam
+// pcurve and the circle ending on it meet 23 units apart).
+Path without_axis_run_points(const Path& path, const PointSet& corner) {
+  constexpr cInt kRunSlack = 1024;
+  auto near = [](cInt a, cInt b) { return std::abs(a - b) <= kRunSlack; };
+  auto inner = [&](const IntPoint& a, const IntPoint& p, const IntPoint& b) {
+    if (corner.count(p)) return false;
+    if (near(a.Y, p.Y) && near(a.Y, b.Y))
+      return (a.X < p.X && p.X < b.X) || (b.X < p.X && p.X < a.X);
+    if (near(a.X, p.X) && near(a.X, b.X))
+      return (a.Y < p.Y && p.Y < b.Y) || (b.Y < p.Y && p.Y < a.Y);
+    return false;
+  };
+  const std::size_t n = path.size();
+  std::size_t start = 0;  // a point that stays, so no run wraps around the start
+  while (start < n && inner(path[(start + n - 1) % n], path[start], path[(start + 1) % n])) ++start;
+  if (start == n) return path;
+  Path out;
+  for (std::size_t k = 0; k <= n; ++k) {
+    const IntPoint& p = path[(start + k) % n];
+    while (out.size() >= 2 && inner(out[out.size() - 2], out.back(), p)) out.pop_back();
+    if (k < n) out.push_back(p);
+  }
+  return out.size() >= 3 ? out : path;
+}
+
+Domain domain_of(const std::vector<TrimLoop>& loops, const Frame& frame) {
+  Domain d;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    Path path;
+    for (std::size_t k = 0; k < loops[l].uv.size(); ++k) {
+      const IntPoint p = frame.to_int(loops[l].uv[k]);
+      if (loops[l].corner[k]) d.corner.insert(p);
+      if (!path.empty() && p.X == path.back().X && p.Y == path.back().Y) continue;
+      path.push_back(p);
+      d.exact_uv.emplace(p, loops[l].uv[k]);
+    }
+    while (path.size() > 1 && path.front().X == path.back().X && path.front().Y == path.back().Y)
+      path.pop_back();
+    if (path.size() < 3) continue;
+    d.paths.push_back(without_axis_run_points(path, d.corner));
+    d.loop.push_back(static_cast<int>(l));
+  }
+  return d;
+}
+
+// The trim segments on a uniform grid of buckets over the integer plane.
+class SegmentBuckets {
+ public:
+  struct Segment {
+    IntPoint a, b;
+    int path;
+  };
+
+  explicit SegmentBuckets(const Paths& paths) {
+    for (std::size_t p = 0; p < paths.size(); ++p)
+      for (std::size_t k = 0; k < paths[p].size(); ++k)
+        segments_.push_back({paths[p][k], paths[p][(k + 1) % paths[p].size()], int(p)});
+    g_ = std::clamp(static_cast<int>(std::sqrt(double(segments_.size()))), 1, 256);
+    buckets_.resize(std::size_t(g_) * g_);
+    for (std::size_t s = 0; s < segments_.size(); ++s) {
+      const Segment& e = segments_[s];
+      for (int j = index(std::min(e.a.Y, e.b.Y)); j <= index(std::max(e.a.Y, e.b.Y)); ++j)
+        for (int i = index(std::min(e.a.X, e.b.X)); i <= index(std::max(e.a.X, e.b.X)); ++i)
+          buckets_[std::size_t(j) * g_ + i].push_back(static_cast<int>(s));
+    }
+  }
+
+  const Segment& operator[](int s) const { return segments_[std::size_t(s)]; }
+
+  // The segments whose bounding box meets [x0, x1] x [y0, y1], in index order.
+  std::vector<int> near(double x0, double y0, double x1, double y1) const {
+    std::vector<int> out;
+    for (int j = index(y0); j <= index(y1); ++j)
+      for (int i = index(x0); i <= index(x1); ++i)
+        for (int s : buckets_[std::size_t(j) * g_ + i]) {
+          const Segment& e = segments_[std::size_t(s)];
+          if (std::max(e.a.X, e.b.X) >= x0 && std::min(e.a.X, e.b.X) <= x1 &&
+              std::max(e.a.Y, e.b.Y) >= y0 && std::min(e.a.Y, e.b.Y) <= y1)
+            out.push_back(s);
+        }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+ private:
+  int index(double x) const {
+    return std::clamp(static_cast<int>(std::floor(x / kIntRange * g_)), 0, g_ - 1);
+  }
+
+  std::vector<Segment> segments_;
+  int g_ = 1;
+  std::vector<std::vector<int>> buckets_;
+};
+
+// Distance of p from the segment ab (integer units) and the parameter of its
+// foot on ab (clamped to [0, 1]).
+double segment_distance(const IntPoint& p, const IntPoint& a, const IntPoint& b, double* t) {
+  const double dx = double(b.X - a.X), dy = double(b.Y - a.Y);
+  const double px = double(p.X - a.X), py = double(p.Y - a.Y);
+  const double l2 = dx * dx + dy * dy;
+  const double s = l2 > 0 ? std::clamp((px * dx + py * dy) / l2, 0.0, 1.0) : 0.0;
+  if (t) *t = s;
+  return std::hypot(px - s * dx, py - s * dy);
+}
+
+double distance(const IntPoint& a, const IntPoint& b) {
+  return std::hypot(double(a.X - b.X), double(a.Y - b.Y));
+}
+
+// A line the opening split ran along: x = at (axis 0) or y = at (axis 1).
+struct SplitLine {
+  int axis;
+  cInt at;
+};
+
+// Polygons of `subject` (non-zero fill) inside `clip`. A polygon that came out
+// with holes (an opening wholly inside the cell) is cut in two by the axis
+// line through the middle of its first hole, across its wider side, and both
+// sides are cut again: every polygon is simple and without holes, and the
+// split runs inside the polygon from its outline to the hole.
+void clip_to(const Paths& subject, const Path& clip, int depth, std::vector<Path>& out,
+             std::vector<SplitLine>& splits) {
+  ClipperLib::Clipper clipper(ClipperLib::ioPreserveCollinear | ClipperLib::ioStrictlySimple);
+  clipper.AddPaths(subject, ClipperLib::ptSubject, true);
+  clipper.AddPath(clip, ClipperLib::ptClip, true);
+  ClipperLib::PolyTree tree;
+  clipper.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  // Outer contours: the tree's first level and the islands inside holes.
+  std::vector<const ClipperLib::PolyNode*> outers(tree.Childs.begin(), tree.Childs.end());
+  for (std::size_t k = 0; k < outers.size(); ++k) {
+    const ClipperLib::PolyNode* outer = outers[k];
+    for (const ClipperLib::PolyNode* hole : outer->Childs)
+      for (const ClipperLib::PolyNode* island : hole->Childs) outers.push_back(island);
+    if (outer->Childs.empty() || depth >= kMaxSplits) {
+      out.push_back(outer->Contour);
+      continue;
+    }
+    cInt ox0 = outer->Contour[0].X, ox1 = ox0, oy0 = outer->Contour[0].Y, oy1 = oy0;
+    for (const IntPoint& p : outer->Contour) {
+      ox0 = std::min(ox0, p.X), ox1 = std::max(ox1, p.X);
+      oy0 = std::min(oy0, p.Y), oy1 = std::max(oy1, p.Y);
+    }
+    const Path& hole = outer->Childs.front()->Contour;
+    cInt hx0 = hole[0].X, hx1 = hx0, hy0 = hole[0].Y, hy1 = hy0;
+    for (const IntPoint& p : hole) {
+      hx0 = std::min(hx0, p.X), hx1 = std::max(hx1, p.X);
+      hy0 = std::min(hy0, p.Y), hy1 = std::max(hy1, p.Y);
+    }
+    Paths local{outer->Contour};
+    for (const ClipperLib::PolyNode* h : outer->Childs) local.push_back(h->Contour);
+    if (ox1 - ox0 >= oy1 - oy0) {
+      const cInt xm = hx0 + (hx1 - hx0) / 2;
+      splits.push_back({0, xm});
+      clip_to(local, box(ox0 - 1, oy0 - 1, xm, oy1 + 1), depth + 1, out, splits);
+      clip_to(local, box(xm, oy0 - 1, ox1 + 1, oy1 + 1), depth + 1, out, splits);
+    } else {
+      const cInt ym = hy0 + (hy1 - hy0) / 2;
+      splits.push_back({1, ym});
+      clip_to(local, box(ox0 - 1, oy0 - 1, ox1 + 1, ym), depth + 1, out, splits);
+      clip_to(local, box(ox0 - 1, ym, ox1 + 1, oy1 + 1), depth + 1, out, splits);
+    }
+  }
+}
+
+// Puts the points the polygons of one cell have on a split line into every
+// polygon side running along it (the two sides of a split meet the same
+// trim crossings, but a side may end at a point of the other).
+void join_split_lines(std::vector<Path>& polys, const std::vector<SplitLine>& splits) {
+  for (const SplitLine& line : splits) {
+    auto on = [&](const IntPoint& p) { return (line.axis == 0 ? p.X : p.Y) == line.at; };
+    auto along = [&](const IntPoint& p) { return line.axis == 0 ? p.Y : p.X; };
+    std::vector<cInt> at;
+    for (const Path& poly : polys)
+      for (const IntPoint& p : poly)
+        if (on(p)) at.push_back(along(p));
+    std::sort(at.begin(), at.end());
+    at.erase(std::unique(at.begin(), at.end()), at.end());
+    if (at.size() < 3) continue;
+    for (Path& poly : polys) {
+      Path fixed;
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const IntPoint& a = poly[k];
+        const IntPoint& b = poly[(k + 1) % poly.size()];
+        fixed.push_back(a);
+        if (!on(a) || !on(b)) continue;
+        const cInt lo = std::min(along(a), along(b)), hi = std::max(along(a), along(b));
+        auto first = std::upper_bound(at.begin(), at.end(), lo);
+        auto last = std::lower_bound(at.begin(), at.end(), hi);
+        std::vector<cInt> between(first, last);
+        if (along(a) > along(b)) std::reverse(between.begin(), between.end());
+        for (cInt c : between)
+          fixed.push_back(line.axis == 0 ? IntPoint(line.at, c) : IntPoint(c, line.at));
+      }
+      poly = std::move(fixed);
+    }
+  }
+}
+
+// Vertices merged by union-find; the root is the best of a group: a grid node
+// before a trim point before a computed crossing, then the first made.
+struct VertexGroups {
+  std::vector<int> parent, kind;
+  int add(int k) {
+    parent.push_back(static_cast<int>(parent.size()));
+    kind.push_back(k);
+    return parent.back();
+  }
+  int find(int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  }
+  void unite(int a, int b) {
+    a = find(a), b = find(b);
+    if (a == b) return;
+    if (std::make_pair(kind[b], b) < std::make_pair(kind[a], a)) std::swap(a, b);
+    parent[b] = a;
+  }
+};
+
+enum Kind { kGridNode = 0, kTrimPoint = 1, kCrossing = 2 };
+
+}  // namespace
+
+PanelMesh clip_cells(const SurfaceFace& face, const std::vector<Vec2>& nodes, int nu, int nv,
+                     const GridClipParams& params) {
+  if (nu < 2 || nv < 2 || nodes.size() != std::size_t(nu) * std::size_t(nv)) {
+    throw InvalidParameter("a cell grid needs at least 2 x 2 nodes, row by row");
+  }
+  const int cu = nu - 1, cv = nv - 1;  // cells per row, per column
+  const double cells = double(cu) * double(cv);
+  if (cells > double(params.max_panels)) {
+    throw LimitExceeded("the grid would have " + std::to_string(static_cast<long long>(cells)) +
+                        " panels, more than max_panels = " + std::to_string(params.max_panels) +
+                        ": choose smaller counts or raise max_panels");
+  }
+  const std::vector<TrimLoop> loops =
+      face.trim_loops(trim_deflection(face, params.trim_deflection));
+  if (loops.empty()) throw InvalidGeometry("the face has no usable trim loop");
+  const Frame frame = frame_of(nodes, loops);
+  const Domain domain = domain_of(loops, frame);
+  if (domain.paths.empty()) throw InvalidGeometry("the face has no usable trim loop");
+  const SegmentBuckets trim(domain.paths);
+  const UvTrimClassifier inside(loops);
+
+  std::vector<IntPoint> N(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k) N[k] = frame.to_int(nodes[k]);
+  auto node = [nu](int i, int j) { return j * nu + i; };
+  auto corners = [&](int i, int j) -> std::array<int, 4> {
+    return {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)};
+  };
+
+  // Cell polygons: far from every trim segment a cell is wholly in or out.
+  std::vector<std::vector<Path>> cell_polys(std::size_t(cu) * cv);
+  std::vector<char> full(cell_polys.size(), 0), near(cell_polys.size(), 0);
+  for (int j = 0; j < cv; ++j) {
+    for (int i = 0; i < cu; ++i) {
+      const std::size_t c = std::size_t(j) * cu + i;
+      Path quad;
+      for (int k : corners(i, j)) quad.push_back(N[k]);
+      cInt x0 = quad[0].X, x1 = x0, y0 = quad[0].Y, y1 = y0;
+      for (const IntPoint& p : quad) {
+        x0 = std::min(x0, p.X), x1 = std::max(x1, p.X);
+        y0 = std::min(y0, p.Y), y1 = std::max(y1, p.Y);
+      }
+      if (!trim.near(double(x0), double(y0), double(x1), double(y1)).empty()) {
+        near[c] = 1;
+        continue;
+      }
+      Vec2 mid = Vec2::Zero();
+      for (int k : corners(i, j)) mid += 0.25 * nodes[std::size_t(k)];
+      if (inside.contains(mid)) {
+        full[c] = 1;
+        cell_polys[c].push_back(quad);
+      }
+    }
+  }
+  // Cells at a trim: the domain is cut once per column of cells to the
+  // column's strip (with a margin, so no strip side touches a cell), then per
+  // cell.
+  for (int i = 0; i < cu; ++i) {
+    report_progress(double(i) / double(cu), "cutting the grid by the trim");
+    bool any = false;
+    cInt x0 = std::numeric_limits<cInt>::max(), x1 = std::numeric_limits<cInt>::min();
+    for (int j = 0; j < nv; ++j) {
+      x0 = std::min({x0, N[node(i, j)].X, N[node(i + 1, j)].X});
+      x1 = std::max({x1, N[node(i, j)].X, N[node(i + 1, j)].X});
+      if (j < cv) any = any || near[std::size_t(j) * cu + i];
+    }
+    if (!any) continue;
+    const cInt margin = (x1 - x0) / 16 + 16;
+    ClipperLib::Clipper strip_clipper(ClipperLib::ioPreserveCollinear);
+    strip_clipper.AddPaths(domain.paths, ClipperLib::ptSubject, true);
+    strip_clipper.AddPath(box(x0 - margin, -16, x1 + margin, cInt(kIntRange) + 16),
+                          ClipperLib::ptClip, true);
+    Paths strip;
+    strip_clipper.Execute(ClipperLib::ctIntersection, strip, ClipperLib::pftEvenOdd,
+                          ClipperLib::pftNonZero);
+    for (int j = 0; j < cv; ++j) {
+      const std::size_t c = std::size_t(j) * cu + i;
+      if (!near[c]) continue;
+      Path quad;
+      for (int k : corners(i, j)) quad.push_back(N[k]);
+      std::vector<SplitLine> splits;
+      clip_to(strip, quad, 0, cell_polys[c], splits);
+      join_split_lines(cell_polys[c], splits);
+    }
+  }
+
+  // Vertices by integer point: grid nodes, trim points, computed crossings.
+  PointMap<int> node_at;
+  for (std::size_t k = 0; k < N.size(); ++k) node_at.emplace(N[k], static_cast<int>(k));
+  VertexGroups groups;
+  std::vector<IntPoint> point;
+  std::vector<int> node_of;  // grid node of a vertex, -1 if none
+  PointMap<int> index_of;
+  auto vertex = [&](const IntPoint& p) {
+    const auto it = index_of.find(p);
+    if (it != index_of.end()) return it->second;
+    const auto n = node_at.find(p);
+    const int kind = n != node_at.end()              ? kGridNode
+                     : domain.exact_uv.count(p) != 0 ? kTrimPoint
+                                                     : kCrossing;
+    const int id = groups.add(kind);
+    point.push_back(p);
+    node_of.push_back(n != node_at.end() ? n->second : -1);
+    index_of.emplace(p, id);
+    return id;
+  };
+  // Cell edges: (i,j)-(i+1,j) first, then (i,j)-(i,j+1); per edge the
+  // vertices found on it (parameter from its first node, vertex).
+  const int h_edges = cu * nv;
+  auto h_edge = [&](int i, int j) { return j * cu + i; };
+  auto v_edge = [&](int i, int j) { return h_edges + j * nu + i; };
+  std::vector<std::array<int, 2>> edge_nodes(std::size_t(h_edges) + std::size_t(nu) * cv);
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      if (i < cu) edge_nodes[h_edge(i, j)] = {node(i, j), node(i + 1, j)};
+      if (j < cv) edge_nodes[v_edge(i, j)] = {node(i, j), node(i, j + 1)};
+    }
+  std::vector<std::vector<std::pair<double, int>>> on_edge(edge_nodes.size());
+
+  std::vector<std::vector<int>> panels;
+  std::vector<std::size_t> panel_cell;
+  for (int j = 0; j < cv; ++j) {
+    for (int i = 0; i < cu; ++i) {
+      const std::size_t c = std::size_t(j) * cu + i;
+      const std::array<int, 4> cell_edges = {h_edge(i, j), v_edge(i + 1, j), h_edge(i, j + 1),
+                                             v_edge(i, j)};
+      for (Path& poly : cell_polys[c]) {
+        if (!ClipperLib::Orientation(poly)) std::reverse(poly.begin(), poly.end());
+        std::vector<int> ids;
+        for (const IntPoint& p : poly) ids.push_back(vertex(p));
+        for (int v : ids) {
+          if (node_of[std::size_t(v)] >= 0) continue;
+          for (int e : cell_edges) {
+            const auto [na, nb] = edge_nodes[std::size_t(e)];
+            double t = 0;
+            if (segment_distance(point[v], N[na], N[nb], &t) > kOnEdge) continue;
+            // On a node: the node itself (a trim through it).
+            if (distance(point[v], N[na]) <= kOnEdge) {
+              groups.unite(v, vertex(N[na]));
+            } else if (distance(point[v], N[nb]) <= kOnEdge) {
+              groups.unite(v, vertex(N[nb]));
+            } else {
+              on_edge[std::size_t(e)].push_back({t, v});
+            }
+          }
+        }
+        panels.push_back(std::move(ids));
+        panel_cell.push_back(c);
+      }
+    }
+  }
+  // One vertex per point of an edge (the two cells' roundings of a crossing).
+  for (std::size_t e = 0; e < on_edge.size(); ++e) {
+    auto& list = on_edge[e];
+    std::sort(list.begin(), list.end());
+    const double length = distance(N[edge_nodes[e][0]], N[edge_nodes[e][1]]);
+    for (std::size_t k = 1; k < list.size(); ++k)
+      if ((list[k].first - list[k - 1].first) * length <= kOnEdge)
+        groups.unite(list[k - 1].second, list[k].second);
+  }
+  // A computed crossing on a trim lies on a polyline chord: it moves onto the
+  // trim edges' own curves. (u,v) is not isotropic, so the closest point may
+  // lie past an end of the chord: then the crossing becomes that trim point
+  // (no outline folding back past it).
+  std::unordered_map<int, Vec2> snapped;
+  for (std::size_t v = 0; v < point.size(); ++v) {
+    if (groups.kind[v] != kCrossing || groups.find(static_cast<int>(v)) != static_cast<int>(v))
+      continue;
+    const IntPoint p = point[v];
+    const double x = double(p.X), y = double(p.Y);
+    int best_segment = -1;
+    double best = kOnEdge;
+    for (int s : trim.near(x - kOnEdge, y - kOnEdge, x + kOnEdge, y + kOnEdge)) {
+      const double d = segment_distance(p, trim[s].a, trim[s].b, nullptr);
+      if (d <= best) best = d, best_segment = s;
+    }
+    if (best_segment < 0) continue;
+    const auto& seg = trim[best_segment];
+    const Vec2 q = face.snap_to_trim(domain.loop[std::size_t(seg.path)], frame.to_uv(p));
+    const double t = frame.parameter_on(q, seg.a, seg.b);
+    if (t < 0 || t > 1) {
+      groups.unite(static_cast<int>(v), vertex(t < 0 ? seg.a : seg.b));
+    } else {
+      snapped.emplace(static_cast<int>(v), q);
+    }
+  }
+  std::vector<char> on_cell_edge(point.size(), 0);
+  std::vector<std::vector<int>> edges_of(point.size());
+  for (std::size_t e = 0; e < on_edge.size(); ++e) {
+    std::vector<std::pair<double, int>> list;
+    for (int k : {0, 1}) {
+      const auto it = index_of.find(N[edge_nodes[e][std::size_t(k)]]);
+      if (it != index_of.end()) list.push_back({double(k), groups.find(it->second)});
+    }
+    for (const auto& [t, v] : on_edge[e]) {
+      const int root = groups.find(v);
+      bool seen = false;
+      for (const auto& x : list) seen = seen || x.second == root;
+      if (!seen) list.push_back({t, root});
+      on_cell_edge[std::size_t(root)] = 1;
+    }
+    std::sort(list.begin(), list.end());
+    for (const auto& x : list) edges_of[std::size_t(x.second)].push_back(static_cast<int>(e));
+    on_edge[e] = std::move(list);
+  }
+
+  // Panels on the merged vertices, each side along a cell edge through every
+  // vertex of that edge between its ends.
+  PanelMesh mesh;
+  std::vector<char> panel_full;
+  std::vector<std::size_t> kept_cell;
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    std::vector<int> ids;
+    for (int v : panels[k]) {
+      const int r = groups.find(v);
+      if (ids.empty() || ids.back() != r) ids.push_back(r);
+    }
+    while (ids.size() > 1 && ids.front() == ids.back()) ids.pop_back();
+    if (ids.size() < 3) continue;
+    std::vector<int> fixed;
+    for (std::size_t s = 0; s < ids.size(); ++s) {
+      const int a = ids[s], b = ids[(s + 1) % ids.size()];
+      fixed.push_back(a);
+      for (int e : edges_of[std::size_t(a)]) {
+        const auto& eb = edges_of[std::size_t(b)];
+        if (std::find(eb.begin(), eb.end(), e) == eb.end()) continue;
+        const auto& list = on_edge[std::size_t(e)];
+        std::size_t ia = 0, ib = 0;
+        for (std::size_t q = 0; q < list.size(); ++q) {
+          if (list[q].second == a) ia = q;
+          if (list[q].second == b) ib = q;
+        }
+        if (ia < ib)
+          for (std::size_t q = ia + 1; q < ib; ++q) fixed.push_back(list[q].second);
+        else
+          for (std::size_t q = ia; q-- > ib + 1;) fixed.push_back(list[q].second);
+        break;
+      }
+    }
+    mesh.panels.push_back(std::move(fixed));
+    panel_full.push_back(full[panel_cell[k]]);
+    kept_cell.push_back(panel_cell[k]);
+  }
+  if (mesh.panels.empty()) throw InvalidGeometry("no grid cell lies in the face");
+
+  // Positions: nodes and trim points exact, crossings as snapped above.
+  mesh.uv.resize(point.size());
+  for (std::size_t v = 0; v < point.size(); ++v) {
+    if (groups.find(static_cast<int>(v)) != static_cast<int>(v)) continue;
+    const auto ex = domain.exact_uv.find(point[v]);
+    mesh.uv[v] = node_of[v] >= 0                      ? nodes[std::size_t(node_of[v])]
+                 : ex != domain.exact_uv.end()        ? ex->second
+                 : snapped.count(static_cast<int>(v)) ? snapped.at(static_cast<int>(v))
+                                                      : frame.to_uv(point[v]);
+  }
+  mesh.xyz.resize(point.size());
+  for (std::size_t v = 0; v < point.size(); ++v)
+    if (groups.find(static_cast<int>(v)) == static_cast<int>(v))
+      mesh.xyz[v] = face.point(mesh.uv[v].x(), mesh.uv[v].y());
+
+  // Nodes (rod ends): grid nodes, points on a cell edge (its crossings with
+  // the trims), trim corners and points two panels share (on a split line).
+  // The other trim points only shape the boundary panels' outlines.
+  {
+    std::vector<int> uses(point.size(), 0);
+    for (const auto& panel : mesh.panels)
+      for (int v : panel) ++uses[std::size_t(v)];
+    mesh.is_node.assign(point.size(), 0);
+    for (std::size_t v = 0; v < point.size(); ++v)
+      mesh.is_node[v] =
+          node_of[v] >= 0 || on_cell_edge[v] || domain.corner.count(point[v]) || uses[v] >= 2;
+  }
+  remove_unused_vertices(mesh);  // the merged-away points
+
+  // Nominal panel area: the mean whole cell (all panels if none is whole).
+  double sum = 0, sum_all = 0;
+  int n_full = 0;
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    const double a = panel_area(mesh, k);
+    sum_all += a;
+    if (panel_full[k]) sum += a, ++n_full;
+  }
+  mesh.nominal_area = n_full > 0 ? sum / n_full : sum_all / double(mesh.panels.size());
+
+  // A sliver is a cut piece much smaller than the cell it was cut from (the
+  // relaxed cells differ in size, so compare with its own cell).
+  std::vector<double> cell_area(mesh.panels.size(), 0.0);
+  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
+    if (panel_full[k]) continue;
+    const int i = static_cast<int>(kept_cell[k] % std::size_t(cu));
+    const int j = static_cast<int>(kept_cell[k] / std::size_t(cu));
+    std::vector<Vec2> uv;
+    std::vector<Vec3> xyz;
+    for (int q : corners(i, j)) {
+      uv.push_back(nodes[std::size_t(q)]);
+      xyz.push_back(face.point(uv.back().x(), uv.back().y()));
+    }
+    cell_area[k] = panel_model_area(xyz, uv);
+  }
+  mesh.merged_slivers = merge_slivers(mesh, params.sliver_fraction, cell_area);
+  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  if (face.reversed()) reverse_panels(mesh);
+  remove_unused_vertices(mesh);
+  build_rods(mesh);
+  return mesh;
+}
+
+}  // namespace tessella
