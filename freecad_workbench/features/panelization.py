@@ -385,7 +385,7 @@ class Panelization(_StateMixin):
         obj.QuadShare = float(s.get("quad_share", 0.0))
         if "Folds" in obj.PropertiesList:
             obj.Folds = int(s.get("fold_count", 0))
-        # Methods that need not tile the face (guide lines, relaxed_grid) say
+        # Methods that need not tile the face (the guide-line methods) say
         # where they leave it uncovered or overlap (summary coverage_warning).
         if s.get("coverage_warning"):
             FreeCAD.Console.PrintWarning(f"Tessella: {obj.Label}: {s['coverage_warning']}\n")
