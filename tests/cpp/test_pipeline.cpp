@@ -52,6 +52,8 @@ TEST(Declarations, EveryMethodDeclaresItsParametersOnceWithRangesAndDefaults) {
 TEST(Pipeline, MatchesTheStagesRunOneByOne) {
   const auto face = bezier();
   const PanelizeResult r = panelize(face, "iso_grid", {{"u_count", 6}, {"v_count", 5}});
+  // panelize evaluates in one FastEvaluation scope: so do the stages here.
+  const SurfaceFace::FastEvaluation fast(*face);
   IsoGridParams p;
   p.u_count = 6;
   p.v_count = 5;

@@ -103,8 +103,9 @@ class SurfaceFace {
   // How many times the surface was evaluated (point, derivatives, one Newton
   // step of project) since construction or the last reset: the cost measure of
   // the methods' comparison. Counted with a relaxed atomic, so a face shared
-  // by threads still counts every evaluation (those inside a FastEvaluation
-  // scope once the scope ends).
+  // by threads still counts every evaluation (those of another thread's
+  // FastEvaluation scope once that scope ends; this thread's open scopes at
+  // once).
   std::uint64_t evaluations() const;
   void reset_evaluations() const;
   // How many projections took the global search (Newton failed): the search
@@ -113,15 +114,17 @@ class SurfaceFace {
   void reset_global_projections() const;
 
   // While a FastEvaluation of this face lives, point(), derivatives(),
-  // normal() and project() called on the same thread evaluate through OCCT's
-  // GeomAdaptor_Surface, which keeps the polynomial of the B-spline / Bezier
-  // span last used (several times faster for the many nearby evaluations of
-  // the agent methods; the results agree to rounding, ~1e-15 relative).
+  // normal() and project() called on the same thread evaluate a non-periodic
+  // B-spline / Bezier surface span by span from its Taylor polynomials
+  // (SpanPolynomials: about twice as fast as OCCT's GeomAdaptor_Surface for
+  // the many nearby evaluations of the agents and metrics; agrees with OCCT
+  // to ~1e-13 of the model size, on knots picking the same span), other
+  // surfaces through GeomAdaptor_Surface (which caches one span's polynomial).
   // The scope keeps its own span caches and global search; with
   // `own_surface` it also evaluates its own copy of the surface
   // (Geom_Surface::Copy), so a worker thread shares nothing mutable with the
-  // others: each thread opens its own scope. Scopes nest. Evaluations are counted in the scope and added
-  // to evaluations() when it ends.
+  // others: each thread opens its own scope. Scopes nest. Evaluations are
+  // counted in the scope and added to the face's counter when it ends.
   class FastEvaluation {
    public:
     explicit FastEvaluation(const SurfaceFace& face, bool own_surface = false);

@@ -32,6 +32,7 @@
 #include "geometry/global_projection.h"
 #include "geometry/pcurve_projection.h"
 #include "geometry/span_adaptors.h"
+#include "geometry/span_polynomials.h"
 #include "tessella/errors.h"
 
 namespace tessella {
@@ -39,18 +40,24 @@ namespace tessella {
 namespace {
 
 // What a FastEvaluation scope evaluates with: the surface (for a worker
-// thread its own copy: nothing mutable shared with other threads), the
-// adaptors that cache the span polynomials, and its own global search
-// (built on first use).
+// thread its own copy: nothing mutable shared with other threads), our span
+// polynomials (B-spline / Bezier) or else OCCT's adaptors caching them, and
+// its own global search (built on first use).
 struct Objects {
   Handle(Geom_Surface) surface;
+  std::unique_ptr<SpanPolynomials> poly;  // null: the surface is not one it handles
   SpanAdaptors adaptor;
   std::unique_ptr<GlobalProjection> global;
   // Evaluations counted here and added to the face's counter when the scope
   // ends, so the threads do not contend for one atomic on every evaluation.
   std::uint64_t evaluations = 0;
+  // The enclosing scope of the same face on this thread, if any: evaluations()
+  // counts what every open scope holds.
+  Objects* outer = nullptr;
   Objects(const Handle(Geom_Surface) & s, bool copy)
-      : surface(copy ? Handle(Geom_Surface)::DownCast(s->Copy()) : s), adaptor(surface) {}
+      : surface(copy ? Handle(Geom_Surface)::DownCast(s->Copy()) : s),
+        poly(SpanPolynomials::create(surface)),
+        adaptor(surface) {}
 };
 
 // The FastEvaluation scope active on this thread: which face (its Impl) and its objects.
@@ -104,16 +111,20 @@ struct SurfaceFace::Impl {
   }
   // The objects of a FastEvaluation of this face on this thread, or null.
   Objects* scope() const { return tls_fast.impl == this ? tls_fast.objects : nullptr; }
-  GeomAdaptor_Surface* fast(double u, double v) const {
+  void d2(double u, double v, Vec3& p, Vec3& su, Vec3& sv, Vec3& suu, Vec3& svv, Vec3& suv) const {
     Objects* o = scope();
-    return o ? &o->adaptor.at(u, v) : nullptr;
-  }
-  void d2(double u, double v, gp_Pnt& p, gp_Vec& su, gp_Vec& sv, gp_Vec& suu, gp_Vec& svv,
-          gp_Vec& suv) const {
-    if (GeomAdaptor_Surface* a = fast(u, v))
-      a->D2(u, v, p, su, sv, suu, svv, suv);
+    if (o && o->poly) {
+      o->poly->d2(u, v, p.data(), su.data(), sv.data(), suu.data(), svv.data(), suv.data());
+      return;
+    }
+    gp_Pnt P;
+    gp_Vec Su, Sv, Suu, Svv, Suv;
+    if (o)
+      o->adaptor.at(u, v).D2(u, v, P, Su, Sv, Suu, Svv, Suv);
     else
-      surface->D2(u, v, p, su, sv, suu, svv, suv);
+      surface->D2(u, v, P, Su, Sv, Suu, Svv, Suv);
+    p = to_vec(P), su = to_vec(Su), sv = to_vec(Sv);
+    suu = to_vec(Suu), svv = to_vec(Svv), suv = to_vec(Suv);
   }
 
   double wrap_u(double u) const {
@@ -206,7 +217,12 @@ double SurfaceFace::area() const { return impl_->area; }
 
 Vec3 SurfaceFace::point(double u, double v) const {
   impl_->count();
-  if (GeomAdaptor_Surface* a = impl_->fast(u, v)) return to_vec(a->Value(u, v));
+  if (Objects* o = impl_->scope()) {
+    if (!o->poly) return to_vec(o->adaptor.at(u, v).Value(u, v));
+    Vec3 p;
+    o->poly->d0(u, v, p.data());
+    return p;
+  }
   return to_vec(impl_->surface->Value(u, v));
 }
 
@@ -223,6 +239,7 @@ bool SurfaceFace::FastEvaluation::active(const SurfaceFace& face) {
 SurfaceFace::FastEvaluation::FastEvaluation(const SurfaceFace& face, bool own_surface)
     : state_(std::make_unique<State>(face.impl_->surface, own_surface)) {
   state_->previous = tls_fast;
+  if (tls_fast.impl == face.impl_.get()) state_->objects.outer = tls_fast.objects;
   tls_fast = {face.impl_.get(), &state_->objects};
 }
 
@@ -233,10 +250,13 @@ SurfaceFace::FastEvaluation::~FastEvaluation() {
 }
 
 std::uint64_t SurfaceFace::evaluations() const {
-  return impl_->evaluations.load(std::memory_order_relaxed);
+  std::uint64_t n = impl_->evaluations.load(std::memory_order_relaxed);
+  for (const Objects* o = impl_->scope(); o; o = o->outer) n += o->evaluations;
+  return n;
 }
 void SurfaceFace::reset_evaluations() const {
   impl_->evaluations.store(0, std::memory_order_relaxed);
+  for (Objects* o = impl_->scope(); o; o = o->outer) o->evaluations = 0;
 }
 
 std::uint64_t SurfaceFace::global_projections() const {
@@ -247,11 +267,17 @@ void SurfaceFace::reset_global_projections() const {
 }
 
 SurfacePoint SurfaceFace::derivatives(double u, double v) const {
+  impl_->count();
+  Objects* o = impl_->scope();
+  if (o && o->poly) {
+    SurfacePoint d;
+    o->poly->d1(u, v, d.point.data(), d.du.data(), d.dv.data());
+    return d;
+  }
   gp_Pnt p;
   gp_Vec du, dv;
-  impl_->count();
-  if (GeomAdaptor_Surface* a = impl_->fast(u, v))
-    a->D1(u, v, p, du, dv);
+  if (o)
+    o->adaptor.at(u, v).D1(u, v, p, du, dv);
   else
     impl_->surface->D1(u, v, p, du, dv);
   return {to_vec(p), to_vec(du), to_vec(dv)};
@@ -408,18 +434,16 @@ bool newton_foot(const Impl& s, const Vec3& p, double& u, double& v,
   const double eps1 = params.distance_tolerance * s.model_size;
   bool converged = false;
   for (int it = 0; it <= params.max_iterations; ++it) {
-    gp_Pnt P;
-    gp_Vec Su, Sv, Suu, Svv, Suv;
+    Vec3 P, su, sv, suu, svv, suv;
     s.count();
-    s.d2(u, v, P, Su, Sv, Suu, Svv, Suv);
-    const Vec3 r = to_vec(P) - p;
-    const Vec3 su = to_vec(Su), sv = to_vec(Sv);
+    s.d2(u, v, P, su, sv, suu, svv, suv);
+    const Vec3 r = P - p;
     const double rn = r.norm();
     // Eq. 12-14: J is the Hessian of |r|^2 / 2, kappa its gradient.
     const double f = r.dot(su), g = r.dot(sv);
-    const double a = su.squaredNorm() + r.dot(to_vec(Suu));
-    const double b = su.dot(sv) + r.dot(to_vec(Suv));
-    const double d = sv.squaredNorm() + r.dot(to_vec(Svv));
+    const double a = su.squaredNorm() + r.dot(suu);
+    const double b = su.dot(sv) + r.dot(suv);
+    const double d = sv.squaredNorm() + r.dot(svv);
     const double det = a * d - b * b;
     if (rn <= eps1) {
       converged = true;  // p lies on the surface

@@ -19,6 +19,7 @@
 #include <array>
 #include <clipper.hpp>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <unordered_map>
 #include <unordered_set>
@@ -386,37 +387,72 @@ PanelMesh clip_cells(const SurfaceFace& face, const std::vector<Vec2>& nodes, in
       }
     }
   }
-  // Cells at a trim: the domain is cut once per column of cells to the
-  // column's strip (with a margin, so no strip side touches a cell), then per
-  // cell.
-  for (int i = 0; i < cu; ++i) {
-    report_progress(double(i) / double(cu), "cutting the grid by the trim");
-    bool any = false;
+  // Cells at a trim: the domain is cut to the bounding box of half the grid
+  // (the longer side, in cells), that piece to the box of half of that half,
+  // down to single cells, skipping parts with no cell at the trim: each level
+  // costs one pass over the trim, not one per column or cell. Each box has a
+  // margin, so no box side touches a cell of its part.
+  std::vector<std::size_t> near_sum(std::size_t(cu + 1) * (cv + 1), 0);  // 2D prefix sums
+  auto at = [cu](int i, int j) { return std::size_t(j) * std::size_t(cu + 1) + std::size_t(i); };
+  for (int j = 0; j < cv; ++j)
+    for (int i = 0; i < cu; ++i)
+      near_sum[at(i + 1, j + 1)] = near_sum[at(i + 1, j)] + near_sum[at(i, j + 1)] -
+                                   near_sum[at(i, j)] + (near[std::size_t(j) * cu + i] ? 1 : 0);
+  auto near_in = [&](int i0, int i1, int j0, int j1) {
+    return near_sum[at(i1, j1)] - near_sum[at(i1, j0)] - near_sum[at(i0, j1)] +
+           near_sum[at(i0, j0)];
+  };
+  auto cut = [](const Paths& subject, ClipperLib::PolyFillType fill, const Path& box_path) {
+    ClipperLib::Clipper clipper(ClipperLib::ioPreserveCollinear);
+    clipper.AddPaths(subject, ClipperLib::ptSubject, true);
+    clipper.AddPath(box_path, ClipperLib::ptClip, true);
+    Paths piece;
+    clipper.Execute(ClipperLib::ctIntersection, piece, fill, ClipperLib::pftNonZero);
+    return piece;
+  };
+  // The box of the nodes of cells [i0, i1) x [j0, j1), with a margin.
+  auto part_box = [&](int i0, int i1, int j0, int j1) {
     cInt x0 = std::numeric_limits<cInt>::max(), x1 = std::numeric_limits<cInt>::min();
-    for (int j = 0; j < nv; ++j) {
-      x0 = std::min({x0, N[node(i, j)].X, N[node(i + 1, j)].X});
-      x1 = std::max({x1, N[node(i, j)].X, N[node(i + 1, j)].X});
-      if (j < cv) any = any || near[std::size_t(j) * cu + i];
+    cInt y0 = x0, y1 = x1;
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        const IntPoint& p = N[node(i, j)];
+        x0 = std::min(x0, p.X), x1 = std::max(x1, p.X);
+        y0 = std::min(y0, p.Y), y1 = std::max(y1, p.Y);
+      }
     }
-    if (!any) continue;
-    const cInt margin = (x1 - x0) / 16 + 16;
-    ClipperLib::Clipper strip_clipper(ClipperLib::ioPreserveCollinear);
-    strip_clipper.AddPaths(domain.paths, ClipperLib::ptSubject, true);
-    strip_clipper.AddPath(box(x0 - margin, -16, x1 + margin, cInt(kIntRange) + 16),
-                          ClipperLib::ptClip, true);
-    Paths strip;
-    strip_clipper.Execute(ClipperLib::ctIntersection, strip, ClipperLib::pftEvenOdd,
-                          ClipperLib::pftNonZero);
-    for (int j = 0; j < cv; ++j) {
-      const std::size_t c = std::size_t(j) * cu + i;
-      if (!near[c]) continue;
+    const cInt mx = (x1 - x0) / 16 + 16, my = (y1 - y0) / 16 + 16;
+    return box(x0 - mx, y0 - my, x1 + mx, y1 + my);
+  };
+  const std::size_t near_total = near_in(0, cu, 0, cv);
+  std::size_t near_done = 0;
+  // Recursion depth ~ log2(cells): bounded, no deep stack.
+  std::function<void(const Paths&, int, int, int, int)> part = [&](const Paths& piece, int i0,
+                                                                   int i1, int j0, int j1) {
+    if (i1 - i0 == 1 && j1 - j0 == 1) {
+      const std::size_t c = std::size_t(j0) * cu + i0;
       Path quad;
-      for (int k : corners(i, j)) quad.push_back(N[k]);
+      for (int k : corners(i0, j0)) quad.push_back(N[k]);
       std::vector<SplitLine> splits;
-      clip_to(strip, quad, 0, cell_polys[c], splits);
+      clip_to(piece, quad, 0, cell_polys[c], splits);
       join_split_lines(cell_polys[c], splits);
+      if (++near_done % 64 == 0)
+        report_progress(double(near_done) / double(near_total), "cutting the grid by the trim");
+      return;
     }
-  }
+    const bool split_u = i1 - i0 >= j1 - j0;
+    const int mid = split_u ? (i0 + i1) / 2 : (j0 + j1) / 2;
+    for (int half = 0; half < 2; ++half) {
+      const int a0 = split_u ? (half ? mid : i0) : i0, a1 = split_u ? (half ? i1 : mid) : i1;
+      const int b0 = split_u ? j0 : (half ? mid : j0), b1 = split_u ? j1 : (half ? j1 : mid);
+      if (near_in(a0, a1, b0, b1) == 0) continue;
+      part(cut(piece, ClipperLib::pftNonZero, part_box(a0, a1, b0, b1)), a0, a1, b0, b1);
+    }
+  };
+  // The domain's loops count by parity; Clipper's output (holes turning the
+  // other way) by winding from here on.
+  if (near_total > 0)
+    part(cut(domain.paths, ClipperLib::pftEvenOdd, part_box(0, cu, 0, cv)), 0, cu, 0, cv);
 
   // Vertices by integer point: grid nodes, trim points, computed crossings.
   PointMap<int> node_at;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <clipper.hpp>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <unordered_map>
@@ -279,24 +280,59 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
       }
     }
   }
-  // Boundary cells: clip the domain once per column strip, then per cell.
+  // Boundary cells: the domain is cut in halves of the grid (the longer
+  // side, in cells), the halves again, down to single cells, skipping parts
+  // with no cell at the trim: each level costs one pass over the trim, not
+  // one per column or cell. The parts end on grid lines (as the cells do), so
+  // a crossing on a part's side is the one the cells on both sides get.
+  std::vector<std::size_t> near_sum((nu + 1) * (nv + 1), 0);  // 2D prefix sums
+  for (std::size_t j = 0; j < nv; ++j)
+    for (std::size_t i = 0; i < nu; ++i)
+      near_sum[(j + 1) * (nu + 1) + i + 1] =
+          near_sum[j * (nu + 1) + i + 1] + near_sum[(j + 1) * (nu + 1) + i] -
+          near_sum[j * (nu + 1) + i] + (near[j * nu + i] ? 1 : 0);
+  auto near_in = [&](std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) {
+    return near_sum[j1 * (nu + 1) + i1] - near_sum[j0 * (nu + 1) + i1] -
+           near_sum[j1 * (nu + 1) + i0] + near_sum[j0 * (nu + 1) + i0];
+  };
+  const std::size_t near_total = near_in(0, nu, 0, nv);
+  std::size_t near_done = 0;
   const cInt y_lo = Y.front() - 1, y_hi = Y.back() + 1;
-  for (std::size_t i = 0; i < nu; ++i) {
-    report_progress(double(i) / double(nu), "cutting the grid by the trim");
-    bool any = false;
-    for (std::size_t j = 0; j < nv && !any; ++j) any = near[j * nu + i];
-    if (!any) continue;
-    ClipperLib::Clipper strip_clipper(ClipperLib::ioPreserveCollinear);
-    strip_clipper.AddPaths(domain, ClipperLib::ptSubject, true);
-    strip_clipper.AddPath(rectangle(X[i], y_lo, X[i + 1], y_hi), ClipperLib::ptClip, true);
-    Paths strip;
-    strip_clipper.Execute(ClipperLib::ctIntersection, strip, ClipperLib::pftEvenOdd,
-                          ClipperLib::pftNonZero);
-    for (std::size_t j = 0; j < nv; ++j) {
-      if (!near[j * nu + i]) continue;
-      clip_cell(strip, X[i], Y[j], X[i + 1], Y[j + 1], 0, cell_polys[j * nu + i]);
-    }
-  }
+  auto cut = [](const Paths& subject, ClipperLib::PolyFillType fill, const Path& box) {
+    ClipperLib::Clipper clipper(ClipperLib::ioPreserveCollinear);
+    clipper.AddPaths(subject, ClipperLib::ptSubject, true);
+    clipper.AddPath(box, ClipperLib::ptClip, true);
+    Paths piece;
+    clipper.Execute(ClipperLib::ctIntersection, piece, fill, ClipperLib::pftNonZero);
+    return piece;
+  };
+  // Recursion depth ~ log2(cells): bounded, no deep stack.
+  std::function<void(const Paths&, std::size_t, std::size_t, std::size_t, std::size_t)> part =
+      [&](const Paths& piece, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) {
+        if (near_in(i0, i1, j0, j1) == 0) return;
+        if (i1 - i0 == 1 && j1 - j0 == 1) {
+          clip_cell(piece, X[i0], Y[j0], X[i1], Y[j1], 0, cell_polys[j0 * nu + i0]);
+          if (++near_done % 64 == 0)
+            report_progress(double(near_done) / double(near_total), "cutting the grid by the trim");
+          return;
+        }
+        const bool split_u = i1 - i0 >= j1 - j0;
+        const std::size_t mid = split_u ? (i0 + i1) / 2 : (j0 + j1) / 2;
+        for (int half = 0; half < 2; ++half) {
+          const std::size_t a0 = split_u ? (half ? mid : i0) : i0;
+          const std::size_t a1 = split_u ? (half ? i1 : mid) : i1;
+          const std::size_t b0 = split_u ? j0 : (half ? mid : j0);
+          const std::size_t b1 = split_u ? j1 : (half ? j1 : mid);
+          if (near_in(a0, a1, b0, b1) == 0) continue;
+          part(cut(piece, ClipperLib::pftNonZero,
+                   rectangle(X[a0], b0 == 0 ? y_lo : Y[b0], X[a1], b1 == nv ? y_hi : Y[b1])),
+               a0, a1, b0, b1);
+        }
+      };
+  // The domain's loops count by parity; Clipper's output (holes turning the
+  // other way) by winding from here on.
+  part(cut(domain, ClipperLib::pftEvenOdd, rectangle(X.front(), y_lo, X.back(), y_hi)), 0, nu, 0,
+       nv);
 
   // Weld vertices by integer point; exact (u,v) where the point is a grid line
   // or a trim loop vertex.

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numeric>
+#include <unordered_map>
 
 namespace tessella {
 
@@ -42,6 +45,69 @@ double angle_at(const Vec2& a, const Vec2& b, const Vec2& c) {
   return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v));
 }
 
+// The directed edges (a, b) of the triangles with their (tri, k), sorted by
+// edge, triangles in order within an edge, and of repeated edges the last
+// one kept.
+void sorted_edges(const std::vector<std::array<int, 3>>& tris,
+                  std::vector<std::pair<std::pair<int, int>, std::pair<int, int>>>& edge) {
+  using Edge = std::pair<std::pair<int, int>, std::pair<int, int>>;
+  edge.clear();
+  edge.reserve(3 * tris.size());
+  int corners = 0;
+  for (const auto& t : tris) corners = std::max({corners, t[0] + 1, t[1] + 1, t[2] + 1});
+  if (corners < (1 << 21) && 3 * tris.size() < (std::size_t(1) << 22)) {
+    // Packed keys (a, b, 3 t + k) sort as the stable sort of (a, b) below does
+    // (entries are made in (t, k) order), at a fraction of its cost.
+    std::vector<std::uint64_t> keys;
+    keys.reserve(3 * tris.size());
+    for (std::size_t t = 0; t < tris.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        keys.push_back(std::uint64_t(tris[t][k]) << 43 | std::uint64_t(tris[t][(k + 1) % 3]) << 22 |
+                       std::uint64_t(3 * t + k));
+    std::sort(keys.begin(), keys.end());
+    for (std::uint64_t key : keys) {
+      const std::pair<int, int> e{int(key >> 43), int(key >> 22 & ((1u << 21) - 1))};
+      const int tk = int(key & ((1u << 22) - 1));
+      const Edge x{e, {tk / 3, tk % 3}};
+      if (!edge.empty() && edge.back().first == e)
+        edge.back() = x;
+      else
+        edge.push_back(x);
+    }
+    return;
+  }
+  std::vector<Edge> all;
+  all.reserve(3 * tris.size());
+  for (int t = 0; t < int(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) all.push_back({{tris[t][k], tris[t][(k + 1) % 3]}, {t, k}});
+  std::stable_sort(all.begin(), all.end(),
+                   [](const Edge& x, const Edge& y) { return x.first < y.first; });
+  for (const Edge& x : all) {
+    if (!edge.empty() && edge.back().first == x.first)
+      edge.back() = x;
+    else
+      edge.push_back(x);
+  }
+}
+
+// Whether the angles at c in (a, c, b) and at d in (b, d, a) sum to more than
+// pi (+1e-12): the sign of sin(alpha + beta) = sin a cos b + cos a sin b
+// decides without atan2 where it is clear by a wide margin (1e-9 of the
+// scale, far above rounding); near 0, pi or 2 pi the angles are summed as
+// before, so every decision is the same.
+bool opposite_angles_exceed_pi(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const Vec2 u1 = a - c, v1 = b - c, u2 = b - d, v2 = a - d;
+  const double s1 = std::abs(u1.x() * v1.y() - u1.y() * v1.x()), c1 = u1.dot(v1);
+  const double s2 = std::abs(u2.x() * v2.y() - u2.y() * v2.x()), c2 = u2.dot(v2);
+  const double sine = s1 * c2 + c1 * s2;
+  const double scale = u1.norm() * v1.norm() * u2.norm() * v2.norm();
+  // alpha + beta lies in [0, 2 pi]: a clearly positive sine means below pi,
+  // a clearly negative one above it.
+  if (sine > 1e-9 * scale) return false;
+  if (sine < -1e-9 * scale) return true;
+  return angle_at(a, c, b) + angle_at(b, d, a) > kPiDelaunay + 1e-12;
+}
+
 // Lawson flips: an inner edge whose two opposite angles sum to more than pi is
 // replaced by the other diagonal of its (convex) quad, until none is left.
 // Ear clipping alone leaves long slivers between two runs of close outline
@@ -54,20 +120,8 @@ void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>&
     // triangle counts. (A sorted vector: the order of a std::map, without its
     // allocations.)
     using Edge = std::pair<std::pair<int, int>, std::pair<int, int>>;
-    std::vector<Edge> all;
-    all.reserve(3 * tris.size());
-    for (int t = 0; t < int(tris.size()); ++t)
-      for (int k = 0; k < 3; ++k) all.push_back({{tris[t][k], tris[t][(k + 1) % 3]}, {t, k}});
-    std::stable_sort(all.begin(), all.end(),
-                     [](const Edge& x, const Edge& y) { return x.first < y.first; });
     std::vector<Edge> edge;
-    edge.reserve(all.size());
-    for (const Edge& x : all) {
-      if (!edge.empty() && edge.back().first == x.first)
-        edge.back() = x;
-      else
-        edge.push_back(x);
-    }
+    sorted_edges(tris, edge);
     auto find = [&](const std::pair<int, int>& key) {
       auto it =
           std::lower_bound(edge.begin(), edge.end(), key,
@@ -84,8 +138,7 @@ void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>&
       const int a = e.first, b = e.second;
       const int c = tris[t1][(tk.second + 2) % 3];             // opposite in t1
       const int d = tris[t2][(other->second.second + 2) % 3];  // opposite in t2
-      if (angle_at(uv[a], uv[c], uv[b]) + angle_at(uv[b], uv[d], uv[a]) <= kPiDelaunay + 1e-12)
-        continue;
+      if (!opposite_angles_exceed_pi(uv[a], uv[b], uv[c], uv[d])) continue;
       // The quad a-d-b-c must be convex for the flip (c and d on both sides of a-b
       // is given; a and b must lie on both sides of c-d).
       const double sa = cross2(uv[c], uv[d], uv[a]), sb = cross2(uv[c], uv[d], uv[b]);
@@ -102,7 +155,9 @@ void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>&
 
 }  // namespace
 
-std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv) {
+namespace {
+
+std::vector<std::array<int, 3>> triangulate_outline(const std::vector<Vec2>& uv) {
   // A clockwise outline (a panel of a reversed face) is clipped as its
   // mirror image; the triangles then keep the outline's own turning sense.
   double area2 = 0;
@@ -114,42 +169,118 @@ std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv)
   if (area2 < 0) {
     std::vector<Vec2> mirrored;
     for (const Vec2& q : uv) mirrored.emplace_back(q.x(), -q.y());
-    std::vector<std::array<int, 3>> triangles = triangulate_polygon(mirrored);
+    std::vector<std::array<int, 3>> triangles = triangulate_outline(mirrored);
     return triangles;  // same indices: clockwise again in the original plane
   }
+  // Ear clipping: the first corner (in outline order) that is convex and
+  // whose triangle holds no other corner is cut. If rounding leaves no clean
+  // ear, the most convex corner is cut so the result always has n-2
+  // triangles. A corner's state only changes when a neighbour is cut (its
+  // triangle changes) or when the corner inside its triangle is (the
+  // blocker): the states are kept and only those recomputed, so each cut
+  // costs O(n) instead of O(n^2), with the same cuts as a full rescan.
   std::vector<std::array<int, 3>> triangles;
-  std::vector<int> ring(uv.size());
-  std::iota(ring.begin(), ring.end(), 0);
-  // Ear clipping; the first convex corner whose triangle holds no other corner
-  // is cut. If rounding leaves no clean ear, the most convex corner is cut so
-  // the result always has n-2 triangles.
-  while (ring.size() > 3) {
-    const std::size_t n = ring.size();
-    std::size_t ear = n, best = 0;
-    double best_turn = -INFINITY;
-    for (std::size_t k = 0; k < n && ear == n; ++k) {
-      const Vec2& a = uv[ring[(k + n - 1) % n]];
-      const Vec2& b = uv[ring[k]];
-      const Vec2& c = uv[ring[(k + 1) % n]];
-      const double turn = cross2(a, b, c);
-      if (turn > best_turn) best_turn = turn, best = k;
-      if (turn <= 0) continue;
-      bool empty = true;
-      for (std::size_t m = 0; m < n && empty; ++m) {
-        const int q = ring[m];
-        if (q == ring[(k + n - 1) % n] || q == ring[k] || q == ring[(k + 1) % n]) continue;
-        if (uv[q] == a || uv[q] == b || uv[q] == c) continue;
-        if (inside_triangle(uv[q], a, b, c)) empty = false;
-      }
-      if (empty) ear = k;
+  const int n0 = static_cast<int>(uv.size());
+  std::vector<int> prev(n0), next(n0);
+  for (int i = 0; i < n0; ++i) prev[i] = (i + n0 - 1) % n0, next[i] = (i + 1) % n0;
+  enum State : char { kDirty, kEar, kReflex, kBlocked };
+  std::vector<char> state(n0, kDirty);
+  std::vector<int> blocker(n0, -1);
+  std::vector<double> turn(n0, 0.0);
+  int first = 0, size = n0;
+  auto evaluate = [&](int k) {
+    const Vec2& a = uv[prev[k]];
+    const Vec2& b = uv[k];
+    const Vec2& c = uv[next[k]];
+    turn[k] = cross2(a, b, c);
+    blocker[k] = -1;
+    if (turn[k] <= 0) {
+      state[k] = kReflex;
+      return;
     }
-    if (ear == n) ear = best;
-    triangles.push_back({ring[(ear + n - 1) % n], ring[ear], ring[(ear + 1) % n]});
-    ring.erase(ring.begin() + static_cast<long>(ear));
+    // The other corners in outline order, from the first one kept.
+    int q = first;
+    for (int m = 0; m < size; ++m, q = next[q]) {
+      if (q == prev[k] || q == k || q == next[k]) continue;
+      if (uv[q] == a || uv[q] == b || uv[q] == c) continue;
+      if (inside_triangle(uv[q], a, b, c)) {
+        state[k] = kBlocked;
+        blocker[k] = q;
+        return;
+      }
+    }
+    state[k] = kEar;
+  };
+  while (size > 3) {
+    int ear = -1, best = first;
+    double best_turn = -INFINITY;
+    int k = first;
+    for (int m = 0; m < size; ++m, k = next[k]) {
+      if (state[k] == kDirty) evaluate(k);
+      if (turn[k] > best_turn) best_turn = turn[k], best = k;
+      if (state[k] == kEar) {
+        ear = k;
+        break;
+      }
+    }
+    if (ear < 0) ear = best;
+    const int a = prev[ear], c = next[ear];
+    triangles.push_back({a, ear, c});
+    next[a] = c;
+    prev[c] = a;
+    if (ear == first) first = c;
+    --size;
+    state[a] = state[c] = kDirty;
+    for (int q = first, m = 0; m < size; ++m, q = next[q])
+      if (state[q] == kBlocked && blocker[q] == ear) state[q] = kDirty;
   }
-  if (ring.size() == 3) triangles.push_back({ring[0], ring[1], ring[2]});
+  if (size == 3) triangles.push_back({first, next[first], next[next[first]]});
   make_delaunay(uv, triangles);
   return triangles;
+}
+
+// The triangulations of this thread's recent polygons: the metrics, the area
+// and the exports triangulate the same boundary panel several times, and ear
+// clipping with its Delaunay pass is quadratic in the corners. Keyed by the
+// exact corner coordinates (compared in full on a hit), so a hit returns what
+// the computation would; bounded in corners held, then cleared.
+class TriangulationMemo {
+ public:
+  const std::vector<std::array<int, 3>>& get(const std::vector<Vec2>& uv) {
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the coordinate bits
+    for (const Vec2& q : uv) {
+      for (double x : {q.x(), q.y()}) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        h = (h ^ bits) * 1099511628211ull;
+      }
+    }
+    auto range = entries_.equal_range(h);
+    for (auto it = range.first; it != range.second; ++it)
+      if (it->second.uv == uv) return it->second.triangles;
+    if (corners_ + uv.size() > kMaxCorners) entries_.clear(), corners_ = 0;
+    corners_ += uv.size();
+    auto it = entries_.emplace(h, Entry{uv, triangulate_outline(uv)});
+    return it->second.triangles;
+  }
+
+ private:
+  static constexpr std::size_t kMaxCorners = 1 << 20;
+  struct Entry {
+    std::vector<Vec2> uv;
+    std::vector<std::array<int, 3>> triangles;
+  };
+  std::unordered_multimap<std::uint64_t, Entry> entries_;
+  std::size_t corners_ = 0;
+};
+
+}  // namespace
+
+std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& uv) {
+  // Small polygons cost less to triangulate than to look up.
+  if (uv.size() < 7) return triangulate_outline(uv);
+  thread_local TriangulationMemo memo;
+  return memo.get(uv);
 }
 
 double panel_model_area(const std::vector<Vec3>& xyz, const std::vector<Vec2>& uv) {
@@ -251,7 +382,8 @@ std::vector<std::array<int, 3>> triangulate_pieces(const std::vector<Vec3>& xyz,
     } else {
       for (int c : piece) sub.push_back(uv[c]);
     }
-    for (const auto& t : triangulate_polygon(sub)) out.push_back({piece[t[0]], piece[t[1]], piece[t[2]]});
+    for (const auto& t : triangulate_polygon(sub))
+      out.push_back({piece[t[0]], piece[t[1]], piece[t[2]]});
   }
   return out;
 }
@@ -271,7 +403,8 @@ double panel_area(const PanelMesh& mesh, std::size_t p) {
   const auto tris = panel_model_triangles(mesh, p);
   if (tris.empty()) return bilinear_area(xyz);
   double area = 0;
-  for (const auto& t : tris) area += 0.5 * (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm();
+  for (const auto& t : tris)
+    area += 0.5 * (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm();
   return area;
 }
 

@@ -205,6 +205,9 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   if (!face) throw InvalidGeometry("panelize: no face");
   const MethodDeclaration& decl = method_declaration(method);
   check_param_values(decl, values);
+  // The whole pipeline evaluates through the span caches (the method's own
+  // scopes and the metrics' workers nest inside this one).
+  const SurfaceFace::FastEvaluation fast(*face);
 
   PanelizeResult r;
   r.face = face;
