@@ -107,18 +107,41 @@ def initial_values(obj=None, size=None):
 
 
 # ------------------------------------------------------------------ widgets
+_UI_LOADER = []
+
+
+def _release_widget(widget):
+    """Takes a widget out of its form and hands it to Python, which deletes it
+    (and forgets its wrapper) once the last reference goes."""
+    widget.hide()
+    widget.setParent(None)
+
+
+def _ui_loader():
+    """One Gui.UiLoader for the session: a throwaway loader, once collected, takes
+    the C++ side of the widgets it made with it ("Internal C++ object already
+    deleted"), which turned quantity fields into plain spin boxes after a few
+    method switches (1.2 m read as 1.2 mm)."""
+    if not _UI_LOADER:
+        _UI_LOADER.append(Gui.UiLoader())
+    return _UI_LOADER[0]
+
+
 def quantity_box(unit, value, minimum=0.0, maximum=1e9):
-    """A FreeCAD quantity spin box (parses '1.5 m'); a plain spin box as fallback."""
+    """A FreeCAD quantity spin box (parses '1.5 m', '30 deg'). Only if FreeCAD
+    cannot make one at all, a plain spin box, said in the Report view."""
     from PySide import QtGui
 
     try:
-        box = Gui.UiLoader().createWidget("Gui::QuantitySpinBox")
+        box = _ui_loader().createWidget("Gui::QuantitySpinBox")
         box.setProperty("unit", unit)
         box.setProperty("minimum", minimum)
         box.setProperty("maximum", maximum)
         box.setProperty("rawValue", float(value))
         return box
-    except Exception:
+    except Exception as e:  # noqa: BLE001  (FreeCAD without its quantity widget)
+        FreeCAD.Console.PrintWarning(
+            f"Tessella: no quantity field available ({e}); values are in {unit}\n")
         box = QtGui.QDoubleSpinBox()
         box.setRange(minimum, maximum)
         box.setDecimals(3)
@@ -256,6 +279,12 @@ class ParameterForm:
         row of a guide-line method."""
         from PySide import QtGui
 
+        # The old fields go to Python first: deleted by the layout in C++
+        # only, a new field made at the same address came back as the stale,
+        # deleted wrapper (the quantity field silently turned into a plain spin
+        # box after a few method switches: 1.2 m read as 1.2 mm).
+        for box in self.widgets.values():
+            _release_widget(box)
         while self.method_form.rowCount():
             self.method_form.removeRow(0)
         self.widgets = {}

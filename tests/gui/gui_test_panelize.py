@@ -730,9 +730,78 @@ def test_analysis_colors():
         FreeCAD.closeDocument(doc.Name)
 
 
+def type_into(box, text):
+    """Types `text` into a spin box's line edit, key by key, as a user does."""
+    from PySide import QtCore, QtGui
+
+    line = box.lineEdit()
+    line.setFocus()
+    line.selectAll()
+    for ch in text:
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtGui.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, 0, QtCore.Qt.NoModifier, ch))
+    process_events()
+
+
+def test_units_after_method_switches():
+    """Every length and angle field stays a quantity field (units typed are
+    understood) however often the method is switched: "1.2 m" is 1200 mm."""
+    import gc
+
+    import freecad_workbench as tessella
+    from freecad_workbench.gui import task_form, task_panel
+
+    doc = FreeCAD.newDocument("TessellaUnits")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = bspline_face_with_hole()
+        parent = tessella.make_panelization((src, "Face1"), method="iso_grid", size=2000.0)
+        doc.recompute()
+        parent.ViewObject.Proxy.doubleClicked(parent.ViewObject)
+        panel = task_panel.active()
+        if not check("units: panel active", panel is not None):
+            return
+        panel.timer.stop()
+        methods = list(tessella.METHODS)
+        plain = []
+        for cycle in range(3):
+            for m in methods:
+                panel.method.setCurrentIndex(methods.index(m))
+                process_events()
+                gc.collect()  # the stale wrappers showed once collected
+                for r in task_form.rows_for(m):
+                    box = panel.widgets.get(r.name)
+                    if r.kind == "quantity" and (box is None or box.property("rawValue") is None):
+                        plain.append(f"{m}.{r.name} ({type(box).__name__}, cycle {cycle})")
+        check("units: every length/angle row stays a quantity field", not plain, str(plain[:5]))
+        panel.method.setCurrentIndex(methods.index("equal_size_grid"))
+        process_events()
+        type_into(panel.widget("size"), "1.2 m")
+        method, params = panel.parameters()
+        check("units: '1.2 m' typed is 1200 mm", abs(params.get("size", 0) - 1200.0) < 1e-9,
+              str(params.get("size")))
+        panel.method.setCurrentIndex(methods.index("walking_agent"))
+        process_events()
+        type_into(panel.widget("max_deviation"), "2 cm")
+        method, params = panel.parameters()
+        check("units: '2 cm' typed is 20 mm", abs(params.get("max_deviation", 0) - 20.0) < 1e-9,
+              str(params.get("max_deviation")))
+        type_into(panel.min_angle, "0.5 rad")
+        check("units: '0.5 rad' typed is 28.65 deg",
+              abs(task_form.value(panel.min_angle) - 0.5 * 180 / 3.141592653589793) < 1e-6,
+              str(task_form.value(panel.min_angle)))
+        panel.reject()
+        process_events()
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        FreeCAD.closeDocument(doc.Name)
+
+
 # FreeCAD runs this file as a script: run the tests, write the result, quit.
 ensure_workbench()
 gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command_failure, test_open_headless_document,
-    test_analysis_colors, test_task_panel_edit, test_task_panel_guides,
+    test_analysis_colors, test_task_panel_edit, test_units_after_method_switches,
+    test_task_panel_guides,
     test_progress_cancel,
     test_preferences_page), 'tessella_gui_test_result.json')
