@@ -8,6 +8,7 @@
 #include "numpy_convert.h"
 #include "progress_bridge.h"
 #include "tessella/boundary_driven.h"
+#include "tessella/face_set.h"
 #include "tessella/methods.h"
 #include "tessella/panelize.h"
 #include "tessella/surface_face.h"
@@ -58,6 +59,44 @@ py::dict stats(const SummaryStats& s) {
   return d;
 }
 
+py::dict summary_dict(const PanelizeSummary& s) {
+  py::dict d;
+  d["panel_count"] = s.panel_count;
+  d["rod_count"] = s.rod_count;
+  d["node_count"] = s.node_count;
+  d["merged_slivers"] = s.merged_slivers;
+  d["irregular_count"] = s.irregular_count;
+  d["quad_share"] = s.quad_share;
+  d["nominal_area"] = s.nominal_area;
+  d["face_area"] = s.face_area;
+  d["model_size"] = s.model_size;
+  d["fold_count"] = s.fold_count;
+  d["bend_count"] = s.bend_count;
+  d["split_panels"] = s.split_panels;
+  d["boundary_nodes_added"] = s.boundary_nodes_added;
+  d["surface_evaluations"] = s.surface_evaluations;
+  d["core_seconds"] = s.core_seconds;
+  d["global_projections"] = s.global_projections;
+  d["metrics_seconds"] = s.metrics_seconds;
+  d["metrics_threads"] = s.metrics_threads;
+  d["pipeline_seconds"] = s.pipeline_seconds;
+  d["panel_deviation"] = stats(s.deviation);
+  d["unreliable_deviation"] = s.unreliable_deviation;
+  d["panel_planarity"] = stats(s.planarity);
+  d["panel_area"] = stats(s.area);
+  d["rod_length"] = stats(s.rod_length);
+  d["min_rod_length"] = s.min_rod_length;
+  d["merged_rods"] = s.merged_rods;
+  d["short_rods"] = s.short_rods;
+  d["shortest_rod"] = s.shortest_rod;
+  d["gap_fraction"] = s.gap_fraction;
+  d["overlap_fraction"] = s.overlap_fraction;
+  d["model_area_ratio"] = s.model_area_ratio;
+  d["zero_area_panels"] = s.zero_area_panels;
+  d["coverage_warning"] = s.coverage_warning;
+  return d;
+}
+
 }  // namespace
 
 void bind_pipeline(py::module_& m) {
@@ -95,44 +134,8 @@ void bind_pipeline(py::module_& m) {
           "normals", [](const PanelizeResult& r) { return bindings::rows<3>(r.nodes.normal); })
       .def_property_readonly("fold_angle",
                              [](const PanelizeResult& r) { return bindings::values(r.fold_angle); })
-      .def_property_readonly("summary", [](const PanelizeResult& r) {
-        const PanelizeSummary& s = r.summary;
-        py::dict d;
-        d["panel_count"] = s.panel_count;
-        d["rod_count"] = s.rod_count;
-        d["node_count"] = s.node_count;
-        d["merged_slivers"] = s.merged_slivers;
-        d["irregular_count"] = s.irregular_count;
-        d["quad_share"] = s.quad_share;
-        d["nominal_area"] = s.nominal_area;
-        d["face_area"] = s.face_area;
-        d["model_size"] = s.model_size;
-        d["fold_count"] = s.fold_count;
-        d["bend_count"] = s.bend_count;
-        d["split_panels"] = s.split_panels;
-        d["boundary_nodes_added"] = s.boundary_nodes_added;
-        d["surface_evaluations"] = s.surface_evaluations;
-        d["core_seconds"] = s.core_seconds;
-        d["global_projections"] = s.global_projections;
-        d["metrics_seconds"] = s.metrics_seconds;
-        d["metrics_threads"] = s.metrics_threads;
-        d["pipeline_seconds"] = s.pipeline_seconds;
-        d["panel_deviation"] = stats(s.deviation);
-        d["unreliable_deviation"] = s.unreliable_deviation;
-        d["panel_planarity"] = stats(s.planarity);
-        d["panel_area"] = stats(s.area);
-        d["rod_length"] = stats(s.rod_length);
-        d["min_rod_length"] = s.min_rod_length;
-        d["merged_rods"] = s.merged_rods;
-        d["short_rods"] = s.short_rods;
-        d["shortest_rod"] = s.shortest_rod;
-        d["gap_fraction"] = s.gap_fraction;
-        d["overlap_fraction"] = s.overlap_fraction;
-        d["model_area_ratio"] = s.model_area_ratio;
-        d["zero_area_panels"] = s.zero_area_panels;
-        d["coverage_warning"] = s.coverage_warning;
-        return d;
-      });
+      .def_property_readonly("summary",
+                             [](const PanelizeResult& r) { return summary_dict(r.summary); });
 
   m.def(
       "summarize", [](const std::vector<double>& v) { return stats(summarize(v)); },
@@ -148,4 +151,48 @@ void bind_pipeline(py::module_& m) {
       },
       py::arg("face"), py::arg("method"), py::arg("values"), py::arg("progress") = py::none(),
       "The whole pipeline (method, metrics, folds, summary) on one face");
+
+  py::class_<FaceSet, std::shared_ptr<FaceSet>>(m, "FaceSet")
+      .def_static(
+          "from_brep_string",
+          [](const std::string& brep) {
+            return std::make_shared<FaceSet>(FaceSet::from_brep_string(brep));
+          },
+          py::arg("brep"), "Every face of a shape (BRep string), with the edges they share")
+      .def("__len__", &FaceSet::size)
+      .def("face",
+           [](const FaceSet& s, std::size_t i) {
+             if (i >= s.size()) throw py::index_error("face index out of range");
+             return std::const_pointer_cast<SurfaceFace>(s.face(i));
+           })
+      .def_property_readonly("shared_edge_count", &FaceSet::shared_edge_count);
+  py::class_<FaceSetResult>(m, "FaceSetResult")
+      .def_readonly("combined", &FaceSetResult::combined)
+      .def_property_readonly(
+          "panel_face", [](const FaceSetResult& r) { return bindings::integers(r.panel_face); })
+      .def_property_readonly(
+          "vertex_face", [](const FaceSetResult& r) { return bindings::integers(r.vertex_face); })
+      .def_property_readonly("rod_face",
+                             [](const FaceSetResult& r) { return bindings::integers(r.rod_face); })
+      .def_property_readonly("face_summaries",
+                             [](const FaceSetResult& r) {
+                               py::list out;
+                               for (const PanelizeSummary& s : r.face_summaries)
+                                 out.append(summary_dict(s));
+                               return out;
+                             })
+      .def_readonly("shared_edges", &FaceSetResult::shared_edges)
+      .def_readonly("shared_edge_nodes", &FaceSetResult::shared_edge_nodes)
+      .def_readonly("shared_nodes_taken_over", &FaceSetResult::shared_nodes_taken_over);
+  m.def(
+      "panelize_faces",
+      [](std::shared_ptr<FaceSet> set, const std::string& method, const ParamValues& values,
+         py::object progress, int threads) {
+        return bindings::with_progress(
+            progress, [&] { return panelize_faces(*set, method, values, threads); });
+      },
+      py::arg("faces"), py::arg("method"), py::arg("values"), py::arg("progress") = py::none(),
+      py::arg("threads") = 0,
+      "The pipeline on every face of a FaceSet (side by side on `threads` threads), joined "
+      "along the shared edges");
 }

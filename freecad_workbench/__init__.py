@@ -5,6 +5,7 @@ Console API (no document needed):
     import FreeCAD, Part
     import freecad_workbench as tessella
     r = tessella.panelize(face, method="iso_grid", size=1500.0)
+    r = tessella.panelize_faces(shell, method="iso_grid", size=1500.0)  # several faces
 
 Document objects (need FreeCAD):
 
@@ -13,7 +14,7 @@ Document objects (need FreeCAD):
 
 __version__ = "0.1.0"
 
-from .api import METHODS, Cancelled, PanelizeResult, panelize  # noqa: F401,E402
+from .api import METHODS, Cancelled, PanelizeResult, panelize, panelize_faces  # noqa: F401,E402
 from .plots import histograms  # noqa: F401,E402
 from .boundary_driven import boundary_driven_stages  # noqa: F401,E402
 

@@ -96,6 +96,14 @@ class PanelizeResult:
     #: (F,2) int64 vertex pairs: diagonals along which a method folded a quad
     #: into two flat triangles (walking_agent's hard bound); see metrics["fold_angle"].
     folds: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
+    #: (P,), (N,), (E,) int64: the source face (0-based, in the order the faces
+    #: were given) of each panel, vertex (its first face on a shared edge) and
+    #: rod (the lower face on a shared edge); all 0 for one face.
+    panel_face: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    vertex_face: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    rod_face: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    #: how many faces the panels were made on
+    face_count: int = 1
     _mesh: object = field(default=None, repr=False)
     #: the core's result: keeps the parsed face (unfolding and flattening reuse it)
     _core: object = field(default=None, repr=False)
@@ -317,6 +325,51 @@ def panelize_brep(brep, method="iso_grid", progress=None, **params):
 def panelize_surface(surface, method, values, params=None, progress=None):
     """The core pipeline on an already parsed core.SurfaceFace (one core call)."""
     r = core.panelize(surface, method, values, progress)
+    result = _result(r, method, values, params)
+    result.panel_face = np.zeros(len(result.panels), dtype=np.int64)
+    result.vertex_face = np.zeros(len(result.vertices), dtype=np.int64)
+    result.rod_face = np.zeros(len(result.rods), dtype=np.int64)
+    return result
+
+
+def panelize_faces(faces, method="iso_grid", progress=None, threads=0, **params):
+    """Panelize several faces as one envelope: one result whose panels, rods and
+    nodes cover all of them.
+
+    faces: a shape (a shell, a solid, a compound: all its faces), a list of
+    faces or shapes, a document object, (obj, ["Face1", "Face3"]). Faces of one
+    shape share their common edges; along such an edge both faces get the same
+    nodes (one node at each position, one rod per segment, no T-junction).
+    Faces are panelized side by side on `threads` threads (0: every core), with
+    the same result for any count. `r.panel_face`, `r.vertex_face` and
+    `r.rod_face` give each item's face (0-based, in the order given);
+    `r.summary["faces"]` each face's own summary. The guide-line methods take
+    one face.
+    """
+    from .selection import faces_of
+
+    found = faces_of(faces, context="faces")
+    import Part
+
+    shape = found[0] if len(found) == 1 else Part.Compound(found)
+    face_set = core.FaceSet.from_brep_string(shape.exportBrepToString())
+    values = core_values(method, params)
+    r = core.panelize_faces(face_set, method, values, progress, int(threads))
+    result = _result(r.combined, method, values, params)
+    result.panel_face = np.asarray(r.panel_face, dtype=np.int64)
+    result.vertex_face = np.asarray(r.vertex_face, dtype=np.int64)
+    result.rod_face = np.asarray(r.rod_face, dtype=np.int64)
+    result.face_count = len(face_set)
+    result.summary["faces"] = list(r.face_summaries)
+    result.summary["face_count"] = len(face_set)
+    result.summary["shared_edges"] = r.shared_edges
+    result.summary["shared_edge_nodes"] = r.shared_edge_nodes
+    result.summary["shared_nodes_taken_over"] = r.shared_nodes_taken_over
+    return result
+
+
+def _result(r, method, values, params):
+    """The Python result of a core PanelizeResult."""
     mesh = r.mesh
     node_index = np.asarray(mesh.nodes, dtype=np.int64)
     m = r.metrics

@@ -460,6 +460,9 @@ def flatten(result, face=None, subdivisions=8):
     # The face the result was built on (no second parse); a face passed with a
     # result made elsewhere is parsed.
     surface = result.surface
+    if surface is None and getattr(result, "face_count", 1) > 1:
+        raise ValueError(f"flatten works on one face; this result covers {result.face_count} "
+                         "faces: panelize the face on its own to flatten its panels")
     if surface is None:
         surface = core.SurfaceFace.from_brep_string(face_to_brep(face))
     patches = core.flatten_panels(surface, result._mesh, p)

@@ -10,6 +10,8 @@
 
 #include "tessella/vec.h"
 
+class TopoDS_Face;  // OCCT: only the core's own code builds a face from it
+
 namespace tessella {
 
 struct UvBounds {
@@ -54,6 +56,8 @@ class SurfaceFace {
   // Throws InvalidGeometry if the string holds no face, more than one face,
   // or a face without area.
   static SurfaceFace from_brep_string(const std::string& brep);
+  // The same from an OCCT face (a face of a face set, already parsed).
+  static SurfaceFace from_occt_face(const TopoDS_Face& face);
 
   SurfaceFace(SurfaceFace&&) noexcept;
   SurfaceFace& operator=(SurfaceFace&&) noexcept;

@@ -167,6 +167,10 @@ SurfaceFace SurfaceFace::from_brep_string(const std::string& brep) {
     throw InvalidGeometry("the shape has " + std::to_string(face_count) +
                           " faces: pass exactly one face");
   }
+  return from_occt_face(face);
+}
+
+SurfaceFace SurfaceFace::from_occt_face(const TopoDS_Face& face) {
   auto impl = std::make_unique<Impl>();
   try {
     impl->face = face;

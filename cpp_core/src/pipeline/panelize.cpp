@@ -14,6 +14,7 @@
 #include "mesh/panel_model.h"
 #include "mesh/short_rod_merge.h"
 #include "mesh/sliver_merge.h"
+#include "pipeline/stages.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
@@ -114,23 +115,15 @@ void check_hard_bound(const PanelMetrics& metrics, double bound) {
                         "max_deviation or max_refinements");
 }
 
-// One run of the method and the stages that shape its panels: zero-area
-// panels, short rods, metrics, boundary pieces (the metrics of the pieces as
-// modelled).
-struct Modelled {
-  PanelMesh mesh;
-  PanelMetrics metrics;
-  ShortRodMergeReport merged;
-  BoundaryPiecesReport pieces;
-  int zero_area = 0;
-  double core_seconds = 0;  // the method and the short rods, not the metrics
-  double metrics_seconds = 0;
-  int metrics_threads = 1;
-  std::uint64_t evaluations = 0;
-};
+}  // namespace
 
-Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
-                      const ParamValues& values) {
+double param_number(const ParamValues& values, const MethodDeclaration& method,
+                    const std::string& name) {
+  return value_or<double>(values, method, name);
+}
+
+Modelled run_method(const SurfaceFace& face, const MethodDeclaration& decl,
+                    const ParamValues& values) {
   const std::string& method = decl.name;
   Modelled out;
   face.reset_evaluations();
@@ -152,10 +145,16 @@ Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
   out.core_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   out.evaluations = face.evaluations();
+  return out;
+}
 
+void model_and_measure(const SurfaceFace& face, const MethodDeclaration& decl,
+                       const ParamValues& values, Modelled& out) {
+  const std::string& method = decl.name;
   const auto metrics_started = std::chrono::steady_clock::now();
   MetricsParams mp;
   mp.samples = value_or<int>(values, decl, "samples");
+  mp.threads = out.metrics_threads_requested;
   report_stage(0.0, "measuring panels");
   // Full panels first (they fix the boundary pieces' allowance), then the
   // boundary pieces once they are modelled.
@@ -185,6 +184,14 @@ Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
   out.metrics_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - metrics_started).count();
   out.metrics_threads = worker_threads(mp.threads);
+}
+
+namespace {
+
+Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
+                      const ParamValues& values) {
+  Modelled out = run_method(face, decl, values);
+  model_and_measure(face, decl, values, out);
   return out;
 }
 
@@ -209,9 +216,6 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   // scopes and the metrics' workers nest inside this one).
   const SurfaceFace::FastEvaluation fast(*face);
 
-  PanelizeResult r;
-  r.face = face;
-  r.method = method;
   face->reset_global_projections();
   const auto started = std::chrono::steady_clock::now();
   Modelled m = model_panels(*face, decl, values);
@@ -233,6 +237,16 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
     }
     check_hard_bound(m.metrics, bound);
   }
+  return finish_result(face, decl, values, std::move(m), started);
+}
+
+PanelizeResult finish_result(std::shared_ptr<const SurfaceFace> face, const MethodDeclaration& decl,
+                             const ParamValues& values, Modelled&& m,
+                             std::chrono::steady_clock::time_point started) {
+  const std::string& method = decl.name;
+  PanelizeResult r;
+  r.face = face;
+  r.method = method;
   r.mesh = std::move(m.mesh);
   r.metrics = std::move(m.metrics);
   r.summary.zero_area_panels = m.zero_area;
@@ -283,13 +297,26 @@ PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::stri
   s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
 
   report_stage(0.0, "checking coverage");
-  const Coverage coverage = measure_coverage(*face, r.mesh, r.metrics.area);
+  Coverage coverage = measure_coverage(*face, r.mesh, r.metrics.area);
   s.gap_fraction = coverage.gap_fraction();
   s.overlap_fraction = coverage.overlap_fraction();
   s.model_area_ratio = coverage.face_area > 0 ? coverage.model_area / coverage.face_area : 0.0;
+  if (m.coverage_allowance > 0) {
+    // A face of a set: its shared edges run as chords (what the neighbour's
+    // panels meet); the strips between them and the edges are no hole. The
+    // figures above stay as measured.
+    coverage.gap = std::max(0.0, coverage.gap - m.coverage_allowance);
+    const double beyond = std::max(0.0, coverage.overlap + coverage.outside - m.coverage_allowance);
+    const double share = coverage.overlap + coverage.outside > 0
+                             ? beyond / (coverage.overlap + coverage.outside)
+                             : 0.0;
+    coverage.overlap *= share;
+    coverage.outside *= share;
+  }
   if (decl.tiles_face) {
     check_coverage(coverage, deviation_band(r.mesh, r.metrics), method);
-  } else if (s.gap_fraction > kMaxCoverageError || s.overlap_fraction > kMaxCoverageError) {
+  } else if (coverage.gap_fraction() > kMaxCoverageError ||
+             coverage.overlap_fraction() > kMaxCoverageError) {
     s.coverage_warning = coverage_message(coverage, method);
   }
   s.global_projections = face->global_projections();

@@ -1,0 +1,60 @@
+// FaceSet: several trimmed faces panelized as one envelope (a shell, a solid,
+// a compound, faces picked one by one), and panelize_faces(): every face runs
+// the pipeline, and along an edge two faces share their nodes agree (one node
+// at each position, one rod per segment, no T-junction).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessella/panelize.h"
+
+namespace tessella {
+
+class FaceSet {
+ public:
+  // Every face of the shape, in OCCT's explorer order (a face met twice, as
+  // in a compound holding it twice, once). Throws InvalidGeometry for a shape
+  // without faces or a face that cannot be evaluated (naming it: "face 3: ...").
+  static FaceSet from_brep_string(const std::string& brep);
+
+  std::size_t size() const;
+  // Face i (its own copy of the geometry: threads evaluate faces side by side).
+  std::shared_ptr<const SurfaceFace> face(std::size_t i) const;
+  // Edges bounding exactly two different faces of the set.
+  std::size_t shared_edge_count() const;
+
+  struct Impl;
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  explicit FaceSet(std::shared_ptr<Impl> impl);
+  std::shared_ptr<Impl> impl_;
+};
+
+struct FaceSetResult {
+  // All faces' panels in one mesh (face order, then each face's own order),
+  // welded along the shared edges; `face` is null, the summary adds up the
+  // faces' (statistics over all panels and rods).
+  PanelizeResult combined;
+  // The source face of every panel, vertex (its first face along a shared
+  // edge) and rod (the lower face of a rod on a shared edge).
+  std::vector<int> panel_face, vertex_face, rod_face;
+  // Each face's own summary (its panels before the faces were joined).
+  std::vector<PanelizeSummary> face_summaries;
+  int shared_edges = 0;
+  // Nodes on shared edges, counted once; how many of them one face had and
+  // the other took over (inserted into its outline or moved onto it).
+  int shared_edge_nodes = 0, shared_nodes_taken_over = 0;
+};
+
+// The pipeline on every face of `set` (faces side by side on `threads`
+// threads, 0: TESSELLA_THREADS or every core; the same result for any count),
+// then joined. Methods that take guide curves or a start point refer to one
+// face and are refused for more than one face.
+FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
+                             const ParamValues& values = {}, int threads = 0);
+
+}  // namespace tessella

@@ -1,0 +1,34 @@
+// What a FaceSet holds (tessella/face_set.h): the faces, each with its own
+// copy of the geometry, and the edges two faces share with their curves on
+// each face.
+#pragma once
+
+#include <Geom2d_Curve.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "tessella/face_set.h"
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+// An edge between faces a < b: its curve on each face (the parameter is the
+// edge's own on both, as in every valid B-rep: SameParameter).
+struct SharedEdge {
+  std::array<int, 2> faces{};
+  std::array<Handle(Geom2d_Curve), 2> pcurve;
+  double first = 0, last = 0;
+  // The edge's two vertices lie at its ends (a closed edge: the same point).
+  bool closed = false;
+};
+
+struct FaceSet::Impl {
+  std::vector<TopoDS_Face> occt;  // the copies the SurfaceFaces were built from
+  std::vector<std::shared_ptr<const SurfaceFace>> faces;
+  std::vector<SharedEdge> shared;
+};
+
+}  // namespace tessella

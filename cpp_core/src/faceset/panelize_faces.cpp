@@ -1,0 +1,319 @@
+// The pipeline on a face set (tessella/face_set.h): every face's method side by
+// side, then the nodes of the shared edges made to agree, then every face's
+// metrics and boundary pieces side by side, then the faces joined into one
+// mesh. Each face is computed by one thread from its own copy of the
+// geometry, so the result does not depend on the thread count.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "common/parallel_chunks.h"
+#include "faceset/face_set_impl.h"
+#include "faceset/shared_edge_nodes.h"
+#include "pipeline/stages.h"
+#include "tessella/errors.h"
+#include "tessella/face_set.h"
+#include "tessella/progress.h"
+
+namespace tessella {
+
+namespace {
+
+// work(f) for every face, faces claimed one at a time by `threads` threads.
+template <class Work>
+void for_each_face(std::size_t n, int threads, const Work& work) {
+  ChunkQueue queue(n, 1);
+  run_chunks(queue, threads, [&](bool) {
+    std::size_t begin = 0, end = 0;
+    while (queue.next(begin, end))
+      for (std::size_t f = begin; f < end; ++f) work(f);
+  });
+}
+
+double largest(const std::vector<double>& values) {
+  double worst = 0;
+  for (double d : values)
+    if (std::isfinite(d)) worst = std::max(worst, d);
+  return worst;
+}
+
+// The faces' results as one: vertices, panels and their data in face order;
+// the vertices two faces share (identical positions, made so along shared
+// edges) once.
+void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
+  PanelizeResult& c = out.combined;
+  PanelMesh& m = c.mesh;
+  // Vertices of two faces closer than this are one (along a shared edge the
+  // join put them at one position; a corner of three faces computed on two
+  // surfaces may differ by rounding).
+  double size = 0;
+  for (const PanelizeResult& r : faces) size = std::max(size, r.summary.model_size);
+  const double tol = 1e-7 * size;
+  using Cell = std::array<long long, 3>;
+  std::map<Cell, std::vector<int>> grid;
+  auto cell = [&](const Vec3& p) {
+    return Cell{static_cast<long long>(std::floor(p.x() / tol)),
+                static_cast<long long>(std::floor(p.y() / tol)),
+                static_cast<long long>(std::floor(p.z() / tol))};
+  };
+  bool any_corner_uv = false;
+  for (const PanelizeResult& r : faces) any_corner_uv |= !r.mesh.corner_uv.empty();
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const PanelizeResult& r = faces[f];
+    const PanelMesh& fm = r.mesh;
+    std::vector<int> index(fm.vertex_count());
+    for (std::size_t v = 0; v < fm.vertex_count(); ++v) {
+      // The vertex of an earlier face at (about) this position, if any.
+      const Cell key = cell(fm.xyz[v]);
+      int found = -1;
+      for (long long dx = -1; dx <= 1 && found < 0; ++dx)
+        for (long long dy = -1; dy <= 1 && found < 0; ++dy)
+          for (long long dz = -1; dz <= 1 && found < 0; ++dz) {
+            const auto it = grid.find({key[0] + dx, key[1] + dy, key[2] + dz});
+            if (it == grid.end()) continue;
+            for (int w : it->second)
+              if (out.vertex_face[static_cast<std::size_t>(w)] != static_cast<int>(f) &&
+                  (m.xyz[static_cast<std::size_t>(w)] - fm.xyz[v]).norm() <= tol) {
+                found = w;
+                break;
+              }
+          }
+      if (found >= 0) {
+        index[v] = found;
+        if (is_node(fm, static_cast<int>(v))) m.is_node[static_cast<std::size_t>(found)] = 1;
+        continue;
+      }
+      index[v] = static_cast<int>(m.xyz.size());
+      grid[key].push_back(index[v]);
+      m.uv.push_back(fm.uv[v]);
+      m.xyz.push_back(fm.xyz[v]);
+      m.is_node.push_back(is_node(fm, static_cast<int>(v)) ? 1 : 0);
+      c.nodes.normal.push_back(r.nodes.normal[v]);
+      out.vertex_face.push_back(static_cast<int>(f));
+    }
+    for (std::size_t p = 0; p < fm.panels.size(); ++p) {
+      std::vector<int> panel;
+      for (int v : fm.panels[p]) panel.push_back(index[static_cast<std::size_t>(v)]);
+      m.panels.push_back(std::move(panel));
+      if (any_corner_uv) m.corner_uv.push_back(panel_corner_uv(fm, p));
+      m.bends.push_back(p < fm.bends.size() ? fm.bends[p] : std::vector<std::array<int, 2>>{});
+      out.panel_face.push_back(static_cast<int>(f));
+    }
+    for (const auto& fold : fm.folds) {
+      const int a = index[static_cast<std::size_t>(fold[0])],
+                b = index[static_cast<std::size_t>(fold[1])];
+      m.folds.push_back({std::min(a, b), std::max(a, b)});
+    }
+    m.merged_slivers += fm.merged_slivers;
+    const PanelMetrics& pm = r.metrics;
+    PanelMetrics& cm = c.metrics;
+    auto add = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+    add(cm.deviation, pm.deviation);
+    add(cm.deviation_unreliable, pm.deviation_unreliable);
+    add(cm.planarity, pm.planarity);
+    add(cm.area, pm.area);
+    add(cm.min_angle, pm.min_angle);
+    add(cm.max_angle, pm.max_angle);
+    add(c.irregular, r.irregular);
+    add(c.fold_angle, r.fold_angle);
+  }
+  m.nominal_area = faces.empty() ? 0.0 : faces.front().mesh.nominal_area;
+  m.regular_corners = faces.empty() ? 4 : faces.front().mesh.regular_corners;
+  build_rods(m);
+  // A rod's face: that of the panels it bounds (the lower one on a shared edge).
+  std::map<std::pair<int, int>, int> rod_face;
+  for (std::size_t p = 0; p < m.panels.size(); ++p) {
+    std::vector<int> corners;
+    for (int v : m.panels[p])
+      if (is_node(m, v)) corners.push_back(v);
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const int a = corners[i], b = corners[(i + 1) % corners.size()];
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      const auto it = rod_face.find(key);
+      if (it == rod_face.end() || it->second > out.panel_face[p]) rod_face[key] = out.panel_face[p];
+    }
+  }
+  c.metrics.rod_length.clear();
+  c.nodes.valence.assign(m.xyz.size(), 0);
+  for (const auto& rod : m.rods) {
+    c.metrics.rod_length.push_back(
+        (m.xyz[static_cast<std::size_t>(rod[0])] - m.xyz[static_cast<std::size_t>(rod[1])]).norm());
+    ++c.nodes.valence[static_cast<std::size_t>(rod[0])];
+    ++c.nodes.valence[static_cast<std::size_t>(rod[1])];
+    const auto it = rod_face.find({rod[0], rod[1]});
+    out.rod_face.push_back(
+        it != rod_face.end() ? it->second : out.vertex_face[static_cast<std::size_t>(rod[0])]);
+  }
+}
+
+// The set's summary: counts over all panels, rods and nodes; the faces' sums
+// and area-weighted coverage.
+void summarize_set(const std::vector<PanelizeResult>& faces, FaceSetResult& out, double seconds) {
+  PanelizeResult& c = out.combined;
+  PanelizeSummary& s = c.summary;
+  const PanelMesh& m = c.mesh;
+  s.panel_count = static_cast<int>(m.panels.size());
+  s.rod_count = static_cast<int>(m.rods.size());
+  for (std::size_t v = 0; v < m.xyz.size(); ++v)
+    if (is_node(m, static_cast<int>(v))) ++s.node_count;
+  int quads = 0;
+  for (const auto& p : m.panels) {
+    int corners = 0;
+    for (int v : p) corners += is_node(m, v) ? 1 : 0;
+    quads += corners == 4 ? 1 : 0;
+  }
+  s.quad_share = m.panels.empty() ? 0.0 : double(quads) / double(m.panels.size());
+  double gap = 0, overlap = 0, model = 0;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const PanelizeSummary& x = faces[f].summary;
+    s.merged_slivers += x.merged_slivers;
+    s.irregular_count += x.irregular_count;
+    s.fold_count += x.fold_count;
+    s.bend_count += x.bend_count;
+    s.split_panels += x.split_panels;
+    s.boundary_nodes_added += x.boundary_nodes_added;
+    s.face_area += x.face_area;
+    s.model_size = std::max(s.model_size, x.model_size);
+    s.surface_evaluations += x.surface_evaluations;
+    s.core_seconds += x.core_seconds;
+    s.global_projections += x.global_projections;
+    s.metrics_seconds += x.metrics_seconds;
+    s.metrics_threads = std::max(s.metrics_threads, x.metrics_threads);
+    s.unreliable_deviation += x.unreliable_deviation;
+    s.merged_rods += x.merged_rods;
+    s.zero_area_panels += x.zero_area_panels;
+    gap += x.gap_fraction * x.face_area;
+    overlap += x.overlap_fraction * x.face_area;
+    model += x.model_area_ratio * x.face_area;
+    if (!x.coverage_warning.empty())
+      s.coverage_warning += (s.coverage_warning.empty() ? "" : "; ") + std::string("face ") +
+                            std::to_string(f + 1) + ": " + x.coverage_warning;
+    out.face_summaries.push_back(x);
+  }
+  if (s.face_area > 0) {
+    s.gap_fraction = gap / s.face_area;
+    s.overlap_fraction = overlap / s.face_area;
+    s.model_area_ratio = model / s.face_area;
+  }
+  s.nominal_area = m.nominal_area;
+  s.deviation = summarize(c.metrics.deviation);
+  s.planarity = summarize(c.metrics.planarity);
+  s.area = summarize(c.metrics.area);
+  s.rod_length = summarize(c.metrics.rod_length);
+  s.min_rod_length = faces.empty() ? 0.0 : faces.front().summary.min_rod_length;
+  for (double length : c.metrics.rod_length) s.short_rods += length < s.min_rod_length ? 1 : 0;
+  s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
+  s.pipeline_seconds = seconds;
+}
+
+// Curves on one face that a method needs (guides) or was given (boundary_driven's
+// extra_curves): such a run refers to one face. Empty when none.
+std::string single_face_curves(const MethodDeclaration& decl, const ParamValues& values) {
+  for (const ParamDeclaration& p : decl.params) {
+    if (p.kind != ParamKind::Curves && p.kind != ParamKind::UvCurves) continue;
+    if (p.minimum > 0) return p.name;
+    const auto it = values.find(p.name);
+    if (it == values.end()) continue;
+    if (const auto* c = std::get_if<Polylines>(&it->second); c && !c->empty()) return p.name;
+    if (const auto* c = std::get_if<UvPolylines>(&it->second); c && !c->empty()) return p.name;
+  }
+  return {};
+}
+
+constexpr int kHardBoundRetries = 3;
+
+}  // namespace
+
+FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
+                             const ParamValues& values, int threads) {
+  const MethodDeclaration& decl = method_declaration(method);
+  check_param_values(decl, values);
+  const std::size_t n = set.size();
+  if (n == 0) throw InvalidGeometry("the face set has no face");
+  if (n > 1) {
+    const std::string curves = single_face_curves(decl, values);
+    if (!curves.empty())
+      throw InvalidParameter(method + ": its " + curves + " lie on one face; pick one face (" +
+                             std::to_string(n) + " are selected)");
+  }
+  const auto started = std::chrono::steady_clock::now();
+  const int workers = worker_threads(threads);
+  std::vector<ParamValues> face_values(n, values);
+  std::vector<Modelled> modelled(n);
+  for (int attempt = 0;; ++attempt) {
+    report_stage(0.0, "panelizing the faces");
+    for_each_face(n, workers, [&](std::size_t f) {
+      const SurfaceFace& face = *set.face(f);
+      const SurfaceFace::FastEvaluation fast(face);
+      face.reset_global_projections();
+      modelled[f] = run_method(face, decl, face_values[f]);
+      // The faces already keep the threads busy.
+      modelled[f].metrics_threads_requested = n > 1 && workers > 1 ? 1 : threads;
+    });
+    report_stage(0.0, "joining the faces along shared edges");
+    double merge = std::numeric_limits<double>::infinity();
+    for (const Modelled& m : modelled) merge = std::min(merge, m.merged.min_rod_length);
+    std::vector<PanelMesh*> meshes;
+    for (Modelled& m : modelled) meshes.push_back(&m.mesh);
+    const SharedEdgeReport shared = conform_shared_edges(set.impl(), meshes, merge);
+    for (std::size_t f = 0; f < n; ++f)
+      modelled[f].coverage_allowance = 1.5 * shared.strip_area[f];  // a margin on 2/3 c h
+    report_stage(0.0, "measuring the faces' panels");
+    for_each_face(n, workers, [&](std::size_t f) {
+      const SurfaceFace& face = *set.face(f);
+      const SurfaceFace::FastEvaluation fast(face);
+      model_and_measure(face, decl, face_values[f], modelled[f]);
+    });
+    // walking_agent's bound is hard (as for one face): a face over it runs
+    // again with its bound tightened, and so do its neighbours' joins.
+    bool again = false;
+    if (method == "walking_agent" && attempt < kHardBoundRetries) {
+      const double bound = param_number(values, decl, "max_deviation");
+      for (std::size_t f = 0; f < n; ++f) {
+        const double worst = largest(modelled[f].metrics.deviation);
+        if (worst <= bound) continue;
+        const double current = param_number(face_values[f], decl, "max_deviation");
+        face_values[f]["max_deviation"] = current * 0.98 * bound / worst;
+        again = true;
+      }
+    }
+    if (again) continue;
+    if (method == "walking_agent") {
+      const double bound = param_number(values, decl, "max_deviation");
+      for (std::size_t f = 0; f < n; ++f) {
+        int over = 0;
+        for (double d : modelled[f].metrics.deviation) over += d <= bound ? 0 : 1;
+        if (over > 0)
+          throw GeometryFailure("walking_agent: face " + std::to_string(f + 1) + ": " +
+                                std::to_string(over) +
+                                " panel(s) deviate more than max_deviation: the bound cannot be "
+                                "met on this face; raise max_deviation or max_refinements");
+      }
+    }
+    std::vector<PanelizeResult> results(n);
+    report_stage(0.0, "checking the faces' coverage");
+    for_each_face(n, workers, [&](std::size_t f) {
+      const SurfaceFace::FastEvaluation fast(*set.face(f));
+      try {
+        results[f] =
+            finish_result(set.face(f), decl, face_values[f], std::move(modelled[f]), started);
+      } catch (const GeometryFailure& e) {
+        throw GeometryFailure("face " + std::to_string(f + 1) + ": " + e.what());
+      }
+    });
+    FaceSetResult out;
+    out.combined.method = method;
+    out.shared_edges = static_cast<int>(set.shared_edge_count());
+    out.shared_edge_nodes = shared.nodes;
+    out.shared_nodes_taken_over = shared.taken_over;
+    join(results, out);
+    summarize_set(
+        results, out,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    return out;
+  }
+}
+
+}  // namespace tessella

@@ -1,0 +1,371 @@
+#include "faceset/shared_edge_nodes.h"
+
+#include <Geom2dAPI_ProjectPointOnCurve.hxx>
+#include <Standard_Failure.hxx>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
+
+namespace tessella {
+
+namespace {
+
+// A vertex of one face's mesh lying on the shared edge, at edge parameter t.
+struct OnEdge {
+  int vertex = -1;
+  double t = 0;
+};
+
+// One node of the merged list: where it sits and which vertex stands for it
+// on each side (-1: none yet).
+struct EdgeNode {
+  double t = 0;
+  Vec3 xyz = Vec3::Zero();
+  std::array<int, 2> vertex{-1, -1};
+};
+
+class EdgeSide {
+ public:
+  EdgeSide(const SharedEdge& e, int side, const SurfaceFace& face, PanelMesh& mesh)
+      : curve_(e.pcurve[static_cast<std::size_t>(side)]),
+        first_(e.first),
+        last_(e.last),
+        face_(face),
+        mesh_(mesh) {}
+
+  // The edge parameter of vertex v if it lies on the edge (its 3D point
+  // within `tol` of the edge's point on this face).
+  bool locate(int v, double tol, double& t) const {
+    const Vec2& q0 = mesh_.uv[static_cast<std::size_t>(v)];
+    const Vec3& x = mesh_.xyz[static_cast<std::size_t>(v)];
+    // On a periodic face the vertex may sit a period away from the curve.
+    const double pu = face_.u_periodic() ? face_.u_period() : 0.0;
+    const double pv = face_.v_periodic() ? face_.v_period() : 0.0;
+    double best3d = std::numeric_limits<double>::infinity();
+    for (double du : {0.0, pu, -pu}) {
+      for (double dv : {0.0, pv, -pv}) {
+        if ((du != 0 && pu == 0) || (dv != 0 && pv == 0)) continue;
+        const gp_Pnt2d p(q0.x() + du, q0.y() + dv);
+        double best = std::numeric_limits<double>::infinity(), at = first_;
+        auto offer = [&](double s) {
+          const double d = curve_->Value(s).Distance(p);
+          if (d < best) best = d, at = s;
+        };
+        offer(first_);
+        offer(last_);
+        try {
+          Geom2dAPI_ProjectPointOnCurve projection(p, curve_, first_, last_);
+          for (int i = 1; i <= projection.NbPoints(); ++i) offer(projection.Parameter(i));
+        } catch (const Standard_Failure&) {
+          // the ends only
+        }
+        const double d3 = (xyz_at(at) - x).norm();
+        if (d3 < best3d) best3d = d3, t = at;
+      }
+    }
+    return best3d <= tol;
+  }
+  // uv of the curve at t, shifted by whole periods to lie nearest `near`.
+  Vec2 uv_near(double t, const Vec2& near) const {
+    Vec2 q = uv_at(t);
+    if (face_.u_periodic()) {
+      const double p = face_.u_period();
+      q.x() += p * std::round((near.x() - q.x()) / p);
+    }
+    if (face_.v_periodic()) {
+      const double p = face_.v_period();
+      q.y() += p * std::round((near.y() - q.y()) / p);
+    }
+    return q;
+  }
+  Vec2 uv_at(double t) const {
+    const gp_Pnt2d c = curve_->Value(t);
+    return {c.X(), c.Y()};
+  }
+  Vec3 xyz_at(double t) const {
+    const Vec2 q = uv_at(t);
+    return face_.point(q.x(), q.y());
+  }
+
+ private:
+  Handle(Geom2d_Curve) curve_;
+  double first_, last_;
+  const SurfaceFace& face_;
+  PanelMesh& mesh_;
+};
+
+// Outline edges used by one panel only: the mesh's boundary (along trims).
+std::map<std::pair<int, int>, int> edge_use(const PanelMesh& mesh) {
+  std::map<std::pair<int, int>, int> use;
+  for (const auto& p : mesh.panels)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      ++use[{std::min(a, b), std::max(a, b)}];
+    }
+  return use;
+}
+
+void set_node(PanelMesh& mesh, int v) {
+  if (mesh.is_node.empty()) return;  // every vertex is a node
+  mesh.is_node[static_cast<std::size_t>(v)] = 1;
+}
+
+}  // namespace
+
+SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<PanelMesh*>& meshes,
+                                      double merge_distance) {
+  SharedEdgeReport report;
+  report.strip_area.assign(meshes.size(), 0.0);
+  for (const SharedEdge& e : set.shared) {
+    std::array<PanelMesh*, 2> mesh{meshes[static_cast<std::size_t>(e.faces[0])],
+                                   meshes[static_cast<std::size_t>(e.faces[1])]};
+    std::array<const SurfaceFace*, 2> face{set.faces[static_cast<std::size_t>(e.faces[0])].get(),
+                                           set.faces[static_cast<std::size_t>(e.faces[1])].get()};
+    const std::array<EdgeSide, 2> side{EdgeSide(e, 0, *face[0], *mesh[0]),
+                                       EdgeSide(e, 1, *face[1], *mesh[1])};
+    const double tol = 1e-6 * std::max(face[0]->model_size(), face[1]->model_size());
+    const double span = e.last - e.first;
+    // The vertices of each face on the edge: its boundary vertices that lie on it.
+    std::array<std::vector<OnEdge>, 2> on;
+    std::array<std::map<int, double>, 2> t_of;
+    for (int s = 0; s < 2; ++s) {
+      const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
+      std::vector<char> boundary(m.vertex_count(), 0);
+      for (const auto& [edge, count] : edge_use(m))
+        if (count == 1)
+          boundary[static_cast<std::size_t>(edge.first)] =
+              boundary[static_cast<std::size_t>(edge.second)] = 1;
+      for (int v = 0; v < static_cast<int>(m.vertex_count()); ++v) {
+        double t = 0;
+        if (!boundary[static_cast<std::size_t>(v)] ||
+            !side[static_cast<std::size_t>(s)].locate(v, tol, t))
+          continue;
+        on[static_cast<std::size_t>(s)].push_back({v, t});
+        t_of[static_cast<std::size_t>(s)][v] = t;
+      }
+    }
+    // The merged list of nodes: sorted along the edge, nodes closer than
+    // merge_distance (or the tolerance) joined; an edge end wins, else side 0.
+    struct Entry {
+      double t;
+      int side, vertex;
+      Vec3 xyz;
+    };
+    std::vector<Entry> entries;
+    for (int s = 0; s < 2; ++s)
+      for (const OnEdge& o : on[static_cast<std::size_t>(s)])
+        if (is_node(*mesh[static_cast<std::size_t>(s)], o.vertex))
+          entries.push_back(
+              {o.t, s, o.vertex,
+               mesh[static_cast<std::size_t>(s)]->xyz[static_cast<std::size_t>(o.vertex)]});
+    std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+      return a.t < b.t || (a.t == b.t && a.side < b.side);
+    });
+    const double join = std::max(merge_distance, tol);
+    auto at_end = [&](double t) {
+      return std::abs(t - e.first) <= 1e-9 * std::abs(span) ||
+             std::abs(t - e.last) <= 1e-9 * std::abs(span);
+    };
+    std::vector<EdgeNode> nodes;
+    std::vector<std::vector<const Entry*>> members;
+    for (const Entry& x : entries) {
+      if (!members.empty() && (x.xyz - members.back().front()->xyz).norm() <= join) {
+        members.back().push_back(&x);
+        continue;
+      }
+      members.push_back({&x});
+    }
+    // A closed edge: the last group may be the first one again (its two ends).
+    if (e.closed && members.size() > 1 &&
+        (members.back().front()->xyz - members.front().front()->xyz).norm() <= join) {
+      for (const Entry* x : members.back()) members.front().push_back(x);
+      members.pop_back();
+    }
+    for (const auto& group : members) {
+      const Entry* pick = group.front();
+      for (const Entry* x : group)
+        if (at_end(x->t) && !at_end(pick->t)) pick = x;
+      if (!at_end(pick->t))
+        for (const Entry* x : group)
+          if (x->side == 0) {
+            pick = x;
+            break;
+          }
+      EdgeNode n;
+      n.t = pick->t;
+      n.xyz = pick->xyz;
+      nodes.push_back(n);
+    }
+    report.nodes += static_cast<int>(nodes.size());
+    // The strips between the edge and its chords, node to node.
+    for (std::size_t k = 0; k + 1 < nodes.size() + (e.closed ? 1 : 0); ++k) {
+      const EdgeNode& a = nodes[k];
+      const EdgeNode& b = nodes[(k + 1) % nodes.size()];
+      double tm = 0.5 * (a.t + b.t);
+      if (e.closed && k + 1 == nodes.size()) tm = 0.5 * (a.t + b.t + span);
+      if (tm > e.last) tm -= span;
+      const Vec3 chord = b.xyz - a.xyz;
+      if (!(chord.norm() > 0)) continue;
+      for (int s = 0; s < 2; ++s) {
+        const Vec3 m = side[static_cast<std::size_t>(s)].xyz_at(tm) - a.xyz;
+        const double sagitta = (m - chord * (m.dot(chord) / chord.squaredNorm())).norm();
+        report.strip_area[static_cast<std::size_t>(e.faces[static_cast<std::size_t>(s)])] +=
+            2.0 / 3.0 * chord.norm() * sagitta;
+      }
+    }
+
+    for (int s = 0; s < 2; ++s) {
+      PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
+      // Each merged node's vertex on this side: the first of its own there
+      // (moved onto the node), else a new one; its other ones join it.
+      std::map<int, int> replace;    // vertex -> the vertex standing for its node
+      std::map<int, Vec2> moved_uv;  // vertices moved onto a merged node
+      for (std::size_t k = 0; k < nodes.size(); ++k) {
+        EdgeNode& n = nodes[k];
+        int& mine = n.vertex[static_cast<std::size_t>(s)];
+        for (const Entry* x : members[k]) {
+          if (x->side != s) continue;
+          if (mine < 0)
+            mine = x->vertex;
+          else
+            replace[x->vertex] = mine;
+        }
+        if (mine < 0) {
+          mine = static_cast<int>(m.vertex_count());
+          m.uv.push_back(side[static_cast<std::size_t>(s)].uv_at(n.t));
+          m.xyz.push_back(n.xyz);
+          if (!m.is_node.empty()) m.is_node.push_back(1);
+          ++report.taken_over;
+        } else if (m.xyz[static_cast<std::size_t>(mine)] != n.xyz) {
+          moved_uv[mine] = m.uv[static_cast<std::size_t>(mine)];
+          m.uv[static_cast<std::size_t>(mine)] = side[static_cast<std::size_t>(s)].uv_at(n.t);
+          m.xyz[static_cast<std::size_t>(mine)] = n.xyz;
+          ++report.taken_over;
+        }
+        set_node(m, mine);
+        t_of[static_cast<std::size_t>(s)][mine] = n.t;
+      }
+      const auto use = edge_use(m);
+      auto on_edge = [&](int v) { return t_of[static_cast<std::size_t>(s)].count(v) != 0; };
+      // An outline side along the edge: both ends on it, on the mesh boundary,
+      // its middle near the edge's point halfway (not a chord across a bend).
+      auto along = [&](int a, int b, const Vec2& ua, const Vec2& ub) {
+        if (!on_edge(a) || !on_edge(b)) return false;
+        const auto it = use.find({std::min(a, b), std::max(a, b)});
+        if (it == use.end() || it->second != 1) return false;
+        const double ta = t_of[static_cast<std::size_t>(s)][a];
+        const double tb = t_of[static_cast<std::size_t>(s)][b];
+        double halfway = 0.5 * (ta + tb);
+        if (e.closed && std::abs(ta - tb) > 0.5 * std::abs(span)) {  // across the closing point
+          halfway += 0.5 * span;
+          if (halfway > e.last) halfway -= span;
+        }
+        const Vec2 mid = 0.5 * (ua + ub);
+        return (side[static_cast<std::size_t>(s)].uv_near(halfway, mid) - mid).norm() <=
+               0.25 * (ua - ub).norm();
+      };
+      // Per-panel corner (u,v)s are kept (a periodic face's seam corners).
+      const bool corner_uv = !m.corner_uv.empty();
+      for (std::size_t p = 0; p < m.panels.size(); ++p) {
+        std::vector<int>& panel = m.panels[p];
+        const std::size_t n = panel.size();
+        std::vector<Vec2> cuv = panel_corner_uv(m, p);
+        // A corner moved onto a merged node: its (u,v) follows, on its own side
+        // of a seam.
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto mv = moved_uv.find(panel[i]);
+          if (mv != moved_uv.end())
+            cuv[i] = side[static_cast<std::size_t>(s)].uv_near(
+                t_of[static_cast<std::size_t>(s)][panel[i]], cuv[i]);
+        }
+        std::vector<char> seg(n, 0);  // side i (i -> i+1) runs along the edge
+        bool any = false;
+        for (std::size_t i = 0; i < n; ++i)
+          any |= (seg[i] = along(panel[i], panel[(i + 1) % n], cuv[i], cuv[(i + 1) % n])) != 0;
+        std::vector<int> out;
+        std::vector<Vec2> out_uv;
+        // Start the walk at a corner that begins a run (not inside one).
+        std::size_t start = 0;
+        while (any && start < n && !(seg[start] && !seg[(start + n - 1) % n])) ++start;
+        if (!any || start == n) {  // nothing along the edge (or all of it: left)
+          out = panel;
+          out_uv = cuv;
+        }
+        std::size_t i = start;
+        for (std::size_t step = 0; any && start < n && step < n;) {
+          if (!seg[i]) {
+            out.push_back(panel[i]);
+            out_uv.push_back(cuv[i]);
+            i = (i + 1) % n, ++step;
+            continue;
+          }
+          // A run of sides along the edge from corner i to corner j.
+          std::size_t j = i, len = 0;
+          while (seg[j] && len < n) j = (j + 1) % n, ++len;
+          const int a = panel[i], b = panel[j];
+          const double ta = t_of[static_cast<std::size_t>(s)][a];
+          const double tb = t_of[static_cast<std::size_t>(s)][b];
+          out.push_back(a);
+          out_uv.push_back(cuv[i]);
+          // The merged nodes strictly between, in the run's direction: that of
+          // its middle corner (not its second: a crossing snapped onto the
+          // curve may lie just past the next trim point); node to node, the
+          // shorter way round a closed edge.
+          auto ahead = [&](double from, double to, bool up) {
+            const double d = up ? to - from : from - to;
+            return e.closed ? std::fmod(std::fmod(d, span) + span, span) : d;
+          };
+          bool up = tb > ta;
+          if (len >= 2) {
+            const double tm = t_of[static_cast<std::size_t>(s)][panel[(i + len / 2) % n]];
+            up = e.closed ? ahead(ta, tm, true) < ahead(ta, tb, true) : tm > ta;
+          } else if (e.closed) {
+            up = ahead(ta, tb, true) < 0.5 * span;
+          }
+          const double reach = ahead(ta, tb, up);
+          std::vector<std::pair<double, std::size_t>> between;
+          for (std::size_t k = 0; k < nodes.size(); ++k) {
+            const int v = nodes[k].vertex[static_cast<std::size_t>(s)];
+            if (v == a || v == b) continue;
+            const double d = ahead(ta, nodes[k].t, up);
+            if (d > 0 && d < reach) between.push_back({d, k});
+          }
+          std::sort(between.begin(), between.end());
+          for (const auto& [key, k] : between) {
+            out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
+            out_uv.push_back(side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, out_uv.back()));
+          }
+          step += len;
+          i = j;
+        }
+        // Joined nodes: the one standing for them; repeated corners once.
+        std::vector<int> clean;
+        std::vector<Vec2> clean_uv;
+        for (std::size_t k = 0; k < out.size(); ++k) {
+          const auto r = replace.find(out[k]);
+          const int w = r != replace.end() ? r->second : out[k];
+          if (!clean.empty() && clean.back() == w) continue;
+          clean.push_back(w);
+          clean_uv.push_back(out_uv[k]);
+        }
+        while (clean.size() > 1 && clean.front() == clean.back())
+          clean.pop_back(), clean_uv.pop_back();
+        panel = std::move(clean);
+        if (corner_uv) m.corner_uv[p] = std::move(clean_uv);
+      }
+      for (std::size_t p = m.panels.size(); p-- > 0;) {
+        if (m.panels[p].size() >= 3) continue;
+        m.panels.erase(m.panels.begin() + static_cast<long>(p));
+        if (corner_uv) m.corner_uv.erase(m.corner_uv.begin() + static_cast<long>(p));
+      }
+      remove_unused_vertices(m);
+      build_rods(m);
+      // The indices moved: the next edge locates its vertices afresh.
+    }
+  }
+  return report;
+}
+
+}  // namespace tessella

@@ -1,0 +1,122 @@
+// Face sets (tessella/face_set.h): faces of one sewn shell panelized together
+// agree along their shared edges; the result does not depend on the threads.
+#include <gtest/gtest.h>
+
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "tessella/errors.h"
+#include "tessella/face_set.h"
+#include "test_faces.h"
+
+namespace tessella {
+namespace {
+
+// A bicubic Bezier-like patch cut at u = 0.4 into two faces, sewn.
+std::string split_patch() {
+  TColgp_Array2OfPnt poles(1, 4, 1, 4);
+  for (int i = 1; i <= 4; ++i)
+    for (int j = 1; j <= 4; ++j)
+      poles(i, j) = gp_Pnt(3000.0 * i, 2500.0 * j, 700.0 * std::sin(1.3 * i) * std::cos(0.9 * j));
+  TColStd_Array1OfReal knots(1, 2);
+  knots(1) = 0, knots(2) = 1;
+  TColStd_Array1OfInteger mults(1, 2);
+  mults(1) = mults(2) = 4;
+  Handle(Geom_BSplineSurface) s = new Geom_BSplineSurface(poles, knots, knots, mults, mults, 3, 3);
+  BRepBuilderAPI_Sewing sewing;
+  sewing.Add(BRepBuilderAPI_MakeFace(s, 0.0, 0.4, 0.0, 1.0, 1e-7).Face());
+  sewing.Add(BRepBuilderAPI_MakeFace(s, 0.4, 1.0, 0.0, 1.0, 1e-7).Face());
+  sewing.Perform();
+  return test::brep(sewing.SewedShape());
+}
+
+// Panel sides (vertex pairs) with the faces of the panels along them.
+std::map<std::pair<int, int>, std::multiset<int>> sides(const FaceSetResult& r) {
+  std::map<std::pair<int, int>, std::multiset<int>> out;
+  const auto& panels = r.combined.mesh.panels;
+  for (std::size_t p = 0; p < panels.size(); ++p)
+    for (std::size_t i = 0; i < panels[p].size(); ++i) {
+      const int a = panels[p][i], b = panels[p][(i + 1) % panels[p].size()];
+      out[{std::min(a, b), std::max(a, b)}].insert(r.panel_face[p]);
+    }
+  return out;
+}
+
+TEST(FaceSet, SharedEdgeHasOneNodeAtEachPositionAndPanelsOnBothSides) {
+  const FaceSet set = FaceSet::from_brep_string(split_patch());
+  ASSERT_EQ(set.size(), 2u);
+  ASSERT_EQ(set.shared_edge_count(), 1u);
+  const FaceSetResult r = panelize_faces(set, "equal_size_grid", {{"size", 900.0}});
+  const PanelMesh& m = r.combined.mesh;
+  // No two nodes at one position.
+  const double tol = 1e-6 * r.combined.summary.model_size;
+  for (std::size_t a = 0; a < m.xyz.size(); ++a)
+    for (std::size_t b = a + 1; b < m.xyz.size(); ++b)
+      ASSERT_GT((m.xyz[a] - m.xyz[b]).norm(), tol) << a << " " << b;
+  // The split line is x-independent in (u): its nodes are the vertices both
+  // faces use; every side between two of them bounds one panel of each face.
+  std::set<int> both;
+  std::map<int, std::set<int>> faces_of_vertex;
+  for (std::size_t p = 0; p < m.panels.size(); ++p)
+    for (int v : m.panels[p]) faces_of_vertex[v].insert(r.panel_face[p]);
+  for (const auto& [v, f] : faces_of_vertex)
+    if (f.size() == 2) both.insert(v);
+  ASSERT_GE(both.size(), 5u);
+  int shared_sides = 0;
+  for (const auto& [side, faces] : sides(r)) {
+    if (!both.count(side.first) || !both.count(side.second)) continue;
+    if (faces.size() == 1 && faces.count(0) + faces.count(1) == 1) continue;  // a free border
+    EXPECT_EQ(faces, (std::multiset<int>{0, 1}));
+    ++shared_sides;
+  }
+  EXPECT_EQ(shared_sides, static_cast<int>(both.size()) - 1);  // an open edge, node to node
+  EXPECT_EQ(r.shared_edge_nodes, static_cast<int>(both.size()));
+  EXPECT_GT(r.shared_nodes_taken_over, 0);  // arc-length spacing differs on the two faces
+  // One rod per side along it.
+  std::set<std::pair<int, int>> rods;
+  for (const auto& rod : m.rods) EXPECT_TRUE(rods.insert({rod[0], rod[1]}).second);
+}
+
+TEST(FaceSet, SameResultOnOneAndTwoThreads) {
+  const FaceSet set = FaceSet::from_brep_string(split_patch());
+  const FaceSetResult one = panelize_faces(set, "iso_grid", {{"size", 800.0}}, 1);
+  const FaceSetResult two = panelize_faces(set, "iso_grid", {{"size", 800.0}}, 2);
+  EXPECT_EQ(one.combined.mesh.panels, two.combined.mesh.panels);
+  EXPECT_EQ(one.combined.mesh.xyz, two.combined.mesh.xyz);
+  EXPECT_EQ(one.combined.metrics.deviation, two.combined.metrics.deviation);
+  EXPECT_EQ(one.panel_face, two.panel_face);
+}
+
+TEST(FaceSet, RefusesWhatItCannotJoin) {
+  EXPECT_THROW(FaceSet::from_brep_string("not a brep"), InvalidGeometry);
+  const FaceSet box =
+      FaceSet::from_brep_string(test::brep(BRepPrimAPI_MakeBox(100, 200, 300).Shape()));
+  EXPECT_EQ(box.size(), 6u);
+  EXPECT_EQ(box.shared_edge_count(), 12u);
+  EXPECT_THROW(panelize_faces(box, "guide_line_scaling", {{"rod_length", 50.0}}), InvalidParameter);
+  // A box panelized whole: its corners are single nodes of three faces.
+  const FaceSetResult r = panelize_faces(box, "iso_grid", {{"size", 40.0}});
+  int corners = 0;
+  for (const Vec3& p : r.combined.mesh.xyz) {
+    const bool corner = (p.x() == 0 || std::abs(p.x() - 100) < 1e-9) &&
+                        (p.y() == 0 || std::abs(p.y() - 200) < 1e-9) &&
+                        (p.z() == 0 || std::abs(p.z() - 300) < 1e-9);
+    corners += corner ? 1 : 0;
+  }
+  EXPECT_EQ(corners, 8);
+  // Box faces tile exactly: their panels' areas add up to the box's surface.
+  double area = 0;
+  for (double a : r.combined.metrics.area) area += a;
+  EXPECT_NEAR(area, 2 * (100 * 200 + 100 * 300 + 200 * 300), 1e-6);
+}
+
+}  // namespace
+}  // namespace tessella

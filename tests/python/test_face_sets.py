@@ -1,0 +1,206 @@
+"""Several faces panelized as one envelope (tessella.panelize_faces), checked
+with FreeCAD's own geometry, on shapes built here (not bundled examples): a
+doubly curved B-spline surface split unevenly into 2 x 2 faces, a box with
+filleted edges (planes, cylinders, spheres), and a cylinder's periodic side
+next to its planar top (a closed shared edge)."""
+
+import math
+
+import FreeCAD
+import Part
+import numpy as np
+import pytest
+
+import freecad_workbench as tessella
+
+V = FreeCAD.Vector
+
+
+def split_bspline_shell():
+    surf = Part.BSplineSurface()
+    pts = [[V(2600.0 * i, 2100.0 * j, 900.0 * math.sin(0.8 * i) * math.cos(0.6 * j) + 60.0 * i * j)
+            for j in range(6)] for i in range(7)]
+    surf.interpolate(pts)
+    u0, u1, v0, v1 = surf.bounds()
+    us = [u0, u0 + 0.43 * (u1 - u0), u1]
+    vs = [v0, v0 + 0.61 * (v1 - v0), v1]
+    faces = [surf.toShape(us[i], us[i + 1], vs[j], vs[j + 1]) for i in range(2) for j in range(2)]
+    shell = Part.Shell(faces)
+    shell.sewShape()
+    return shell
+
+
+def filleted_box_shell():
+    box = Part.makeBox(6000, 4500, 3000)
+    return Part.Shell(box.makeFillet(600, box.Edges).Faces)
+
+
+def cylinder_and_top():
+    cyl = Part.makeCylinder(3000, 5000)
+    side = [f for f in cyl.Faces if f.Surface.__class__.__name__ == "Cylinder"]
+    top = [f for f in cyl.Faces if f.Surface.__class__.__name__ == "Plane" and f.CenterOfMass.z > 1]
+    return Part.Shell(side + top)
+
+
+def shared_edges(shape):
+    """Edges bounding two different faces of the shape."""
+    out = []
+    all_faces = shape.Faces
+    for e in shape.Edges:
+        faces = shape.ancestorsOfType(e, Part.Face)
+        distinct = []
+        for f in faces:
+            if not any(f.isSame(g) for g in distinct):
+                distinct.append(f)
+        if len(distinct) == 2 and not e.Degenerated:
+            out.append((e, sorted(next(i for i, g in enumerate(all_faces) if g.isSame(f))
+                                  for f in distinct)))
+    return out
+
+
+def check_conforming(shape, r):
+    """The invariants of a joined result, measured with FreeCAD."""
+    size = shape.BoundBox.DiagonalLength
+    tol = 1e-6 * size
+    nodes = r.vertices[r.nodes]
+    # One node at each position.
+    order = np.lexsort(nodes.T)
+    gaps = np.linalg.norm(np.diff(nodes[order], axis=0), axis=1)
+    assert gaps.size == 0 or gaps.min() > tol, f"duplicate node positions: {np.sum(gaps <= tol)}"
+    # Every node on the shape.
+    worst = max(shape.distToShape(Part.Vertex(V(*p)))[0] for p in nodes)
+    assert worst <= tol, worst
+    rods = {tuple(sorted(map(int, rod))) for rod in r.rods}
+    assert len(rods) == len(r.rods)
+    # Panel sides by their node ends, with the faces using them.
+    side_faces = {}
+    for k, panel in enumerate(r.panels):
+        n = len(panel)
+        for i in range(n):
+            a, b = int(panel[i]), int(panel[(i + 1) % n])
+            side_faces.setdefault(tuple(sorted((a, b))), []).append(int(r.panel_face[k]))
+    node_set = set(int(v) for v in r.nodes)
+    checked = 0
+    for edge, faces in shared_edges(shape):
+        on = [int(v) for v in r.nodes
+              if edge.distToShape(Part.Vertex(V(*r.vertices[v])))[0] <= 10 * tol]
+        assert len(on) >= 2, "a shared edge without nodes"
+        params = sorted((edge.Curve.parameter(V(*r.vertices[v])), v) for v in on)
+        seq = [v for _, v in params]
+        pairs = list(zip(seq, seq[1:]))
+        if edge.isClosed():
+            pairs.append((seq[-1], seq[0]))
+        for a, b in pairs:
+            key = tuple(sorted((a, b)))
+            # one rod per segment, and a panel of each face along it (no T-junction:
+            # the two ends are consecutive corners on both sides)
+            assert key in rods, f"no rod between consecutive shared-edge nodes {key}"
+            assert sorted(side_faces.get(key, [])) == sorted(faces), \
+                f"segment {key} bounds panels of faces {side_faces.get(key)}, expected {faces}"
+            checked += 1
+        assert all(v in node_set for v in on)
+    return checked
+
+
+@pytest.fixture(scope="module")
+def shell():
+    return split_bspline_shell()
+
+
+def test_the_split_shell_shares_its_edges(shell):
+    assert len(shell.Faces) == 4
+    assert len(shared_edges(shell)) == 4
+    fs = tessella.core.FaceSet.from_brep_string(shell.exportBrepToString())
+    assert len(fs) == 4 and fs.shared_edge_count == 4
+
+
+@pytest.mark.parametrize("method, params", [
+    ("iso_grid", {"size": 1300.0}),
+    ("equal_size_grid", {"size": 1300.0}),
+    ("boundary_driven", {"size": 1300.0}),
+    ("walking_agent", {"max_deviation": 25.0}),
+])
+def test_split_shell_conforms(shell, method, params):
+    r = tessella.panelize_faces(shell, method=method, **params)
+    assert r.face_count == 4
+    assert sorted(set(r.panel_face.tolist())) == [0, 1, 2, 3]
+    assert check_conforming(shell, r) > 8
+    # The panels cover the faces: their areas add up to the shell's.
+    assert abs(r.metrics["panel_area"].sum() / shell.Area - 1) < 5e-3
+    assert r.summary["face_count"] == 4 and len(r.summary["faces"]) == 4
+    assert r.summary["shared_edge_nodes"] > 0
+    # Each panel lies on its own face (its centroid within the panel's deviation).
+    faces = shell.Faces
+    for k in range(0, len(r.panels), 7):
+        c = r.vertices[list(r.panels[k])].mean(axis=0)
+        d = faces[int(r.panel_face[k])].distToShape(Part.Vertex(V(*c)))[0]
+        assert d <= r.metrics["panel_deviation"][k] * 1.5 + 1e-6, (k, d)
+
+
+def test_faces_split_unevenly_take_over_each_others_nodes(shell):
+    # equal_size_grid spaces each face's lines by arc length: the faces' nodes
+    # on a split differ, so each takes the other's.
+    r = tessella.panelize_faces(shell, method="equal_size_grid", size=1300.0)
+    assert r.summary["shared_nodes_taken_over"] > 0
+
+
+def test_same_result_on_one_and_two_threads(shell):
+    one = tessella.panelize_faces(shell, method="equal_size_grid", size=1500.0, threads=1)
+    two = tessella.panelize_faces(shell, method="equal_size_grid", size=1500.0, threads=2)
+    assert np.array_equal(one.vertices, two.vertices)
+    assert one.panels == two.panels
+    assert np.array_equal(one.rods, two.rods)
+    for name in one.metrics:
+        assert np.array_equal(one.metrics[name], two.metrics[name], equal_nan=True), name
+
+
+def test_one_face_gives_the_single_face_result(shell):
+    face = shell.Faces[0]
+    alone = tessella.panelize(face, method="iso_grid", size=1300.0)
+    as_set = tessella.panelize_faces([face], method="iso_grid", size=1300.0)
+    assert np.array_equal(alone.vertices, as_set.vertices)
+    assert alone.panels == as_set.panels
+    assert np.array_equal(alone.metrics["panel_deviation"], as_set.metrics["panel_deviation"])
+
+
+def test_filleted_box(tmp_path):
+    shape = filleted_box_shell()
+    assert len(shape.Faces) >= 20
+    r = tessella.panelize_faces(shape, method="iso_grid", size=900.0)
+    assert r.face_count == len(shape.Faces)
+    assert check_conforming(shape, r) > 50
+    # The area the faces' panels have on their own, less only the strips
+    # between the shared edges and their chords (the fillets bend across
+    # their width: one to three panels each at this size).
+    alone = sum(tessella.panelize(f, method="iso_grid", size=900.0).metrics["panel_area"].sum()
+                for f in shape.Faces)
+    joined = r.metrics["panel_area"].sum()
+    assert abs(joined - alone) / shape.Area < 5e-3, (joined, alone, shape.Area)
+
+
+def test_periodic_side_next_to_a_planar_top():
+    shape = cylinder_and_top()
+    assert len(shape.Faces) == 2
+    r = tessella.panelize_faces(shape, method="iso_grid", size=800.0)
+    assert check_conforming(shape, r) >= 12  # the closed circle, segment by segment
+    assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 1e-2
+
+
+def test_guide_line_methods_take_one_face(shell):
+    edge = shell.Faces[0].Edges[0]
+    with pytest.raises(ValueError, match="guides lie on one face; pick one face"):
+        tessella.panelize_faces(shell, method="guide_line_scaling", guides=[edge],
+                                rod_length=1500.0)
+
+
+def test_faces_of_an_object_by_name(shell):
+    doc = FreeCAD.newDocument("FaceSets")
+    try:
+        obj = doc.addObject("Part::Feature", "Shell")
+        obj.Shape = shell
+        doc.recompute()
+        r = tessella.panelize_faces((obj, ["Face1", "Face3"]), method="iso_grid", size=1300.0)
+        assert r.face_count == 2
+        assert sorted(set(r.panel_face.tolist())) == [0, 1]
+    finally:
+        FreeCAD.closeDocument(doc.Name)
