@@ -222,7 +222,8 @@ std::string single_face_curves(const MethodDeclaration& decl, const ParamValues&
   return {};
 }
 
-constexpr int kHardBoundRetries = 3;
+// One more than for one face: a face also runs again when its join moved nodes.
+constexpr int kHardBoundRetries = 5;
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "faceset/shared_edge_nodes.h"
 
+#include <BndLib_Add2dCurve.hxx>
+#include <Bnd_Box2d.hxx>
 #include <Geom2dAPI_ProjectPointOnCurve.hxx>
 #include <Standard_Failure.hxx>
 #include <algorithm>
@@ -33,7 +35,14 @@ class EdgeSide {
         first_(e.first),
         last_(e.last),
         face_(face),
-        mesh_(mesh) {}
+        mesh_(mesh) {
+    // The curve's (u,v) box, grown by a little: most vertices are far from
+    // the edge and skip the projection.
+    BndLib_Add2dCurve::Add(curve_, first_, last_, 0.0, box_);
+    double u0, v0, u1, v1;
+    box_.Get(u0, v0, u1, v1);
+    box_.Enlarge(1e-6 * std::max(u1 - u0, v1 - v0) + 1e-12);
+  }
 
   // The edge parameter of vertex v if it lies on the edge (its 3D point
   // within `tol` of the edge's point on this face).
@@ -48,6 +57,7 @@ class EdgeSide {
       for (double dv : {0.0, pv, -pv}) {
         if ((du != 0 && pu == 0) || (dv != 0 && pv == 0)) continue;
         const gp_Pnt2d p(q0.x() + du, q0.y() + dv);
+        if (box_.IsOut(p)) continue;
         double best = std::numeric_limits<double>::infinity(), at = first_;
         auto offer = [&](double s) {
           const double d = curve_->Value(s).Distance(p);
@@ -94,6 +104,7 @@ class EdgeSide {
   double first_, last_;
   const SurfaceFace& face_;
   PanelMesh& mesh_;
+  Bnd_Box2d box_;
 };
 
 // Outline edges used by one panel only: the mesh's boundary (along trims).
@@ -130,10 +141,12 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
     // The vertices of each face on the edge: its boundary vertices that lie on it.
     std::array<std::vector<OnEdge>, 2> on;
     std::array<std::map<int, double>, 2> t_of;
+    std::array<std::map<std::pair<int, int>, int>, 2> uses;  // each side's panel sides
     for (int s = 0; s < 2; ++s) {
       const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
       std::vector<char> boundary(m.vertex_count(), 0);
-      for (const auto& [edge, count] : edge_use(m))
+      uses[static_cast<std::size_t>(s)] = edge_use(m);
+      for (const auto& [edge, count] : uses[static_cast<std::size_t>(s)])
         if (count == 1)
           boundary[static_cast<std::size_t>(edge.first)] =
               boundary[static_cast<std::size_t>(edge.second)] = 1;
@@ -247,7 +260,7 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
         set_node(m, mine);
         t_of[static_cast<std::size_t>(s)][mine] = n.t;
       }
-      const auto use = edge_use(m);
+      const auto& use = uses[static_cast<std::size_t>(s)];
       auto on_edge = [&](int v) { return t_of[static_cast<std::size_t>(s)].count(v) != 0; };
       // An outline side along the edge: both ends on it, on the mesh boundary,
       // its middle near the edge's point halfway (not a chord across a bend).
@@ -360,10 +373,12 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
         m.panels.erase(m.panels.begin() + static_cast<long>(p));
         if (corner_uv) m.corner_uv.erase(m.corner_uv.begin() + static_cast<long>(p));
       }
-      remove_unused_vertices(m);
-      build_rods(m);
-      // The indices moved: the next edge locates its vertices afresh.
+      // Vertices left unused stay until all edges are done (indices stable).
     }
+  }
+  for (PanelMesh* m : meshes) {
+    remove_unused_vertices(*m);
+    build_rods(*m);
   }
   return report;
 }

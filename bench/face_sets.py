@@ -1,0 +1,163 @@
+"""Face sets (tessella.panelize_faces) against one face, and on many threads.
+
+    PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/face_sets.py [--size 1500]
+
+Prints:
+1. The British Museum roof (examples/british_museum_roof.brep) against the
+   same roof split into four sub-surfaces through the court's centre (as seed
+   004 splits it; written to examples/british_museum_roof_split.brep): panels,
+   rods, rod length mean / variance, for iso_grid, equal_size_grid,
+   boundary_driven and walking_agent; the share of shared-edge nodes whose rods on
+   the two sides carry on within 20 degrees of one line (rows across the split).
+2. A filleted box (26 trimmed faces: planes, cylinders, spheres) at about
+   8,000 panels: seconds on 1 and 2 threads (best of --repeat), their ratio,
+   the sum of the faces panelized one by one (the per-face overhead), and the
+   peak memory of this process.
+"""
+
+import argparse
+import math
+import os
+import resource
+import sys
+import time
+
+import FreeCAD  # noqa: F401  (before Part, always)
+import Part
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, ROOT)
+sys.path.append("/usr/share/freecad/Mod/Part")  # BOPTools (FreeCAD's splitting tools)
+
+import freecad_workbench as tessella  # noqa: E402
+
+V = FreeCAD.Vector
+ROOF = os.path.join(ROOT, "examples", "british_museum_roof.brep")
+SPLIT = os.path.join(ROOT, "examples", "british_museum_roof_split.brep")
+
+
+def split_roof(face):
+    """The roof cut by the planes x = centre and y = centre: four faces sharing
+    the cuts' edges (a compound from BOPTools' Split, edges shared)."""
+    import BOPTools.SplitAPI as split_api
+
+    bb = face.BoundBox
+    c = bb.Center
+    big = 2 * bb.DiagonalLength
+    planes = [Part.Plane(c, V(1, 0, 0)).toShape(-big, big, -big, big),
+              Part.Plane(c, V(0, 1, 0)).toShape(-big, big, -big, big)]
+    return split_api.slice(face, planes, "Split")
+
+
+def stats(r):
+    lengths = r.metrics["rod_length"]
+    return len(r.panels), len(r.rods), float(lengths.mean()), float(lengths.var())
+
+
+def carried_rows(shape, r, angle=20.0):
+    """Share of nodes on shared edges where a rod of each face, the two leaving
+    the edge, lie within `angle` of one line."""
+    from collections import defaultdict
+
+    edges = []
+    all_faces = shape.Faces
+    for e in shape.Edges:
+        owners = [i for i, f in enumerate(all_faces) if any(e.isSame(g) for g in f.Edges)]
+        if len(owners) == 2:
+            edges.append(e)
+    tol = 1e-6 * shape.BoundBox.DiagonalLength
+    on_edge = set()
+    for v in r.nodes:
+        p = Part.Vertex(V(*r.vertices[v]))
+        if any(e.distToShape(p)[0] <= 10 * tol for e in edges):
+            on_edge.add(int(v))
+    rods_at = defaultdict(list)
+    for k, (a, b) in enumerate(r.rods):
+        rods_at[int(a)].append((int(b), int(r.rod_face[k])))
+        rods_at[int(b)].append((int(a), int(r.rod_face[k])))
+    cos = math.cos(math.radians(angle))
+    carried = 0
+    for v in on_edge:
+        leaving = [(w, f) for w, f in rods_at[v] if w not in on_edge]
+        dirs = {}
+        for w, f in leaving:
+            d = r.vertices[w] - r.vertices[v]
+            dirs.setdefault(f, []).append(d / np.linalg.norm(d))
+        faces = list(dirs)
+        ok = False
+        if len(faces) >= 2:
+            for d1 in dirs[faces[0]]:
+                for d2 in dirs[faces[1]]:
+                    ok = ok or float(-d1 @ d2) >= cos
+        carried += ok
+    return carried / max(1, len(on_edge)), len(on_edge)
+
+
+def filleted_box():
+    box = Part.makeBox(6000, 4500, 3000)
+    return Part.Shell(box.makeFillet(600, box.Edges).Faces)
+
+
+def best(repeat, fn):
+    t = float("inf")
+    out = None
+    for _ in range(repeat):
+        start = time.perf_counter()
+        out = fn()
+        t = min(t, time.perf_counter() - start)
+    return t, out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--size", type=float, default=1500.0, help="panel size on the roof (mm)")
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args(argv)
+
+    roof = Part.read(ROOF).Faces[0]
+    pieces = split_roof(roof)
+    if not os.path.exists(SPLIT):
+        pieces.exportBrep(SPLIT)
+    print(f"British Museum roof: one face vs {len(pieces.Faces)} sub-surfaces "
+          f"(size {args.size:.0f} mm)")
+    print(f"{'method':18s} {'':6s} {'panels':>7s} {'rods':>6s} {'rod mean':>9s} "
+          f"{'rod var':>10s} {'diff':>6s} {'rows 20deg':>10s}")
+    for method, params in [("iso_grid", {"size": args.size}),
+                           ("equal_size_grid", {"size": args.size}),
+                           ("boundary_driven", {"size": args.size}),
+                           ("walking_agent", {"max_deviation": 30.0})]:
+        one = tessella.panelize(roof, method=method, **params)
+        split = tessella.panelize_faces(pieces, method=method, **params)
+        a, b = stats(one), stats(split)
+        share, count = carried_rows(pieces, split)
+        print(f"{method:18s} {'one':6s} {a[0]:7d} {a[1]:6d} {a[2]:9.1f} {a[3]:10.0f}")
+        print(f"{'':18s} {'split':6s} {b[0]:7d} {b[1]:6d} {b[2]:9.1f} {b[3]:10.0f} "
+              f"{100 * (b[0] - a[0]) / a[0]:+5.1f}% {100 * share:8.0f}% of {count}")
+
+    shape = filleted_box()
+    size = math.sqrt(shape.Area / 8000)
+    print(f"\nFilleted box: {len(shape.Faces)} faces, size {size:.0f} mm")
+    t1, r1 = best(args.repeat, lambda: tessella.panelize_faces(shape, size=size, threads=1))
+    t2, r2 = best(args.repeat, lambda: tessella.panelize_faces(shape, size=size, threads=2))
+    same = (np.array_equal(r1.vertices, r2.vertices) and r1.panels == r2.panels)
+    faces = shape.Faces
+    saved = os.environ.get("TESSELLA_THREADS")
+    os.environ["TESSELLA_THREADS"] = "1"  # as the set on one thread
+    tf, _ = best(args.repeat, lambda: [tessella.panelize(f, size=size) for f in faces])
+    if saved is None:
+        del os.environ["TESSELLA_THREADS"]
+    else:
+        os.environ["TESSELLA_THREADS"] = saved
+    print(f"  panels {len(r1.panels)}, shared-edge nodes {r1.summary['shared_edge_nodes']}")
+    print(f"  1 thread {t1:.3f} s, 2 threads {t2:.3f} s: ratio {t2 / t1:.2f} "
+          f"(same result: {same})")
+    print(f"  faces one by one {tf:.3f} s (one call each, one thread); "
+          f"set on 1 thread / sum of faces: {t1 / tf:.2f}")
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"  peak memory of this process: {peak:.0f} MB")
+
+
+if __name__ == "__main__":
+    main()
