@@ -47,22 +47,30 @@ NODE_ID_FORMAT = "N-{:04d}"
 _CONTROL = re.compile("[\x00-\x1f\x7f]")
 
 
-def format_ids(fmt, count, what="panel"):
+def format_ids(fmt, count, what="panel", faces=None):
     """IDs fmt.format(1), ..., fmt.format(count): any text a user can type around a
-    number field (``ROOF/A:{:03d}``, spaces, unicode). Raises ValueError for a
-    format that is not one, gives an empty ID or an ID with a control character,
-    or gives two items the same ID (e.g. no number field): IDs name parts on
-    drawings and schedules, so they are refused rather than silently suffixed."""
+    number field (``ROOF/A:{:03d}``, spaces, unicode). With `faces` (each item's
+    source face, 0-based) a format may name the face: ``F{face}-P-{:04d}``
+    numbers the items of each face from 1 and puts the face (1-based) in front.
+    Raises ValueError for a format that is not one, gives an empty ID or an ID
+    with a control character, or gives two items the same ID (e.g. no number
+    field): IDs name parts on drawings and schedules, so they are refused
+    rather than silently suffixed."""
     name = f"{what.capitalize()}IdFormat"
     if not isinstance(fmt, str) or not fmt:
         raise ValueError(f"{name} must be a text like P-{{:04d}}, got {fmt!r}")
+    per_face = faces is not None and "{face" in fmt
     seen = {}
     out = []
+    counter = {}
     for k in range(1, count + 1):
+        face = int(faces[k - 1]) + 1 if faces is not None and len(faces) >= k else 1
+        number = counter[face] = counter.get(face, 0) + 1
         try:
-            text = fmt.format(k)
+            text = fmt.format(number if per_face else k, face=face)
         except (IndexError, KeyError, ValueError, TypeError, AttributeError):
-            raise ValueError(f"{name} {fmt!r} is not a format like P-{{:04d}}") from None
+            raise ValueError(f"{name} {fmt!r} is not a format like P-{{:04d}} "
+                             "(or F{face}-P-{:04d})") from None
         if not text.strip() or _CONTROL.search(text):
             raise ValueError(f"{name} {fmt!r} gives {what} {k} the ID {text!r} "
                              "(empty or with a control character)")
@@ -122,16 +130,17 @@ class PanelizeResult:
     @property
     def panel_ids(self):
         """One ID per panel (panel order), from panel_id_format (see format_ids)."""
-        return format_ids(self.panel_id_format, len(self.panels), "panel")
+        return format_ids(self.panel_id_format, len(self.panels), "panel", self.panel_face)
 
     @property
     def rod_ids(self):
-        return format_ids(self.rod_id_format, len(self.rods), "rod")
+        return format_ids(self.rod_id_format, len(self.rods), "rod", self.rod_face)
 
     @property
     def node_ids(self):
         """One ID per node (self.nodes order)."""
-        return format_ids(self.node_id_format, len(self.nodes), "node")
+        faces = self.vertex_face[self.nodes] if len(self.vertex_face) else None
+        return format_ids(self.node_id_format, len(self.nodes), "node", faces)
 
     @property
     def node_id_by_vertex(self):
@@ -352,7 +361,13 @@ def panelize_faces(faces, method="iso_grid", progress=None, threads=0, **params)
     import Part
 
     shape = found[0] if len(found) == 1 else Part.Compound(found)
-    face_set = core.FaceSet.from_brep_string(shape.exportBrepToString())
+    return panelize_faces_brep(shape.exportBrepToString(), method, progress, threads, **params)
+
+
+def panelize_faces_brep(brep, method="iso_grid", progress=None, threads=0, **params):
+    """panelize_faces() on a shape given as its BRep string (a document
+    recompute's: the faces serialized once)."""
+    face_set = core.FaceSet.from_brep_string(brep)
     values = core_values(method, params)
     r = core.panelize_faces(face_set, method, values, progress, int(threads))
     result = _result(r.combined, method, values, params)

@@ -31,7 +31,9 @@ _VIEW_STYLE = {
 def make_panelization(source, method="iso_grid", doc=None, progress=None, **params):
     """Create a Panelization (parent) and its Panels, Rods and Nodes children.
 
-    source: (document object, "FaceN") or a document object with one face.
+    source: (document object, "FaceN") or a document object with one face; or
+        several faces of one object, (obj, ["Face1", "Face3"]) or the object
+        itself (all its faces): one envelope, joined along the shared edges.
     method: one of freecad_workbench.api.METHODS.
     params: the keyword parameters of freecad_workbench.panelize (size, u_count,
         v_count, sliver_fraction, min_angle, max_panels, trim_deflection, samples).
@@ -44,7 +46,9 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
     from . import api
     from .features import panelization as feat
 
-    obj, sub = selection.face_link(source)
+    obj, subs = selection.face_set_link(source)
+    several = len(selection.faces_of((obj, subs) if subs else obj)) > 1
+    sub = None if several else (subs[0] if subs else "Face1")
     if doc is None:
         doc = obj.Document
     elif doc is not obj.Document:
@@ -64,7 +68,11 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
     # Validate everything (method, parameter names and ranges, the face) by
     # computing the result once; the new object starts from it (no second run).
     try:
-        result = api.panelize((obj, sub), method=method, progress=progress, **params)
+        if several:
+            result = api.panelize_faces((obj, subs) if subs else obj, method=method,
+                                        progress=progress, **params)
+        else:
+            result = api.panelize((obj, sub), method=method, progress=progress, **params)
     finally:
         close = getattr(progress, "close", None)
         if close is not None:
@@ -76,7 +84,7 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         parent = doc.addObject("App::FeaturePython", "Panelization")
         created.append(parent.Name)
         feat.Panelization(parent)
-        parent.Source = (obj, [sub])
+        parent.Source = (obj, subs if several else [sub])
         parent.Method = method
         for key, value in params.items():
             if to_property[key] not in links:

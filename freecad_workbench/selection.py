@@ -228,6 +228,45 @@ def one_face(x, context=None):
     return _one_face_of_shape(_element(obj, shape, sub, context), context)
 
 
+def face_set_link(x, context=None):
+    """(document object, ['FaceN', ...]) naming one or more faces of one object:
+    from (obj, 'FaceN'), (obj, ['Face1', 'Face3']), an object (all its faces:
+    an empty list), the selected faces of one object. Faces of several objects
+    are refused (their shared edges are only shared within one shape)."""
+    items = list(_items(x, FACE))
+    for item in items:
+        if item[0] != "link" or not isinstance(item[1], FreeCAD.DocumentObject):
+            raise TypeError(_prefix(
+                context, "source must be a document object or (object, ['FaceN', ...]), "
+                f"not {type(item[1]).__name__}"))
+    if not items:
+        raise ValueError(_prefix(context, "nothing given: select one or more faces"))
+    owners = []
+    for _kind, obj, _sub in items:
+        if obj not in owners:
+            owners.append(obj)
+    if len(owners) > 1:
+        raise ValueError(_prefix(
+            context, f"faces of {len(owners)} objects ({', '.join(_label(o) for o in owners)}): "
+            "select faces of one object, or make the faces one shape first "
+            "(Part: Compound or Shell) so their common edges are shared"))
+    obj = owners[0]
+    shape = _shape_of(obj, context)
+    subs = []
+    for _kind, _obj, sub in items:
+        if not sub:
+            if not shape.Faces:
+                raise ValueError(_prefix(context, f"{_label(obj)!r} has no faces"))
+            return obj, []  # the whole object
+        if not is_element(sub, FACE):
+            raise ValueError(_prefix(
+                context, f"{sub!r} is not a face: select a face, not an edge or a vertex"))
+        _element(obj, shape, sub, context)
+        if sub not in subs:
+            subs.append(sub)
+    return obj, subs
+
+
 def faces_of(x, context=None):
     """Every face x names, in order: all faces of a shape or of an object given
     without a sub-element, the named face of (obj, 'FaceN')."""

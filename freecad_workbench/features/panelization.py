@@ -229,6 +229,20 @@ class Panelization(_StateMixin):
         label = f"{owner.Label}.{sub}" if named else owner.Label
         return (owner, sub), label
 
+    def source_faces(self, obj):
+        """(faces, label, count) of the Source: the Part.Faces it names (one, the
+        listed ones, or all faces of the object when it names none)."""
+        src = obj.Source
+        if not src or src[0] is None:
+            raise ValueError(f"{obj.Label}: no source face (set Source to a face)")
+        owner, subs = selection.face_set_link(src, context=f"{obj.Label}: Source")
+        faces = selection.faces_of((owner, subs) if subs else owner,
+                                   context=f"{obj.Label}: Source")
+        if len(faces) == 1:
+            return faces, self.source_face(obj)[1], 1
+        named = f"{len(subs)} faces" if subs else f"all {len(faces)} faces"
+        return faces, f"{owner.Label} ({named})", len(faces)
+
     def parameters(self, obj):
         """(method, keyword parameters for api.panelize) from the properties:
         every declared parameter of the method whose property differs from the
@@ -275,8 +289,15 @@ class Panelization(_StateMixin):
 
     def _signature(self, obj):
         api = _api()
-        face_arg, _ = self.source_face(obj)
-        brep = api.face_to_brep(face_arg)
+        faces, _label, count = self.source_faces(obj)
+        if count == 1:
+            face_arg, _ = self.source_face(obj)
+            brep = api.face_to_brep(face_arg)
+        else:
+            import Part
+
+            face_arg = None
+            brep = Part.Compound(faces).exportBrepToString()
         method, params = self.parameters(obj)
         digest = hashlib.sha1(brep.encode("utf-8", "surrogateescape")).hexdigest()
         plain = {}
@@ -306,7 +327,10 @@ class Panelization(_StateMixin):
             raise failed[1](failed[2])
         try:
             # The face serialized once per recompute: the signature's BRep.
-            res = api.panelize_brep(brep, method=method, **params)
+            if face_arg is None:  # several faces: one envelope, joined along shared edges
+                res = api.panelize_faces_brep(brep, method=method, **params)
+            else:
+                res = api.panelize_brep(brep, method=method, **params)
             shapes = self._shapes(res)
         except (ValueError, TypeError, RuntimeError) as exc:
             self._cache = None

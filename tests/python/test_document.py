@@ -373,11 +373,17 @@ def test_bad_method_and_multi_face_object(doc, source):
     box = doc.addObject("Part::Box", "Box")
     doc.recompute()
     before = _names(doc)
-    with pytest.raises(ValueError, match="faces"):
-        tessella.make_panelization(box, size=SIZE)
     with pytest.raises(ValueError):
         tessella.make_panelization((box, "Face99"), size=SIZE)
     assert _names(doc) == before
+    # A whole object of several faces is one envelope (issue 14): its six faces,
+    # joined along the box's edges; recomputes when the box changes.
+    p = tessella.make_panelization(box, size=2.5)
+    assert list(p.Source[1]) == [] and p.PanelCount == 6 * 16
+    assert len(p.Proxy.result(p).result.summary["faces"]) == 6
+    box.Length = 20
+    doc.recompute()
+    assert p.PanelCount == 4 * 32 + 2 * 16 and p.isValid()  # 20 x 10 sides, 10 x 10 ends
 
 
 # ------------------------------------------------------------------------ undo

@@ -204,3 +204,42 @@ def test_faces_of_an_object_by_name(shell):
         assert sorted(set(r.panel_face.tolist())) == [0, 1]
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_document_face_set_recomputes_saves_and_reopens(shell, tmp_path):
+    doc = FreeCAD.newDocument("FaceSetDoc")
+    try:
+        doc.UndoMode = 1
+        obj = doc.addObject("Part::Feature", "Shell")
+        obj.Shape = shell
+        doc.recompute()
+        doc.clearUndos()
+        p = tessella.make_panelization((obj, ["Face1", "Face2"]), method="equal_size_grid",
+                                       size=1300.0)
+        assert list(p.Source[1]) == ["Face1", "Face2"]
+        assert doc.UndoCount == 1  # one step
+        res = p.Proxy.result(p).result
+        assert res.face_count == 2
+        # IDs per face through the format.
+        p.PanelIdFormat = "F{face}-P-{:03d}"
+        doc.recompute()
+        ids = p.Proxy.result(p).result.panel_ids
+        faces = p.Proxy.result(p).result.panel_face
+        assert ids[0] == "F1-P-001" and ids[int(np.argmax(faces == 1))] == "F2-P-001"
+        count = p.PanelCount
+        # All four faces: the whole object.
+        p.Source = (obj, [])
+        doc.recompute()
+        assert p.PanelCount > count and p.Proxy.result(p).result.face_count == 4
+        path = str(tmp_path / "faceset.FCStd")
+        name = p.Name
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+        p = doc.getObject(name)
+        p.touch()
+        doc.recompute()
+        assert p.isValid() and p.Proxy.result(p).result.face_count == 4
+        assert p.PanelCount == len(p.Proxy.result(p).result.panels)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
