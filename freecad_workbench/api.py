@@ -323,6 +323,16 @@ def panelize(face, method="iso_grid", progress=None, **params):
     return panelize_brep(face_to_brep(face), method, progress, **params)
 
 
+def panelize_source(source, method="iso_grid", progress=None, **params):
+    """panelize() for a source naming one face, panelize_faces() for several
+    (what the task panel previews: (obj, 'FaceN'), (obj, ['Face1', 'Face3']), obj)."""
+    from .selection import faces_of
+
+    if len(faces_of(source, context="source")) > 1:
+        return panelize_faces(source, method=method, progress=progress, **params)
+    return panelize(source, method=method, progress=progress, **params)
+
+
 def panelize_brep(brep, method="iso_grid", progress=None, **params):
     """panelize() on a face given as its BRep string (what a document recompute
     already has: the face is serialized once)."""

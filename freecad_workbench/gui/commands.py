@@ -9,14 +9,14 @@ import math
 
 import FreeCADGui as Gui
 
-from .common import DocumentCommand, selected_face, warn  # noqa: F401  (selected_face: old name)
+from .common import DocumentCommand, selected_face, selected_faces, warn  # noqa: F401
 
 _warn = warn  # the name other modules imported from here
 
 #: The message shown when the selection is not exactly one face.
 SELECT_ONE_FACE = (
-    "Select exactly one face to panelize (click a face of a surface in the 3D view), "
-    "then run Panelize again."
+    "Select a face to panelize (click a face of a surface in the 3D view), or several "
+    "faces of one object (Ctrl+click), or the object itself, then run Panelize again."
 )
 
 
@@ -48,12 +48,17 @@ class PanelizeCommand(DocumentCommand):
     """Tessella_Panelize: panelize the selected face (task panel with a live preview)."""
 
     ICON = "Tessella_Panelize"
-    MENU_TEXT = "Panelize face"
-    TOOL_TIP = ("Cut the selected face into panels, rods and nodes: a task panel "
+    MENU_TEXT = "Panelize face(s)"
+    TOOL_TIP = ("Cut the selected face (or faces of one object: one envelope, joined "
+                "along their shared edges) into panels, rods and nodes: a task panel "
                 "with a live preview sets the method and its parameters")
 
     def Activated(self):
         pick = selected_face()
+        several = selected_faces() if pick is None else None
+        if several is not None:  # faces of one object: one envelope
+            self._open(several, selection_shape(several))
+            return
         if pick is None:
             warn("Tessella: Panelize", SELECT_ONE_FACE)
             return
@@ -65,15 +70,28 @@ class PanelizeCommand(DocumentCommand):
         except (ValueError, TypeError):
             warn("Tessella: Panelize", f"{obj.Label} has no {sub}. " + SELECT_ONE_FACE)
             return
+        self._open((obj, sub), face)
+
+    def _open(self, source, shape):
         if Gui.Control.activeDialog():
             warn("Tessella: Panelize", "Close the open task panel first.")
             return
         from . import preferences, task_panel
 
         prefs = preferences.defaults()
-        size = prefs["size"] or default_size(face, prefs["panels_across"])
+        size = prefs["size"] or default_size(shape, prefs["panels_across"])
         # The task panel previews live and creates the objects on OK.
-        Gui.Control.showDialog(task_panel.PanelizationTaskPanel(source=(obj, sub), size=size))
+        Gui.Control.showDialog(task_panel.PanelizationTaskPanel(source=source, size=size))
+
+
+def selection_shape(source):
+    """The faces a (object, ['FaceN', ...]) source names, as one compound."""
+    import Part
+
+    from .. import selection
+
+    obj, subs = source
+    return Part.Compound(selection.faces_of((obj, subs) if subs else obj))
 
 
 Gui.addCommand("Tessella_Panelize", PanelizeCommand())

@@ -56,6 +56,23 @@ def selected_face():
         return None
 
 
+def selected_faces():
+    """(object, ['FaceN', ...]) when two or more faces of one object are selected
+    (or an object of several faces), else None."""
+    import FreeCADGui as Gui
+
+    from .. import selection
+
+    sel = Gui.Selection.getSelectionEx()
+    try:
+        obj, subs = selection.face_set_link(sel)
+        if len(selection.faces_of((obj, subs) if subs else obj)) < 2:
+            return None
+        return obj, subs
+    except (ValueError, TypeError):
+        return None
+
+
 def selected_panelization():
     """The one selected Panelization (a selected child, Unfold or other object
     whose Base is a Panelization counts as it), else None."""

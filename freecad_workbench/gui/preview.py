@@ -50,18 +50,20 @@ class Preview:
 
     def update(self):
         """Panelize with the shown values and draw the rods; coarse first if large."""
+        from ..selection import faces_of
+
         started = time.perf_counter()
         try:
             face, method, params = self.inputs()
             size = params.get("size")
             if size and "u_count" not in params:
-                area = api.face_to_shape(face).Area
+                area = sum(f.Area for f in faces_of(face, context="source"))
                 estimate = area / (size * size)
                 if estimate > COARSE_ABOVE:
                     coarse = dict(params, size=math.sqrt(area / COARSE_PANELS), samples=2)
-                    self.draw(api.panelize(face, method=method, **coarse), coarse=True)
+                    self.draw(api.panelize_source(face, method=method, **coarse), coarse=True)
             # The preview measures with fewer samples than the final result.
-            result = api.panelize(face, method=method, **dict(params, samples=PREVIEW_SAMPLES))
+            result = api.panelize_source(face, method=method, **dict(params, samples=PREVIEW_SAMPLES))
         except Exception as exc:  # shown in the panel, never raised into the GUI
             self.last_result, self.last_error = None, str(exc)
             self.remove()

@@ -107,12 +107,17 @@ class PanelizationTaskPanel:
             src = self.obj.Source
             subs = [s for s in (src[1] or []) if s] if src else []
             return f"{src[0].Label}.{subs[0]}" if src and src[0] and subs else "(none)"
-        return f"{self.source[0].Label}.{self.source[1]}"
+        obj, sub = self.source
+        if isinstance(sub, (list, tuple)):  # several faces of one object
+            return f"{obj.Label} ({len(sub)} faces)" if sub else f"{obj.Label} (all faces)"
+        return f"{obj.Label}.{sub}"
 
     def face_arg(self):
         if self.picked is not None:
             return self.picked
         if self.obj is not None:
+            if self.obj.Proxy.source_faces(self.obj)[2] > 1:
+                return selection.face_set_link(self.obj.Source)
             return self.obj.Proxy.source_face(self.obj)[0]
         return self.source
 
@@ -276,7 +281,8 @@ class PanelizationTaskPanel:
         # Computed once with a cancellable progress dialog; the recompute reuses it.
         progress = gui_progress("Tessella: panelize")
         try:
-            result = api.panelize(self.face_arg(), method=method, progress=progress, **params)
+            result = api.panelize_source(self.face_arg(), method=method, progress=progress,
+                                         **params)
         finally:
             if progress is not None:
                 progress.close()

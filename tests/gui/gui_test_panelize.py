@@ -730,6 +730,51 @@ def test_analysis_colors():
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_command_several_faces():
+    """Faces of one object selected: the task panel previews them as one envelope
+    and OK makes one Panelization over them (one undo step)."""
+    from freecad_workbench.gui import task_panel
+
+    doc = FreeCAD.newDocument("TessellaFaces")
+    try:
+        box = doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 4000, 3000, 2000
+        doc.recompute()
+        doc.clearUndos()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, box.Name, "Face1")
+        Gui.Selection.addSelection(doc.Name, box.Name, "Face5")
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Panelize")
+        check("faces: no message box", not dc.texts, str(dc.texts))
+        panel = task_panel.active()
+        if not check("faces: the task panel opens", panel is not None):
+            return
+        check("faces: the panel names both faces", "(2 faces)" in panel.source_label.text(),
+              panel.source_label.text())
+        panel.timer.stop()
+        panel.update_preview()
+        res = panel.last_result
+        check("faces: preview over both faces", res is not None and res.face_count == 2,
+              str(panel.last_error))
+        check("faces: OK", panel.accept())
+        process_events()
+        made = panelizations(doc)
+        check("faces: one Panelization", len(made) == 1)
+        if made:
+            p = made[0]
+            check("faces: its Source names both faces",
+                  p.Source[0] == box and sorted(p.Source[1]) == ["Face1", "Face5"], str(p.Source))
+            check("faces: panels on both faces", p.PanelCount > 0
+                  and sorted(set(p.Proxy.result(p).result.panel_face.tolist())) == [0, 1])
+            check("faces: one undo step", doc.UndoCount == 1, str(doc.UndoNames))
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Selection.clearSelection()
+        FreeCAD.closeDocument(doc.Name)
+
+
 def type_into(box, text):
     """Types `text` into a spin box's line edit, key by key, as a user does."""
     from PySide import QtCore, QtGui
@@ -802,6 +847,7 @@ def test_units_after_method_switches():
 ensure_workbench()
 gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command_failure, test_open_headless_document,
     test_analysis_colors, test_task_panel_edit, test_units_after_method_switches,
+    test_command_several_faces,
     test_task_panel_guides,
     test_progress_cancel,
     test_preferences_page), 'tessella_gui_test_result.json')
