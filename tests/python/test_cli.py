@@ -1,0 +1,76 @@
+"""The batch command line (python3 -m freecad_workbench.cli), run as a user runs
+it: a STEP shell built here, a broken STEP file and a BRep face in; for each good
+one a folder with the document, the schedules and the DXF, read back; a non-zero
+exit status and no folder (nor a temporary one) for the broken file."""
+
+import csv
+import os
+import subprocess
+import sys
+
+import ezdxf
+import FreeCAD
+import pytest
+
+from test_face_sets import split_bspline_shell
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def run_cli(*args):
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(["/usr/lib/freecad-python3/lib", REPO])
+    return subprocess.run([sys.executable, "-m", "freecad_workbench.cli", *args], env=env,
+                          capture_output=True, text=True, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def batch(tmp_path_factory):
+    d = tmp_path_factory.mktemp("batch")
+    shell = d / "shell.step"
+    split_bspline_shell().exportStep(str(shell))
+    broken = d / "broken.step"
+    broken.write_text("ISO-10303-21; this is not a STEP file")
+    face = os.path.join(REPO, "examples", "trimmed_bspline_holes.brep")
+    out = d / "out"
+    proc = run_cli(str(shell), str(broken), face, "--out", str(out), "--size", "1200",
+                   "--param", "samples=6")
+    return proc, out
+
+
+def test_exit_status_and_progress(batch):
+    proc, out = batch
+    assert proc.returncode == 1, proc.stderr
+    assert "FAILED" in proc.stderr and "broken.step" in proc.stderr
+    assert "[1/3]" in proc.stderr and "2 of 3 input(s) done" in proc.stderr
+
+
+def test_no_half_written_output(batch):
+    _, out = batch
+    assert sorted(os.listdir(out)) == ["shell", "trimmed_bspline_holes"]  # no temp, no broken
+
+
+def test_outputs_read_back(batch):
+    _, out = batch
+    folder = out / "shell"
+    assert sorted(os.listdir(folder)) == ["nodes.csv", "panels.csv", "panels.dxf", "rods.csv",
+                                          "shell.FCStd"]
+    with open(folder / "panels.csv", newline="") as f:
+        panels = list(csv.DictReader(f))
+    doc = FreeCAD.openDocument(str(folder / "shell.FCStd"))
+    try:
+        p = [o for o in doc.Objects if o.Name.startswith("Panelization")][0]
+        p.touch()
+        doc.recompute()
+        assert p.isValid() and p.PanelCount == len(panels) > 0
+        assert p.Proxy.result(p).result.face_count == 4  # the STEP shell as one envelope
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    dxf = ezdxf.readfile(str(folder / "panels.dxf"))
+    outlines = [e for e in dxf.modelspace() if e.dxftype() == "LWPOLYLINE"]
+    assert len(outlines) >= len(panels)
+
+
+def test_bad_arguments():
+    proc = run_cli("x.step", "--out", "/tmp/never", "--param", "size")
+    assert proc.returncode == 2 and "name=value" in proc.stderr
