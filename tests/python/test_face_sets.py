@@ -243,3 +243,22 @@ def test_document_face_set_recomputes_saves_and_reopens(shell, tmp_path):
         assert p.PanelCount == len(p.Proxy.result(p).result.panels)
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_progress_covers_the_set_and_cancel_stops_it(shell):
+    stages = []
+
+    def watch(fraction, stage):
+        stages.append(stage)
+        return True
+
+    tessella.panelize_faces(shell, method="iso_grid", size=600.0, progress=watch)
+    assert "panelizing the faces" in stages and "joining the faces along shared edges" in stages
+    calls = []
+
+    def stop(fraction, stage):
+        calls.append(stage)
+        return len(calls) < 3
+
+    with pytest.raises(tessella.Cancelled):
+        tessella.panelize_faces(shell, method="iso_grid", size=600.0, progress=stop, threads=2)
