@@ -80,6 +80,54 @@ def default_of(method, name):
     return api.METHODS[method].params[name].default
 
 
+#: Parameters whose declared default (0) means "the user must choose": the
+#: form suggests a working value instead (suggested_value) so no method opens
+#: with an error.
+SUGGESTED = ("rod_length", "max_deviation")
+
+
+def largest_curvature(faces, samples=9):
+    """The largest principal curvature (1/mm) on a grid of samples of each face."""
+    k = 0.0
+    for face in faces or []:
+        try:
+            u0, u1, v0, v1 = face.ParameterRange
+            for i in range(samples):
+                for j in range(samples):
+                    u = u0 + (u1 - u0) * (i + 0.5) / samples
+                    v = v0 + (v1 - v0) * (j + 0.5) / samples
+                    k = max(k, max(abs(c) for c in face.curvatureAt(u, v)))
+        except Exception:  # noqa: BLE001  (a face OCCT cannot sample: no suggestion from it)
+            continue
+    return k
+
+
+def _nice(x):
+    """x rounded to 1, 2 or 5 times a power of ten (at most x)."""
+    import math
+
+    if not x > 0:
+        return 0.0
+    e = 10.0 ** math.floor(math.log10(x))
+    for m in (5, 2, 1):
+        if m * e <= x:
+            return m * e
+    return e
+
+
+def suggested_value(name, size, curvature):
+    """A working value for a SUGGESTED parameter: the rod length of the guide-line
+    methods is the panel size; a deviation bound is the sagitta of a panel of
+    that size on the most curved part of the face (k s^2 / 8), at least
+    1/1000 of the size."""
+    size = float(size or 1000.0)
+    if name == "rod_length":
+        return size
+    if name == "max_deviation":
+        return _nice(max(curvature * size * size / 8.0, 1e-3 * size))
+    raise KeyError(name)
+
+
 def initial_values(obj=None, size=None):
     """Values to show: the object's properties (edit) or the defaults (new)."""
     from ..make import _param_to_property
@@ -223,6 +271,8 @@ class ParameterForm:
         from PySide import QtGui
 
         self._guides_text = guides_text
+        self._faces = initial.get("faces")  # for suggested values (largest_curvature)
+        self._curvature = None
         self._on_change = on_change_slot
         self._on_pick_guides = on_pick_guides
         self.widget = QtGui.QWidget()
@@ -298,7 +348,11 @@ class ParameterForm:
                 note.setToolTip(r.tooltip)
                 self.method_form.addRow(r.label, note)
                 continue
-            box = make_widget(r, self.values.get(r.name, default_of(method, r.name)))
+            initial = self.values.get(r.name, default_of(method, r.name))
+            if r.name in SUGGESTED and not initial:
+                initial = suggested_value(r.name, self.values.get("size"), self.curvature())
+                self.values[r.name] = initial
+            box = make_widget(r, initial)
             on_change(box, self._on_change)
             self.widgets[r.name] = box
             self.method_form.addRow(r.label, box)
@@ -321,6 +375,12 @@ class ParameterForm:
         row.addWidget(self.guides_label, 1)
         row.addWidget(pick)
         self.method_form.addRow("Guides", row)
+
+    def curvature(self):
+        """The source faces' largest curvature, sampled once."""
+        if self._curvature is None:
+            self._curvature = largest_curvature(self._faces)
+        return self._curvature
 
     def show_guides(self):
         if self.guides_label is not None:

@@ -47,9 +47,11 @@ class PanelizationTaskPanel:
         self.guides_changed = False
         self._picking = None  # the active ElementGate
         self.preview = None
+        initial = task_form.initial_values(obj, size)
+        initial["faces"] = self._source_shapes()
         self.form_parts = task_form.ParameterForm(
             "Tessella: edit panelization" if obj else "Tessella: panelize",
-            self._source_text(), task_form.initial_values(obj, size), self._guides_text,
+            self._source_text(), initial, self._guides_text,
             self.schedule_preview, self.set_picking, self.set_picking_guides)
         f = self.form_parts
         self.form = f.widget
@@ -111,6 +113,16 @@ class PanelizationTaskPanel:
         if isinstance(sub, (list, tuple)):  # several faces of one object
             return f"{obj.Label} ({len(sub)} faces)" if sub else f"{obj.Label} (all faces)"
         return f"{obj.Label}.{sub}"
+
+    def _source_shapes(self):
+        """The source's Part faces (none if they cannot be read: no suggestion then)."""
+        try:
+            if self.obj is not None:
+                return self.obj.Proxy.source_faces(self.obj)[0]
+            return selection.faces_of(self.source if not isinstance(self.source[1], list)
+                                      or self.source[1] else self.source[0])
+        except (ValueError, TypeError):
+            return []
 
     def face_arg(self):
         if self.picked is not None:
@@ -184,6 +196,11 @@ class PanelizationTaskPanel:
     # -------------------------------------------------------------- preview
     def _preview_inputs(self):
         method, params = self.parameters()
+        need = self.guides_needed(method)
+        if need and len(params.get("guides") or []) < need:
+            what = "one guide edge" if need == 1 else f"{need} guide edges"
+            raise ValueError(f"Pick {what} (Pick edges…): {method} grows its panels from "
+                             f"{'it' if need == 1 else 'them'}")
         return self.face_arg(), method, params
 
     def schedule_preview(self, *args):

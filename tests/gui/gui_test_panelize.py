@@ -775,6 +775,62 @@ def test_command_several_faces():
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_defaults_open_without_errors():
+    """Every method opens with values that work on a freeform face with a hole:
+    its preview has no error (the guide-line methods ask for their guide edges
+    in words, then preview once one is picked)."""
+    import freecad_workbench as tessella
+    from freecad_workbench.gui import task_panel
+
+    doc = FreeCAD.newDocument("TessellaDefaults")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = bspline_face_with_hole()
+        doc.recompute()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, src.Name, "Face1")
+        Gui.runCommand("Tessella_Panelize")
+        panel = task_panel.active()
+        if not check("defaults: panel open", panel is not None):
+            return
+        panel.timer.stop()
+        methods = list(tessella.METHODS)
+        failed = []
+        for m in methods:
+            panel.method.setCurrentIndex(methods.index(m))
+            process_events()
+            panel.timer.stop()
+            panel.guides = []  # none picked yet
+            panel.update_preview()
+            need = panel.guides_needed(m)
+            if need:
+                err = panel.last_error or ""
+                if not err.startswith("Pick") or "must hold" in err:
+                    failed.append(f"{m}: {err!r}")
+                panel.guides = [(src, f"Edge{k}") for k in (1, 2)][:need]
+                panel.update_preview()
+            if panel.last_error is not None or panel.last_result is None:
+                failed.append(f"{m}: {panel.last_error}")
+        check("defaults: every method previews without an error", not failed, "; ".join(failed))
+        panel.method.setCurrentIndex(methods.index("walking_agent"))
+        process_events()
+        check("defaults: walking_agent's bound is suggested (not 0)",
+              task_form_value(panel.widget("max_deviation")) > 0)
+        panel.reject()
+        process_events()
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Selection.clearSelection()
+        FreeCAD.closeDocument(doc.Name)
+
+
+def task_form_value(box):
+    from freecad_workbench.gui import task_form
+
+    return task_form.value(box)
+
+
 def type_into(box, text):
     """Types `text` into a spin box's line edit, key by key, as a user does."""
     from PySide import QtCore, QtGui
@@ -847,7 +903,7 @@ def test_units_after_method_switches():
 ensure_workbench()
 gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command_failure, test_open_headless_document,
     test_analysis_colors, test_task_panel_edit, test_units_after_method_switches,
-    test_command_several_faces,
+    test_command_several_faces, test_defaults_open_without_errors,
     test_task_panel_guides,
     test_progress_cancel,
     test_preferences_page), 'tessella_gui_test_result.json')
