@@ -22,8 +22,8 @@ class TessellaWorkbench(FreeCADGui.Workbench):
         except ImportError as exc:
             FreeCAD.Console.PrintError(f"Tessella: the workbench cannot load: {exc}\n")
             return
-        self.appendToolbar("Tessella", list(register.COMMANDS))
-        self.appendMenu("Tessella", list(register.COMMANDS))
+        self.appendToolbar("Tessella", list(register.MENU))
+        self.appendMenu("Tessella", list(register.MENU))
         from freecad_workbench.gui import preferences, selection_feedback
 
         selection_feedback.install()
@@ -41,7 +41,7 @@ class TessellaWorkbench(FreeCADGui.Workbench):
         except ImportError:
             return
         if recipient == "View":
-            self.appendContextMenu("Tessella", list(register.COMMANDS))
+            self.appendContextMenu("Tessella", list(register.MENU))
 
     def GetClassName(self):
         return "Gui::PythonWorkbench"

@@ -49,7 +49,7 @@ def ask_path(obj):
 class ExportFlatCommand(DocumentCommand):
     """Tessella_ExportFlat: write the selected Unfold to DXF or SVG."""
 
-    ICON = "Tessella_Unfold"
+    ICON = "Tessella_ExportFlat"
     MENU_TEXT = "Export flat panels (DXF/SVG)"
     TOOL_TIP = ("Write the selected Unfold's panels to DXF for CAM (one file per sheet, "
                 "layers CUT, FOLD, LABEL; mm) or to an SVG file")
@@ -68,7 +68,7 @@ class ExportFlatCommand(DocumentCommand):
 class SchedulesCommand(DocumentCommand):
     """Tessella_Schedules: panel, rod and node schedules as spreadsheets."""
 
-    ICON = "Tessella_Panelization"
+    ICON = "Tessella_Schedules"
     MENU_TEXT = "Schedules (spreadsheets)"
     TOOL_TIP = ("Add panel, rod and node schedules of the selected Panelization as "
                 "spreadsheets (a snapshot: run again after changes)")

@@ -57,5 +57,10 @@ def register():
     """Add the page to Edit > Preferences (once per session)."""
     import FreeCADGui as Gui
 
+    # The page's icon is looked up as "preferences-tessella" in the icon paths.
+    icons = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))), "resources", "icons")
+    if os.path.isdir(icons):
+        Gui.addIconPath(icons)
     if os.path.isfile(UI_FILE):
         Gui.addPreferencePage(UI_FILE, "Tessella")

@@ -97,6 +97,37 @@ def test_workbench():
     items = wb.getToolbarItems()
     check("toolbar holds Tessella_Panelize",
           "Tessella_Panelize" in items.get("Tessella", []), str(items.get("Tessella")))
+    # The menu in groups (Panelize / Analyse / Fabricate) with separators.
+    from PySide import QtGui
+
+    process_events()
+    entries = None
+    for a in Gui.getMainWindow().menuBar().actions():
+        if a.text().replace("&", "") == "Tessella" and a.menu() is not None:
+            entries = [(x.isSeparator(), x.text()) for x in a.menu().actions()]
+    if check("menu Tessella in the menu bar", entries is not None):
+        check("menu: two separators between three groups",
+              sum(1 for sep, _ in entries if sep) == 2, str(entries))
+    # Distinct icons for Unfold, Export and Schedules; the preferences page has its own.
+    from freecad_workbench.gui import fabrication_commands as fc
+
+    pix = {name: Gui.Command.get(name).getInfo().get("pixmap", "") if hasattr(Gui, "Command")
+           and hasattr(Gui.Command, "get") else "" for name in fc.COMMANDS}
+    if not all(pix.values()):
+        pix = {"Tessella_Unfold": fc.UnfoldCommand.ICON,
+               "Tessella_ExportFlat": fc.ExportFlatCommand.ICON,
+               "Tessella_Schedules": fc.SchedulesCommand.ICON}
+    check("icons: Unfold, Export and Schedules differ", len(set(pix.values())) == 3, str(pix))
+    from freecad_workbench.gui.common import icon_path
+
+    check("icons: the files exist", all(os.path.isfile(icon_path(os.path.splitext(
+        os.path.basename(v))[0])) for v in pix.values()), str(pix))
+    icon = QtGui.QIcon(":/icons/preferences-tessella.svg")
+    lookup = getattr(Gui, "getIcon", None)
+    if lookup is not None:
+        icon = lookup("preferences-tessella")
+    check("icons: the preferences page finds preferences-tessella",
+          icon is not None and not icon.isNull())
 
 
 def test_command():
