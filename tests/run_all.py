@@ -54,12 +54,27 @@ def run_python(tmp):
     return total - failed - skipped, failed
 
 
+def gui_env(tmp, **extra):
+    """The environment of a GUI test's FreeCAD: its own user settings, data (Mod
+    folder) and temp under `tmp` (HOME and the XDG folders too), so neither the
+    user's preferences nor a copy of Tessella installed in their Mod folder
+    (`make install`) is seen; the checkout is registered by the test itself."""
+    home = Path(tmp) / "freecad-home"
+    dirs = {"HOME": home, "XDG_CONFIG_HOME": home / ".config", "XDG_DATA_HOME": home / ".local/share",
+            "XDG_CACHE_HOME": home / ".cache", "FREECAD_USER_HOME": home,
+            "FREECAD_USER_DATA": home / "freecad-data", "FREECAD_USER_TEMP": home / "freecad-temp"}
+    for d in dirs.values():
+        d.mkdir(parents=True, exist_ok=True)
+    env = dict(os.environ, **{k: str(v) for k, v in dirs.items()})
+    env.update(TESSELLA_ROOT=str(ROOT), QTWEBENGINE_DISABLE_SANDBOX="1", **extra)
+    return env
+
+
 def run_gui(tmp):
     passed = failed = 0
     for script in sorted((ROOT / "tests" / "gui").glob("gui_test_*.py")):
         result = Path(tmp) / (script.stem + ".json")
-        env = dict(os.environ, TESSELLA_GUI_RESULT=str(result), TESSELLA_ROOT=str(ROOT),
-                   QTWEBENGINE_DISABLE_SANDBOX="1")
+        env = gui_env(tmp, TESSELLA_GUI_RESULT=str(result))
         print(f"GUI: {script.name}", flush=True)
         try:
             subprocess.run(["xvfb-run", "-a", "freecad", str(script)], cwd=ROOT, env=env,
