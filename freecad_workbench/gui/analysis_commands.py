@@ -4,6 +4,7 @@ as a PNG file and in a FreeCAD dialog."""
 import os
 import tempfile
 
+import FreeCAD
 import FreeCADGui as Gui
 
 from .common import DocumentCommand, echo, object_ref, selected_panelization, warn  # noqa: F401
@@ -42,6 +43,9 @@ class HistogramsCommand(DocumentCommand):
     MENU_TEXT = "Histograms"
     TOOL_TIP = ("Histograms of panel deviation, rod length and panel area of the "
                 "selected Panelization (PNG file and a dialog)")
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and selected_panelization() is not None
 
     def Activated(self):
         obj = selected_panelization()

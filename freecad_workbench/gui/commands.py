@@ -7,6 +7,7 @@ macro replays it without the GUI.
 
 import math
 
+import FreeCAD
 import FreeCADGui as Gui
 
 from .common import DocumentCommand, selected_face, selected_faces, warn  # noqa: F401
@@ -51,7 +52,15 @@ class PanelizeCommand(DocumentCommand):
     MENU_TEXT = "Panelize face(s)"
     TOOL_TIP = ("Cut the selected face (or faces of one object: one envelope, joined "
                 "along their shared edges) into panels, rods and nodes: a task panel "
-                "with a live preview sets the method and its parameters")
+                "with a live preview sets the method and its parameters. "
+                "Select a face first")
+
+    def IsActive(self):
+        """Greyed out until a face (or faces of one object) is selected, and while
+        a task panel is open (Activated still checks, for a replayed macro)."""
+        if FreeCAD.ActiveDocument is None or Gui.Control.activeDialog():
+            return False
+        return selected_face() is not None or selected_faces() is not None
 
     def Activated(self):
         pick = selected_face()

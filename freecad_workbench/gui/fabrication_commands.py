@@ -1,5 +1,6 @@
 """Fabrication commands: Tessella_Unfold, Tessella_ExportFlat, Tessella_Schedules."""
 
+import FreeCAD
 import FreeCADGui as Gui
 
 from .common import (  # noqa: F401  (selected_*: the names tests and macros used)
@@ -26,6 +27,9 @@ class UnfoldCommand(DocumentCommand):
     TOOL_TIP = ("Draw every panel of the selected Panelization flat with true edge "
                 "lengths and fold lines (set Nest and the sheet size in the property "
                 "view to lay them out on stock sheets)")
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and selected_panelization() is not None
 
     def Activated(self):
         obj = selected_panelization()
@@ -54,6 +58,9 @@ class ExportFlatCommand(DocumentCommand):
     TOOL_TIP = ("Write the selected Unfold's panels to DXF for CAM (one file per sheet, "
                 "layers CUT, FOLD, LABEL; mm) or to an SVG file")
 
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and selected_unfold() is not None
+
     def Activated(self):
         obj = selected_unfold()
         if obj is None:
@@ -72,6 +79,9 @@ class SchedulesCommand(DocumentCommand):
     MENU_TEXT = "Schedules (spreadsheets)"
     TOOL_TIP = ("Add panel, rod and node schedules of the selected Panelization as "
                 "spreadsheets (a snapshot: run again after changes)")
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and selected_panelization() is not None
 
     def Activated(self):
         obj = selected_panelization()

@@ -28,6 +28,12 @@ def check(name, condition, detail=""):
     return bool(condition)
 
 
+def command_active(name):
+    """Whether FreeCAD shows command `name` enabled (its IsActive) right now."""
+    process_events()
+    return bool(Gui.Command.get(name).isActive())
+
+
 def process_events():
     from PySide import QtGui
 
