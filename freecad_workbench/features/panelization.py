@@ -139,6 +139,14 @@ class _Cache:
         return self._types[key]
 
 
+def without_label(obj, exc):
+    """The message of exc without a leading "<label>: " (the report line names
+    the object once, not "Panelization: Panelization: ...")."""
+    text = str(exc)
+    prefix = f"{obj.Label}: "
+    return text[len(prefix):] if text.startswith(prefix) else text
+
+
 class Panelization(_StateMixin):
     """Proxy of the parent object: parameters, the face link and the summary."""
 
@@ -394,7 +402,7 @@ class Panelization(_StateMixin):
         try:
             cache = self.result(obj)
         except Exception as exc:
-            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {exc}\n")
+            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {without_label(obj, exc)}\n")
             raise
         res = cache.result
         s = res.summary
@@ -476,7 +484,7 @@ class PanelizationPart(_StateMixin):
                 raise ValueError("Base must link to a Panelization object")
             cache = parent.Proxy.result(parent)
         except Exception as exc:
-            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {exc}\n")
+            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {without_label(obj, exc)}\n")
             raise
         res = cache.result
         role = obj.Role

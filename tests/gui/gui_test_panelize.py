@@ -860,6 +860,31 @@ def task_form_value(box):
     return task_form.value(box)
 
 
+def test_report_line_names_the_object_once():
+    """A deleted source face: one report line naming the Panelization once."""
+    import Part
+    from PySide import QtGui
+
+    import freecad_workbench as tessella
+
+    doc = FreeCAD.newDocument("TessellaReport")
+    try:
+        src = doc.addObject("Part::Feature", "Plate")
+        src.Shape = Part.makePlane(4000, 3000)
+        doc.recompute()
+        p = tessella.make_panelization((src, "Face1"), size=1000.0)
+        doc.removeObject(src.Name)
+        doc.recompute()
+        process_events()
+        report = "\n".join(w.toPlainText() for w in Gui.getMainWindow().findChildren(QtGui.QTextEdit))
+        line = f"Tessella: {p.Label}: no source face"
+        check("report: the reason in one line", line in report, report[-500:])
+        check("report: the label not doubled", f"{p.Label}: {p.Label}:" not in report)
+        check("report: the object shows the error", not p.isValid())
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
 def type_into(box, text):
     """Types `text` into a spin box's line edit, key by key, as a user does."""
     from PySide import QtCore, QtGui
@@ -933,6 +958,7 @@ ensure_workbench()
 gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command_failure, test_open_headless_document,
     test_analysis_colors, test_task_panel_edit, test_units_after_method_switches,
     test_command_several_faces, test_defaults_open_without_errors,
+    test_report_line_names_the_object_once,
     test_task_panel_guides,
     test_progress_cancel,
     test_preferences_page), 'tessella_gui_test_result.json')
