@@ -333,6 +333,37 @@ def panelize_source(source, method="iso_grid", progress=None, **params):
     return panelize(source, method=method, progress=progress, **params)
 
 
+class PreparedRun:
+    """A panelization with everything read from FreeCAD already (the face or
+    faces parsed, the keywords checked and converted): run() touches no
+    document object, so it may run on a worker thread (the core releases the
+    GIL). What the task panel's preview computes off the GUI thread."""
+
+    def __init__(self, source, method, params):
+        from .selection import faces_of
+
+        faces = faces_of(source, context="source")
+        self.method, self.params = method, dict(params)
+        self.several = len(faces) > 1
+        if self.several:
+            import Part
+
+            self.brep = Part.Compound(faces).exportBrepToString()
+            self.target = core.FaceSet.from_brep_string(self.brep)
+            self.values = core_values(method, params)
+        else:
+            self.brep = face_to_brep(faces[0])
+            self.target = core.SurfaceFace.from_brep_string(self.brep)
+            self.values = core_values(method, params, self.target)
+
+    def run(self, progress=None):
+        """The result (raises Cancelled when progress says stop)."""
+        if not self.several:
+            return panelize_surface(self.target, self.method, self.values, self.params, progress)
+        r = core.panelize_faces(self.target, self.method, self.values, progress, 0)
+        return _face_set_result(r, self.method, self.values, self.params)
+
+
 def panelize_brep(brep, method="iso_grid", progress=None, **params):
     """panelize() on a face given as its BRep string (what a document recompute
     already has: the face is serialized once)."""
@@ -380,13 +411,19 @@ def panelize_faces_brep(brep, method="iso_grid", progress=None, threads=0, **par
     face_set = core.FaceSet.from_brep_string(brep)
     values = core_values(method, params)
     r = core.panelize_faces(face_set, method, values, progress, int(threads))
+    return _face_set_result(r, method, values, params)
+
+
+def _face_set_result(r, method, values, params):
+    """The Python result of a core FaceSetResult."""
     result = _result(r.combined, method, values, params)
     result.panel_face = np.asarray(r.panel_face, dtype=np.int64)
     result.vertex_face = np.asarray(r.vertex_face, dtype=np.int64)
     result.rod_face = np.asarray(r.rod_face, dtype=np.int64)
-    result.face_count = len(face_set)
+    n = len(r.face_summaries)
+    result.face_count = n
     result.summary["faces"] = list(r.face_summaries)
-    result.summary["face_count"] = len(face_set)
+    result.summary["face_count"] = n
     result.summary["shared_edges"] = r.shared_edges
     result.summary["shared_edge_nodes"] = r.shared_edge_nodes
     result.summary["shared_nodes_taken_over"] = r.shared_nodes_taken_over

@@ -316,6 +316,10 @@ class ParameterForm:
         self.summary = QtGui.QLabel("")
         self.summary.setWordWrap(True)
         form.addRow(self.summary)
+        self.stop_preview = QtGui.QPushButton("Stop preview")
+        self.stop_preview.setToolTip("Stop the preview being computed (a large one runs in "
+                                     "the background; FreeCAD stays usable meanwhile)")
+        form.addRow(self.stop_preview)
         for signal in (self.method.currentIndexChanged, self.live.toggled):
             signal.connect(on_change_slot)
         for box in self.common.values():

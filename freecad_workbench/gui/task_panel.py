@@ -58,7 +58,7 @@ class PanelizationTaskPanel:
         self.source_label, self.pick, self.method = f.source_label, f.pick, f.method
         self.sliver, self.min_angle, self.max_panels = f.sliver, f.min_angle, f.max_panels
         self.live, self.summary = f.live, f.summary
-        self.preview = Preview(self._preview_inputs, self.summary, self.live)
+        self.preview = Preview(self._preview_inputs, self.summary, self.live, f.stop_preview)
         self.timer = self.preview.timer
         _active = self
         self.schedule_preview()
@@ -246,6 +246,7 @@ class PanelizationTaskPanel:
         from .common import warn
 
         self.timer.stop()
+        self.preview.cancel()  # OK computes the result itself
         method, params = self.parameters()
         try:
             if self.obj is None:
@@ -253,6 +254,10 @@ class PanelizationTaskPanel:
             else:
                 self._apply(method, params)
         except Exception as exc:
+            if isinstance(exc, api.Cancelled) or "cancelled by the user" in str(exc):
+                # Stopped in the progress dialog: nothing failed, nothing was made.
+                self.summary.setText("Cancelled: nothing was created or changed.")
+                return False
             warn("Tessella: Panelize", f"Panelize failed: {exc}")
             return False  # keep the panel open to fix the values
         self._close()
@@ -260,6 +265,7 @@ class PanelizationTaskPanel:
 
     def reject(self):
         self.timer.stop()
+        self.preview.cancel()
         self._close()
         return True
 

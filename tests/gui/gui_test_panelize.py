@@ -885,6 +885,101 @@ def test_report_line_names_the_object_once():
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_preview_keeps_the_gui_turning():
+    """A 130,000-panel preview computes on a worker: the event loop keeps
+    turning (measured), the panel shows progress, Stop preview stops it, and a
+    cancelled OK says so without a failure box."""
+    import time
+
+    import numpy as np
+    from PySide import QtCore
+
+    import freecad_workbench as tessella
+    from freecad_workbench.gui import task_panel
+
+    doc = FreeCAD.newDocument("TessellaAsync")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = bspline_face_with_hole()
+        doc.recompute()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, src.Name, "Face1")
+        Gui.runCommand("Tessella_Panelize")
+        panel = task_panel.active()
+        if not check("async: panel open", panel is not None):
+            return
+        panel.timer.stop()
+        panel.method.setCurrentIndex(list(tessella.METHODS).index("iso_grid"))
+        size = (src.Shape.Area / 130000) ** 0.5
+        panel.widget("size").setProperty("rawValue", size)
+        panel.timer.stop()
+        ticks = []
+        beat = QtCore.QTimer()
+        beat.setInterval(10)
+        beat.timeout.connect(lambda: ticks.append(time.perf_counter()))
+        beat.start()
+        t0 = time.perf_counter()
+        panel.preview.update(wait=False)
+        returned = time.perf_counter() - t0
+        computing = False
+        while panel.preview.busy() and time.perf_counter() - t0 < 300:
+            process_events()
+            computing = computing or "(computing" in panel.summary.text()
+            time.sleep(0.003)
+        beat.stop()
+        gaps = np.diff(ticks) if len(ticks) > 1 else np.array([0.0])
+        res = panel.last_result
+        check("async: the call returns at once", returned < 0.5, f"{returned:.3f} s")
+        check("async: a preview of about 130,000 panels",
+              res is not None and len(res.panels) > 100000,
+              str(len(res.panels)) if res is not None else str(panel.last_error))
+        check("async: the panel showed its progress", computing)
+        check("async: the event loop kept turning (largest gap under 0.3 s)",
+              float(gaps.max()) < 0.3,
+              f"largest gap {gaps.max():.3f} s, 99th percentile {np.percentile(gaps, 99):.3f} s "
+              f"over {time.perf_counter() - t0:.1f} s")
+        FreeCAD.Console.PrintMessage(
+            f"Tessella GUI test: preview of {len(res.panels) if res else 0} panels, largest "
+            f"event-loop gap {gaps.max() * 1000:.0f} ms\n")
+        # Stop preview.
+        panel.widget("size").setProperty("rawValue", size * 0.97)
+        panel.timer.stop()
+        panel.preview.update(wait=False)
+        t1 = time.perf_counter()
+        while time.perf_counter() - t1 < 0.4:
+            process_events()
+            time.sleep(0.005)
+        panel.form_parts.stop_preview.click()
+        t2 = time.perf_counter()
+        while panel.preview.busy() and time.perf_counter() - t2 < 30:
+            process_events()
+            time.sleep(0.005)
+        check("async: Stop preview stops it", panel.last_error == "preview stopped"
+              and time.perf_counter() - t2 < 5, f"{panel.last_error} after "
+              f"{time.perf_counter() - t2:.2f} s")
+        # A cancelled OK: a plain status line, no failure box, nothing made.
+        panel.widget("size").setProperty("rawValue", 1500.0)
+        panel.timer.stop()
+        original = tessella.gui_progress
+        tessella.gui_progress = lambda *a, **k: (lambda fraction, stage: False)
+        try:
+            with DialogCatcher() as dc:
+                accepted = panel.accept()
+        finally:
+            tessella.gui_progress = original
+        check("cancel on OK: the panel stays open", not accepted)
+        check("cancel on OK: no failure box", not dc.texts, str(dc.texts))
+        check("cancel on OK: says so", "Cancelled" in panel.summary.text(), panel.summary.text())
+        check("cancel on OK: nothing created", not panelizations(doc))
+        panel.reject()
+        process_events()
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Selection.clearSelection()
+        FreeCAD.closeDocument(doc.Name)
+
+
 def type_into(box, text):
     """Types `text` into a spin box's line edit, key by key, as a user does."""
     from PySide import QtCore, QtGui
@@ -958,7 +1053,7 @@ ensure_workbench()
 gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command_failure, test_open_headless_document,
     test_analysis_colors, test_task_panel_edit, test_units_after_method_switches,
     test_command_several_faces, test_defaults_open_without_errors,
-    test_report_line_names_the_object_once,
+    test_report_line_names_the_object_once, test_preview_keeps_the_gui_turning,
     test_task_panel_guides,
     test_progress_cancel,
     test_preferences_page), 'tessella_gui_test_result.json')
