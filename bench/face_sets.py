@@ -5,7 +5,7 @@
 Prints:
 1. The British Museum roof (examples/british_museum_roof.brep) against the
    same roof split into four sub-surfaces through the court's centre (as seed
-   004 splits it; written to examples/british_museum_roof_split.brep): panels,
+   004 splits it; written to examples/face_sets/british_museum_roof_split.brep): panels,
    rods, rod length mean / variance, for iso_grid, equal_size_grid,
    boundary_driven and walking_agent; the share of shared-edge nodes whose rods on
    the two sides carry on within 20 degrees of one line (rows across the split).
@@ -35,7 +35,7 @@ import freecad_workbench as tessella  # noqa: E402
 
 V = FreeCAD.Vector
 ROOF = os.path.join(ROOT, "examples", "british_museum_roof.brep")
-SPLIT = os.path.join(ROOT, "examples", "british_museum_roof_split.brep")
+SPLIT = os.path.join(ROOT, "examples", "face_sets", "british_museum_roof_split.brep")
 
 
 def split_roof(face):
