@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "faceset/face_set_impl.h"
+#include "geometry/brep_string.h"
 #include "tessella/errors.h"
 
 namespace tessella {
@@ -22,15 +23,7 @@ std::shared_ptr<const SurfaceFace> FaceSet::face(std::size_t i) const { return i
 std::size_t FaceSet::shared_edge_count() const { return impl_->shared.size(); }
 
 FaceSet FaceSet::from_brep_string(const std::string& brep) {
-  TopoDS_Shape shape;
-  try {
-    std::istringstream in(brep);
-    BRep_Builder builder;
-    BRepTools::Read(shape, in, builder);
-  } catch (const Standard_Failure& e) {
-    throw InvalidGeometry(std::string("cannot read the BRep string: ") + e.GetMessageString());
-  }
-  if (shape.IsNull()) throw InvalidGeometry("the BRep string holds no shape");
+  const TopoDS_Shape shape = shape_from_brep_string(brep);
   TopTools_IndexedMapOfShape face_map;
   TopExp::MapShapes(shape, TopAbs_FACE, face_map);
   if (face_map.IsEmpty()) throw InvalidGeometry("the shape has no face: select faces");

@@ -29,6 +29,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "geometry/brep_string.h"
 #include "geometry/global_projection.h"
 #include "geometry/pcurve_projection.h"
 #include "geometry/span_adaptors.h"
@@ -147,15 +148,7 @@ SurfaceFace& SurfaceFace::operator=(SurfaceFace&&) noexcept = default;
 SurfaceFace::~SurfaceFace() = default;
 
 SurfaceFace SurfaceFace::from_brep_string(const std::string& brep) {
-  TopoDS_Shape shape;
-  try {
-    std::istringstream in(brep);
-    BRep_Builder builder;
-    BRepTools::Read(shape, in, builder);
-  } catch (const Standard_Failure& e) {
-    throw InvalidGeometry(std::string("cannot read the BRep string: ") + e.GetMessageString());
-  }
-  if (shape.IsNull()) throw InvalidGeometry("the BRep string holds no shape");
+  const TopoDS_Shape shape = shape_from_brep_string(brep);
   int face_count = 0;
   TopoDS_Face face;
   for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {

@@ -27,6 +27,7 @@
 
 #include "geometry/trim_deflection.h"
 #include "geometry/uv_trim_classifier.h"
+#include "mesh/clip_to_box.h"
 #include "mesh/panel_model.h"
 #include "mesh/sliver_merge.h"
 #include "tessella/errors.h"
@@ -402,14 +403,7 @@ PanelMesh clip_cells(const SurfaceFace& face, const std::vector<Vec2>& nodes, in
     return near_sum[at(i1, j1)] - near_sum[at(i1, j0)] - near_sum[at(i0, j1)] +
            near_sum[at(i0, j0)];
   };
-  auto cut = [](const Paths& subject, ClipperLib::PolyFillType fill, const Path& box_path) {
-    ClipperLib::Clipper clipper(ClipperLib::ioPreserveCollinear);
-    clipper.AddPaths(subject, ClipperLib::ptSubject, true);
-    clipper.AddPath(box_path, ClipperLib::ptClip, true);
-    Paths piece;
-    clipper.Execute(ClipperLib::ctIntersection, piece, fill, ClipperLib::pftNonZero);
-    return piece;
-  };
+  const auto cut = clip_to_box;
   // The box of the nodes of cells [i0, i1) x [j0, j1), with a margin.
   auto part_box = [&](int i0, int i1, int j0, int j1) {
     cInt x0 = std::numeric_limits<cInt>::max(), x1 = std::numeric_limits<cInt>::min();

@@ -23,6 +23,7 @@
 #include <unordered_map>
 
 #include "geometry/trim_deflection.h"
+#include "mesh/clip_to_box.h"
 #include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
@@ -298,14 +299,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   const std::size_t near_total = near_in(0, nu, 0, nv);
   std::size_t near_done = 0;
   const cInt y_lo = Y.front() - 1, y_hi = Y.back() + 1;
-  auto cut = [](const Paths& subject, ClipperLib::PolyFillType fill, const Path& box) {
-    ClipperLib::Clipper clipper(ClipperLib::ioPreserveCollinear);
-    clipper.AddPaths(subject, ClipperLib::ptSubject, true);
-    clipper.AddPath(box, ClipperLib::ptClip, true);
-    Paths piece;
-    clipper.Execute(ClipperLib::ctIntersection, piece, fill, ClipperLib::pftNonZero);
-    return piece;
-  };
+  const auto cut = clip_to_box;
   // Recursion depth ~ log2(cells): bounded, no deep stack.
   std::function<void(const Paths&, std::size_t, std::size_t, std::size_t, std::size_t)> part =
       [&](const Paths& piece, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) {
