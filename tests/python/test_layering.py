@@ -189,7 +189,12 @@ def test_command_modules_import_only_common_not_each_other():
     assert set(COMMAND_MODULES) <= _relative_imports(GUI / "register.py")
     init_gui = (ROOT / "InitGui.py").read_text(encoding="utf-8")
     assert "from freecad_workbench.gui import register" in init_gui
-    assert "register.COMMANDS" in init_gui
+    # the menu and toolbar: register.MENU, each module's COMMANDS in turn, in groups
+    assert "register.MENU" in init_gui
+    register = (GUI / "register.py").read_text(encoding="utf-8")
+    menu = register[register.index("MENU = "):]
+    for name in ("commands", "analysis_commands", "fabrication_commands"):
+        assert f"{name}.COMMANDS" in menu, name
 
 
 def test_command_icons_exist():
