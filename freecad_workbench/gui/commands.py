@@ -89,8 +89,10 @@ class PanelizeCommand(DocumentCommand):
 
         prefs = preferences.defaults()
         size = prefs["size"] or default_size(shape, prefs["panels_across"])
-        # The task panel previews live and creates the objects on OK.
+        # The task panel previews live and creates the objects on OK; the face's
+        # selection highlight would hide the preview under it.
         Gui.Control.showDialog(task_panel.PanelizationTaskPanel(source=source, size=size))
+        Gui.Selection.clearSelection()
 
 
 def selection_shape(source):

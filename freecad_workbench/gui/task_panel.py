@@ -267,6 +267,7 @@ class PanelizationTaskPanel:
         self.timer.stop()
         self.preview.cancel()
         self._close()
+        self._restore_selection()
         return True
 
     def _close(self):
@@ -278,6 +279,18 @@ class PanelizationTaskPanel:
         Gui.Control.closeDialog()
         if self.obj is not None and Gui.ActiveDocument is not None:
             Gui.ActiveDocument.resetEdit()
+
+    def _restore_selection(self):
+        """Cancel of a new panelization: the face(s) selected again, as before the
+        command (the panel cleared the selection under its preview)."""
+        if self.obj is not None or not self.source:
+            return
+        obj, sub = self.source
+        try:
+            for name in (sub if isinstance(sub, (list, tuple)) else [sub]) or [""]:
+                Gui.Selection.addSelection(obj.Document.Name, obj.Name, name)
+        except Exception:  # noqa: BLE001  (the object may be gone: nothing to select)
+            pass
 
     def _create(self, method, params):
         obj, sub = self.source

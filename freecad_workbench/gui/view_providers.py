@@ -98,7 +98,8 @@ class ViewProviderPanelization(_VPState):
             return []
 
     def onDelete(self, vobj, subelements):
-        """Deleting the Panelization deletes its Panels, Rods and Nodes too."""
+        """Deleting the Panelization deletes its Panels, Rods and Nodes too, and
+        shows its source face again (hidden when the panels were made)."""
         from ..features.panelization import children_of
 
         obj = vobj.Object
@@ -106,6 +107,9 @@ class ViewProviderPanelization(_VPState):
         for child in children_of(obj):
             if doc.getObject(child.Name) is not None:
                 doc.removeObject(child.Name)
+        source = obj.Source[0] if obj.Source else None
+        if source is not None and getattr(source, "ViewObject", None) is not None:
+            source.ViewObject.Visibility = True
         return True
 
     def updateData(self, obj, prop):

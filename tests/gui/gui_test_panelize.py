@@ -204,11 +204,13 @@ def test_command():
                 icon = obj.ViewObject.Proxy.getIcon() if obj.ViewObject.Proxy else ""
                 check(f"icon of {obj.Label}", bool(icon) and os.path.isfile(icon), repr(icon))
             check("panels visible", pan.ViewObject.Visibility)
+            check("the source face is hidden under the panels", not surf.ViewObject.Visibility)
         check("one undo step", doc.UndoCount == 1, f"UndoCount {doc.UndoCount} {doc.UndoNames}")
         doc.undo()
         process_events()
         check("undo removes all four", sorted(o.Name for o in doc.Objects) == names_before,
               str(sorted(o.Name for o in doc.Objects)))
+        check("undo shows the source face again", surf.ViewObject.Visibility)
         # The echoed lines replay like a macro and give the same result.
         counts = (p.PanelCount, p.RodCount, p.NodeCount)
         namespace = {"FreeCAD": FreeCAD, "App": FreeCAD}
@@ -781,6 +783,8 @@ def test_command_several_faces():
             return
         check("faces: the panel names both faces", "(2 faces)" in panel.source_label.text(),
               panel.source_label.text())
+        check("faces: the selection is cleared under the preview",
+              not Gui.Selection.getSelectionEx())
         panel.timer.stop()
         panel.update_preview()
         res = panel.last_result
@@ -797,6 +801,13 @@ def test_command_several_faces():
             check("faces: panels on both faces", p.PanelCount > 0
                   and sorted(set(p.Proxy.result(p).result.panel_face.tolist())) == [0, 1])
             check("faces: one undo step", doc.UndoCount == 1, str(doc.UndoNames))
+            check("faces: the box is hidden under the panels", not box.ViewObject.Visibility)
+            # Deleting the Panelization (as the tree's Delete does) shows the box again.
+            p.ViewObject.Proxy.onDelete(p.ViewObject, [])
+            doc.removeObject(p.Name)
+            process_events()
+            check("faces: deleted, the box shows again", box.ViewObject.Visibility
+                  and not panelizations(doc))
     finally:
         if Gui.Control.activeDialog():
             Gui.Control.closeDialog()
