@@ -20,7 +20,22 @@ class TessellaWorkbench(FreeCADGui.Workbench):
         try:
             from freecad_workbench.gui import register  # registers every command
         except ImportError as exc:
-            FreeCAD.Console.PrintError(f"Tessella: the workbench cannot load: {exc}\n")
+            # Without the compiled core (a fresh Addon Manager install) the
+            # commands say how to build it rather than the workbench failing.
+            # (Loaded from its file: importing the package is what failed.)
+            import importlib.util
+            import os
+
+            FreeCAD.Console.PrintWarning(f"Tessella: {exc}\n")
+            spec = importlib.util.find_spec("freecad_workbench")
+            path = os.path.join(list(spec.submodule_search_locations)[0], "gui",
+                                "missing_core.py")
+            loader = importlib.util.spec_from_file_location("tessella_missing_core", path)
+            missing_core = importlib.util.module_from_spec(loader)
+            loader.loader.exec_module(missing_core)
+            names = missing_core.register()
+            self.appendToolbar("Tessella", names)
+            self.appendMenu("Tessella", names)
             return
         self.appendToolbar("Tessella", list(register.MENU))
         self.appendMenu("Tessella", list(register.MENU))
