@@ -325,19 +325,29 @@ class PanelizationTaskPanel:
         doc = obj.Document
         doc.openTransaction("Edit panelization")
         try:
+            # The changes go through Gui.doCommand, as the first OK's
+            # make_panelization does: the Python console shows them and a
+            # recorded macro replays them (the replay recomputes for itself).
+            ref = object_ref(obj)
+            lines = []
             if self.picked is not None:
-                obj.Source = (self.picked[0], [self.picked[1]])
-            obj.Method = method
+                lines.append(f"{ref}.Source = ({object_ref(self.picked[0])}, "
+                             f"[{self.picked[1]!r}])")
+            lines.append(f"{ref}.Method = {method!r}")
             if method == "iso_grid":  # counts of 0 mean: use the size
                 params.setdefault("u_count", 0)
                 params.setdefault("v_count", 0)
             for name, value in params.items():
                 if name == "guides":
-                    obj.Guides = selection.link_sub_list(selection.edge_links(value))
+                    links = selection.link_sub_list(selection.edge_links(value))
+                    items = ", ".join(f"({object_ref(o)}, {list(subs)!r})" for o, subs in links)
+                    lines.append(f"{ref}.Guides = [{items}]")
                     continue
-                setattr(obj, task_form.property_of(name), value)
-            obj.Proxy.seed(obj, result)
-            doc.recompute()
+                lines.append(f"{ref}.{task_form.property_of(name)} = {value!r}")
+            for line in lines:
+                Gui.doCommand(line)
+            obj.Proxy.seed(obj, result)  # the result computed above, not again
+            Gui.doCommand(f"FreeCAD.getDocument({doc.Name!r}).recompute()")
         except Exception:
             doc.abortTransaction()
             raise

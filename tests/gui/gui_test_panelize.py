@@ -381,7 +381,21 @@ def test_task_panel_edit():
         check("edit: document untouched while previewing",
               parent.PanelCount == count_before and doc.UndoCount == 0)
         node = panel.preview_node
-        check("edit: OK accepted", panel.accept())
+        echoed = []
+        original_do_command = Gui.doCommand
+
+        def recording_do_command(line):
+            echoed.append(line)
+            return original_do_command(line)
+
+        Gui.doCommand = recording_do_command
+        try:
+            check("edit: OK accepted", panel.accept())
+        finally:
+            Gui.doCommand = original_do_command
+        check("edit: OK echoed to the console like the first OK",
+              any(line.endswith(".Size = 1000.0") for line in echoed)
+              and any(line.endswith(".recompute()") for line in echoed), str(echoed))
         process_events()
         check("edit: preview removed after OK", graph.findChild(node) < 0 if node else True)
         check("edit: Size written", abs(parent.Size.Value - 1000.0) < 1e-9, str(parent.Size))
