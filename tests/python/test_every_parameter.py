@@ -216,6 +216,8 @@ def test_declarations_are_complete_and_derived_everywhere():
     from freecad_workbench.gui import preferences
 
     assert set(preferences.METHOD_ORDER) == set(tessella.METHODS)
+    # the same order everywhere: the declarations' is the preferences page's
+    assert list(tessella.METHODS) == list(preferences.METHOD_ORDER)
     to_property = make._param_to_property()
     for method in tessella.METHODS.values():
         assert method.label and method.doc

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "geometry/trim_deflection.h"
-#include "pipeline/declaration_builder.h"
 #include "mesh/boundary_pieces.h"
+#include "pipeline/declaration_builder.h"
 #include "tessella/errors.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_metrics.h"
@@ -65,11 +65,28 @@ std::vector<ParamDeclaration> make_shared_params() {
   return out;
 }
 
+// The order every list of methods shows (task panel, property editor,
+// preferences page, docs): grids, boundary-driven, the agents, then the
+// guide-line methods. The preferences page stores the index in this order, so
+// a new method goes at the end.
+constexpr const char* kMethodOrder[] = {
+    "iso_grid",           "equal_size_grid",  "boundary_driven",
+    "walking_agent",      "gradient_descent", "relaxed_grid",
+    "guide_line_scaling", "two_guide_lines",  "guide_line_diamond"};
+
 std::vector<MethodDeclaration> make_methods() {
-  std::vector<MethodDeclaration> all;
+  std::vector<MethodDeclaration> found;
   for (auto family : {declare::grid_methods, declare::boundary_driven_methods,
                       declare::guide_line_methods, declare::agent_methods})
-    for (MethodDeclaration& m : family()) all.push_back(std::move(m));
+    for (MethodDeclaration& m : family()) found.push_back(std::move(m));
+  std::vector<MethodDeclaration> all;
+  std::vector<char> taken(found.size(), 0);
+  for (const char* name : kMethodOrder)
+    for (std::size_t k = 0; k < found.size(); ++k)
+      if (!taken[k] && found[k].name == name) all.push_back(std::move(found[k])), taken[k] = 1;
+  // One not in the list yet (a new method): after the others.
+  for (std::size_t k = 0; k < found.size(); ++k)
+    if (!taken[k]) all.push_back(std::move(found[k]));
   return all;
 }
 
