@@ -21,14 +21,23 @@ namespace tessella {
 
 namespace {
 
-// work(f) for every face, faces claimed one at a time by `threads` threads.
+// work(f) for every face, faces claimed one at a time by `threads` threads,
+// the largest first (a big face claimed last would leave the other threads
+// idle); each face's result depends only on the face, so the order changes
+// nothing but the time.
 template <class Work>
-void for_each_face(std::size_t n, int threads, const Work& work) {
+void for_each_face(const FaceSet& set, int threads, const Work& work) {
+  const std::size_t n = set.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t f = 0; f < n; ++f) order[f] = f;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return set.face(a)->area() > set.face(b)->area();
+  });
   ChunkQueue queue(n, 1);
   run_chunks(queue, threads, [&](bool) {
     std::size_t begin = 0, end = 0;
     while (queue.next(begin, end))
-      for (std::size_t f = begin; f < end; ++f) work(f);
+      for (std::size_t k = begin; k < end; ++k) work(order[k]);
   });
 }
 
@@ -52,7 +61,13 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
   for (const PanelizeResult& r : faces) size = std::max(size, r.summary.model_size);
   const double tol = 1e-7 * size;
   using Cell = std::array<long long, 3>;
-  std::map<Cell, std::vector<int>> grid;
+  struct CellHash {
+    std::size_t operator()(const Cell& c) const {
+      return std::hash<long long>()(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+    }
+  };
+  // Only looked up, never iterated: a hash map gives the same result.
+  std::unordered_map<Cell, std::vector<int>, CellHash> grid;
   auto cell = [&](const Vec3& p) {
     return Cell{static_cast<long long>(std::floor(p.x() / tol)),
                 static_cast<long long>(std::floor(p.y() / tol)),
@@ -123,7 +138,12 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
   m.regular_corners = faces.empty() ? 4 : faces.front().mesh.regular_corners;
   build_rods(m);
   // A rod's face: that of the panels it bounds (the lower one on a shared edge).
-  std::map<std::pair<int, int>, int> rod_face;
+  struct PairHash {
+    std::size_t operator()(const std::pair<int, int>& p) const {
+      return std::hash<long long>()((static_cast<long long>(p.first) << 32) ^ p.second);
+    }
+  };
+  std::unordered_map<std::pair<int, int>, int, PairHash> rod_face;  // looked up only
   for (std::size_t p = 0; p < m.panels.size(); ++p) {
     std::vector<int> corners;
     for (int v : m.panels[p])
@@ -245,7 +265,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
   std::vector<Modelled> modelled(n);
   for (int attempt = 0;; ++attempt) {
     report_stage(0.0, "panelizing the faces");
-    for_each_face(n, workers, [&](std::size_t f) {
+    for_each_face(set, workers, [&](std::size_t f) {
       const SurfaceFace& face = *set.face(f);
       const SurfaceFace::FastEvaluation fast(face);
       face.reset_global_projections();
@@ -262,7 +282,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     for (std::size_t f = 0; f < n; ++f)
       modelled[f].coverage_allowance = 1.5 * shared.strip_area[f];  // a margin on 2/3 c h
     report_stage(0.0, "measuring the faces' panels");
-    for_each_face(n, workers, [&](std::size_t f) {
+    for_each_face(set, workers, [&](std::size_t f) {
       const SurfaceFace& face = *set.face(f);
       const SurfaceFace::FastEvaluation fast(face);
       model_and_measure(face, decl, face_values[f], modelled[f]);
@@ -295,7 +315,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     }
     std::vector<PanelizeResult> results(n);
     report_stage(0.0, "checking the faces' coverage");
-    for_each_face(n, workers, [&](std::size_t f) {
+    for_each_face(set, workers, [&](std::size_t f) {
       const SurfaceFace::FastEvaluation fast(*set.face(f));
       try {
         results[f] =

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <unordered_map>
 #include <utility>
 
 namespace tessella {
@@ -108,8 +109,18 @@ class EdgeSide {
 };
 
 // Outline edges used by one panel only: the mesh's boundary (along trims).
-std::map<std::pair<int, int>, int> edge_use(const PanelMesh& mesh) {
-  std::map<std::pair<int, int>, int> use;
+struct SideHash {
+  std::size_t operator()(const std::pair<int, int>& p) const {
+    return std::hash<long long>()((static_cast<long long>(p.first) << 32) ^ p.second);
+  }
+};
+// Panel sides and how many panels use them (only counted and looked up:
+// a hash map gives the same flags as an ordered one).
+using SideUse = std::unordered_map<std::pair<int, int>, int, SideHash>;
+
+SideUse edge_use(const PanelMesh& mesh) {
+  SideUse use;
+  use.reserve(4 * mesh.panels.size());
   for (const auto& p : mesh.panels)
     for (std::size_t i = 0; i < p.size(); ++i) {
       const int a = p[i], b = p[(i + 1) % p.size()];
@@ -140,8 +151,8 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
     const double span = e.last - e.first;
     // The vertices of each face on the edge: its boundary vertices that lie on it.
     std::array<std::vector<OnEdge>, 2> on;
-    std::array<std::map<int, double>, 2> t_of;
-    std::array<std::map<std::pair<int, int>, int>, 2> uses;  // each side's panel sides
+    std::array<std::unordered_map<int, double>, 2> t_of;  // looked up only
+    std::array<SideUse, 2> uses;                          // each side's panel sides
     for (int s = 0; s < 2; ++s) {
       const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
       std::vector<char> boundary(m.vertex_count(), 0);
