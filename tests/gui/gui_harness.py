@@ -28,6 +28,26 @@ def check(name, condition, detail=""):
     return bool(condition)
 
 
+class recorded_commands:
+    """`with recorded_commands() as lines:` every line run through Gui.doCommand
+    meanwhile (still run), for checking what the console and a macro see."""
+
+    def __enter__(self):
+        self.lines = []
+        self.original = Gui.doCommand
+
+        def record(line):
+            self.lines.append(line)
+            return self.original(line)
+
+        Gui.doCommand = record
+        return self.lines
+
+    def __exit__(self, *exc):
+        Gui.doCommand = self.original
+        return False
+
+
 def command_active(name):
     """Whether FreeCAD shows command `name` enabled (its IsActive) right now."""
     process_events()

@@ -21,6 +21,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_harness  # noqa: E402
 from gui_harness import (  # noqa: E402
     REPO, DialogCatcher, check, command_active, ensure_workbench, process_events,
+    recorded_commands,
 )
 
 
@@ -151,15 +152,7 @@ def test_command():
         Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
         check("face selected", len(Gui.Selection.getSelectionEx()) == 1)
         names_before = sorted(o.Name for o in doc.Objects)
-        echoed = []
-        original_do_command = Gui.doCommand
-
-        def recording_do_command(line):
-            echoed.append(line)
-            return original_do_command(line)
-
-        Gui.doCommand = recording_do_command
-        try:
+        with recorded_commands() as echoed:
             with DialogCatcher() as dc:
                 # Cancel first: the document must stay exactly as it was.
                 opened = run_panelize(accept=False)
@@ -169,8 +162,6 @@ def test_command():
                 check("cancel: no task dialog left", not Gui.Control.activeDialog())
                 check("cancel: preview removed", opened is not None and opened[0].preview_node is None)
                 run_panelize(accept=True)
-        finally:
-            Gui.doCommand = original_do_command
         check("Python echoed through Gui.doCommand",
               any("make_panelization(" in line for line in echoed), str(echoed))
         check("no message box on success", not dc.texts, str(dc.texts))
@@ -381,18 +372,8 @@ def test_task_panel_edit():
         check("edit: document untouched while previewing",
               parent.PanelCount == count_before and doc.UndoCount == 0)
         node = panel.preview_node
-        echoed = []
-        original_do_command = Gui.doCommand
-
-        def recording_do_command(line):
-            echoed.append(line)
-            return original_do_command(line)
-
-        Gui.doCommand = recording_do_command
-        try:
+        with recorded_commands() as echoed:
             check("edit: OK accepted", panel.accept())
-        finally:
-            Gui.doCommand = original_do_command
         check("edit: OK echoed to the console like the first OK",
               any(line.endswith(".Size = 1000.0") for line in echoed)
               and any(line.endswith(".recompute()") for line in echoed), str(echoed))
@@ -530,19 +511,9 @@ def test_task_panel_guides():
         check("guides: preview of the guide grid", wait_for_preview(panel, n)
               and panel.last_result is not None and len(panel.last_result.panels) > 10,
               panel.summary.text())
-        echoed = []
-        original = Gui.doCommand
-
-        def record(line):
-            echoed.append(line)
-            return original(line)
-
-        Gui.doCommand = record
-        try:
+        with recorded_commands() as echoed:
             with DialogCatcher() as dc:
                 ok = panel.accept()
-        finally:
-            Gui.doCommand = original
         check("guides: no error box", not dc.texts, str(dc.texts))
         process_events()
         ps = panelizations(doc)

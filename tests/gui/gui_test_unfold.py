@@ -17,6 +17,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_harness  # noqa: E402
 from gui_harness import (  # noqa: E402
     REPO, DialogCatcher, check, command_active, ensure_workbench, process_events,
+    recorded_commands,
 )
 
 
@@ -60,22 +61,12 @@ def test_unfold_command():
             Gui.runCommand("Tessella_Unfold")
         check("a face selected: nothing created", sorted(o.Name for o in doc.Objects) == before)
 
-        echoed = []
-        original = Gui.doCommand
-
-        def recording_do_command(line):
-            echoed.append(line)
-            return original(line)
-
-        Gui.doCommand = recording_do_command
-        try:
+        with recorded_commands() as echoed:
             Gui.Selection.clearSelection()
             Gui.Selection.addSelection(doc.Name, p.Name)
             check("Panelization selected: Unfold enabled", command_active("Tessella_Unfold"))
             with DialogCatcher() as dc:
                 Gui.runCommand("Tessella_Unfold")
-        finally:
-            Gui.doCommand = original
         process_events()
         us = unfolds(doc)
         if check("Panelization selected: one Unfold", len(us) == 1, str(dc.texts)):

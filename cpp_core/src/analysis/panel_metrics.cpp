@@ -345,6 +345,9 @@ constexpr std::size_t kChunk = 8;
 template <class Measure>
 void for_each_panel(const SurfaceFace& face, std::size_t np, int threads, bool report,
                     const Measure& measure) {
+  // Asked at once (not after the 50 ms of report_progress): a cancelled sink
+  // stops even a run shorter than that.
+  if (report) report_stage(0.0, "measuring panels");
   ChunkQueue queue(np, kChunk);
   run_chunks(queue, worker_threads(threads), [&](bool calling) {
     std::optional<SurfaceFace::FastEvaluation> fast;

@@ -1,6 +1,4 @@
 #include <BRepBuilderAPI_Copy.hxx>
-#include <BRepTools.hxx>
-#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
@@ -8,7 +6,6 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
-#include <sstream>
 
 #include "faceset/face_set_impl.h"
 #include "geometry/brep_string.h"

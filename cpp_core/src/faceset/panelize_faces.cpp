@@ -41,13 +41,6 @@ void for_each_face(const FaceSet& set, int threads, const Work& work) {
   });
 }
 
-double largest(const std::vector<double>& values) {
-  double worst = 0;
-  for (double d : values)
-    if (std::isfinite(d)) worst = std::max(worst, d);
-  return worst;
-}
-
 // The faces' results as one: vertices, panels and their data in face order;
 // the vertices two faces share (identical positions, made so along shared
 // edges) once.

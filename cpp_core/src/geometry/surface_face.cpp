@@ -7,7 +7,6 @@
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
-#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
@@ -27,7 +26,6 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <sstream>
 
 #include "geometry/brep_string.h"
 #include "geometry/global_projection.h"

@@ -117,6 +117,13 @@ void check_hard_bound(const PanelMetrics& metrics, double bound) {
 
 }  // namespace
 
+double largest(const std::vector<double>& values) {
+  double worst = 0;
+  for (double d : values)
+    if (std::isfinite(d)) worst = std::max(worst, d);
+  return worst;
+}
+
 double param_number(const ParamValues& values, const MethodDeclaration& method,
                     const std::string& name) {
   return value_or<double>(values, method, name);
@@ -193,13 +200,6 @@ Modelled model_panels(const SurfaceFace& face, const MethodDeclaration& decl,
   Modelled out = run_method(face, decl, values);
   model_and_measure(face, decl, values, out);
   return out;
-}
-
-double largest(const std::vector<double>& values) {
-  double worst = 0;
-  for (double d : values)
-    if (std::isfinite(d)) worst = std::max(worst, d);
-  return worst;
 }
 
 // Runs of walking_agent with a tightened bound before it is refused.

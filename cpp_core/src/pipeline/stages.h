@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "mesh/boundary_pieces.h"
 #include "mesh/short_rod_merge.h"
@@ -33,6 +34,9 @@ struct Modelled {
   // face or add beyond it, allowed by the coverage check.
   double coverage_allowance = 0.0;
 };
+
+// The largest finite value (0 for none): a result's worst deviation.
+double largest(const std::vector<double>& values);
 
 // A number parameter's value, or its declared default.
 double param_number(const ParamValues& values, const MethodDeclaration& method,
