@@ -42,9 +42,13 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
 // Largest distance from a panel model to the surface: corners `p` with their
 // (u,v) (projection starts), `tris` its flat triangles (empty: the bilinear
 // patch of a quad). A grid of `samples` per edge direction (at least 2: the
-// edge midpoints; each triangle as many as its size asks), then a pattern search
-// in the panel's parameters around the largest samples (at most three
-// distinct places) finds the maximum between grid points and along edges.
+// edge midpoints; each triangle as many as its size asks), projected in order
+// of a cheap upper bound while the bound can still beat the largest distance
+// found; then a search in the panel's parameters around the largest samples
+// (at most three distinct places) finds the maximum between grid points and
+// along edges: on a bilinear quad a Newton ascent on the distance (its
+// gradient from the foot point, a rank-one Hessian update, borders held;
+// maximum to 1e-6 in s, t), on flat pieces a pattern search (to h / 128).
 // Every distance is that of a true surface point, so the value is an upper
 // bound of the true distance; with a foot point found (reliable) it is the
 // true maximum to the search's precision (tested: within 1% of a dense

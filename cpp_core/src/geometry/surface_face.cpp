@@ -26,6 +26,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include "geometry/brep_string.h"
 #include "geometry/global_projection.h"
@@ -423,9 +424,11 @@ namespace {
 // Newton iteration of seed 004 section 4 (eq. 10-18) from (u, v); true with
 // (u, v) a foot point (an orthogonal minimum of the distance), false where it
 // does not converge, stops at a maximum or saddle, or stalls at a pole.
+// `at` gets S(u, v) when the last evaluation was at the final (u, v) (the
+// caller then needs no evaluation of its own), else it is left empty.
 template <class Impl>
-bool newton_foot(const Impl& s, const Vec3& p, double& u, double& v,
-                 const ProjectionParams& params) {
+bool newton_foot(const Impl& s, const Vec3& p, double& u, double& v, const ProjectionParams& params,
+                 std::optional<Vec3>* at = nullptr) {
   const double eps1 = params.distance_tolerance * s.model_size;
   bool converged = false;
   for (int it = 0; it <= params.max_iterations; ++it) {
@@ -440,6 +443,7 @@ bool newton_foot(const Impl& s, const Vec3& p, double& u, double& v,
     const double b = su.dot(sv) + r.dot(suv);
     const double d = sv.squaredNorm() + r.dot(svv);
     const double det = a * d - b * b;
+    if (at) *at = P;
     if (rn <= eps1) {
       converged = true;  // p lies on the surface
       break;
@@ -463,6 +467,7 @@ bool newton_foot(const Impl& s, const Vec3& p, double& u, double& v,
     const double step3d = (su * (nu - u) + sv * (nv - v)).norm();
     u = nu;
     v = nv;
+    if (at) at->reset();  // (u, v) moved after the evaluation
     if (step3d <= eps1) {
       // Newton's step has vanished: a foot point if it is a minimum and not a
       // pole (where a vanishing tangent also makes every step short).
@@ -480,7 +485,8 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
                                 const ProjectionParams& params) const {
   const Impl& s = *impl_;
   double u = s.wrap_u(start.x()), v = s.wrap_v(start.y());
-  bool converged = newton_foot(s, p, u, v, params);
+  std::optional<Vec3> at;
+  bool converged = newton_foot(s, p, u, v, params, &at);
   if (!converged && params.local_search) {
     // Before the global search (100 ms a call on a 312 x 323-pole surface):
     // Newton again from the nearest of 9 x 9 samples around the start, over
@@ -503,13 +509,13 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
           if (d < best) best = d, u = a, v = b;
         }
       }
-      converged = newton_foot(s, p, u, v, params) && (point(u, v) - p).norm() <= best;
+      converged = newton_foot(s, p, u, v, params, &at) && (point(u, v) - p).norm() <= best;
     }
   }
   Projection result;
   if (converged) {
     result.uv = {u, v};
-    result.point = point(u, v);
+    result.point = at ? *at : point(u, v);
     result.distance = (result.point - p).norm();
     return result;
   }
