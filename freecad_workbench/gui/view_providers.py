@@ -110,6 +110,9 @@ class ViewProviderPanelization(_VPState):
         source = obj.Source[0] if obj.Source else None
         if source is not None and getattr(source, "ViewObject", None) is not None:
             source.ViewObject.Visibility = True
+        from . import legend
+
+        legend.relayout()  # the children's legends went with them
         return True
 
     def updateData(self, obj, prop):
@@ -130,7 +133,6 @@ class ViewProviderPanelizationPart(_VPState):
     def attach(self, vobj):
         self.ViewObject = vobj
         self.Object = vobj.Object
-        self._legend = None
         self._add_view_properties(vobj)
 
     def _modes(self):
@@ -166,6 +168,10 @@ class ViewProviderPanelizationPart(_VPState):
     def onChanged(self, vobj, prop):
         if prop == "ColorBy":
             self.apply_colors(vobj)
+        elif prop == "Visibility" and getattr(vobj, "ColorBy", "Shape") != "Shape":
+            from . import legend
+
+            legend.relayout()  # a hidden object's legend goes, the others close up
 
     def apply_colors(self, vobj):
         """Colour faces (Panels) or edges (Rods) by the chosen value; draw the legend."""
@@ -193,68 +199,24 @@ class ViewProviderPanelizationPart(_VPState):
 
     # ------------------------------------------------------------------ legend
     def _add_legend(self, vobj, title, lo, hi, unit):
-        try:
-            from pivy import coin
-        except ImportError:
-            return
         from .. import analysis_colors
+        from . import legend
 
-        hud = coin.SoSeparator()
-        hud.setName("TessellaLegend")
-        cam = coin.SoOrthographicCamera()
-        cam.viewportMapping = coin.SoCamera.LEAVE_ALONE
-        cam.position = coin.SbVec3f(0, 0, 5)
-        cam.height = 2.0
-        hud.addChild(cam)
-        light = coin.SoLightModel()
-        light.model = coin.SoLightModel.BASE_COLOR
-        hud.addChild(light)
-        steps = 16
-        x0, x1, y0, y1 = 0.80, 0.88, -0.6, 0.6
-        coords = coin.SoCoordinate3()
-        points = []
-        for k in range(steps):
-            ya = y0 + (y1 - y0) * k / steps
-            yb = y0 + (y1 - y0) * (k + 1) / steps
-            points += [(x0, ya, 0), (x1, ya, 0), (x1, yb, 0), (x0, yb, 0)]
-        coords.point.setValues(0, len(points), points)
-        material = coin.SoMaterial()
-        bar = analysis_colors.colors([lo + (hi - lo) * (k + 0.5) / steps for k in range(steps)],
-                                     lo, hi)
-        material.diffuseColor.setValues(0, steps, bar)
-        binding = coin.SoMaterialBinding()
-        binding.value = coin.SoMaterialBinding.PER_FACE
-        faces = coin.SoFaceSet()
-        faces.numVertices.setValues(0, steps, [4] * steps)
-        for node in (coords, material, binding, faces):
-            hud.addChild(node)
-        text_color = coin.SoBaseColor()
-        text_color.rgb = (0.1, 0.1, 0.1)
-        hud.addChild(text_color)
-        for y, label in ((y1 + 0.08, title), (y1 - 0.02, f"{hi:.4g} {unit}"),
-                         (0.5 * (y0 + y1), f"{0.5 * (lo + hi):.4g} {unit}"),
-                         (y0 - 0.02, f"{lo:.4g} {unit}")):
-            sep = coin.SoSeparator()
-            move = coin.SoTranslation()
-            move.translation = (x0 - 0.02 if label == title else x1 + 0.02, y, 0)
-            text = coin.SoText2()
-            text.string = label
-            if label == title:
-                text.justification = coin.SoText2.RIGHT
-            sep.addChild(move)
-            sep.addChild(text)
-            hud.addChild(sep)
-        vobj.RootNode.addChild(hud)
-        self._legend = hud
+        legend.show(vobj, title, lo, hi, unit, analysis_colors.colors)
 
     def _remove_legend(self, vobj):
-        legend = getattr(self, "_legend", None)
-        if legend is not None and vobj.RootNode.findChild(legend) >= 0:
-            vobj.RootNode.removeChild(legend)
-        self._legend = None
+        from . import legend
+
+        legend.hide(vobj)
+
+    def onDelete(self, vobj, subelements):
+        self._remove_legend(vobj)
+        return True
 
     def has_legend(self):
         """Whether the colour-bar legend is in the scene (for tests)."""
+        from . import legend
+
         vobj = getattr(self, "ViewObject", None)
-        legend = getattr(self, "_legend", None)
-        return vobj is not None and legend is not None and vobj.RootNode.findChild(legend) >= 0
+        entry = legend.entry_of(vobj) if vobj is not None else None
+        return entry is not None and vobj.RootNode.findChild(entry["node"]) >= 0
