@@ -13,6 +13,7 @@ import FreeCAD
 
 from .base import _PROP_READONLY, _READONLY_OUTPUT, _StateMixin, add_property
 from .panelization import is_panelization
+from .user_errors import reports_user_errors
 
 SHOW = ("Curves", "Network")
 
@@ -40,25 +41,22 @@ class CurveNetwork(_StateMixin):
         self._ensure_runtime()
         self.setup_properties(obj)
 
+    @reports_user_errors
     def execute(self, obj):
         import Part
 
         from ..boundary_driven import boundary_driven_stages
 
         parent = obj.Base
-        try:
-            if parent is None or not is_panelization(parent):
-                raise ValueError("Base must link to a Panelization object")
-            method, params = parent.Proxy.parameters(parent)
-            if method != "boundary_driven":
-                raise ValueError(f"{parent.Label} uses {method}, not boundary_driven: no curves")
-            face_arg, _ = parent.Proxy.source_face(parent)
-            for name in ("sliver_fraction", "min_angle", "samples"):
-                params.pop(name, None)  # measurement parameters, not the method's
-            stages = boundary_driven_stages(face_arg, **params)
-        except Exception as exc:
-            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {exc}\n")
-            raise
+        if parent is None or not is_panelization(parent):
+            raise ValueError("Base must link to a Panelization object")
+        method, params = parent.Proxy.parameters(parent)
+        if method != "boundary_driven":
+            raise ValueError(f"{parent.Label} uses {method}, not boundary_driven: no curves")
+        face_arg, _ = parent.Proxy.source_face(parent)
+        for name in ("sliver_fraction", "min_angle", "samples"):
+            params.pop(name, None)  # measurement parameters, not the method's
+        stages = boundary_driven_stages(face_arg, **params)
         edges = []
         if obj.Show == "Curves":
             for xyz, closed in zip(stages["curves_xyz"], stages["curves_closed"]):

@@ -45,6 +45,7 @@ from .base import (  # noqa: F401
     add_property,
     value_of,
 )
+from .user_errors import reports_user_errors, without_label  # noqa: F401
 
 
 def _declared_properties():
@@ -139,12 +140,16 @@ class _Cache:
         return self._types[key]
 
 
-def without_label(obj, exc):
-    """The message of exc without a leading "<label>: " (the report line names
-    the object once, not "Panelization: Panelization: ...")."""
-    text = str(exc)
-    prefix = f"{obj.Label}: "
-    return text[len(prefix):] if text.startswith(prefix) else text
+def _check_edge_count(obj, param, edges):
+    """A user's sentence for a guide link that holds the wrong number of edges
+    (typically: the guide's object was deleted)."""
+    need = int(param.minimum)
+    if len(edges) == need:
+        return
+    what = "one edge" if need == 1 else f"{need} edges"
+    held = {0: "none"}.get(len(edges), str(len(edges)))
+    raise ValueError(f"{obj.Method} needs {what} in {param.property}, it links {held}: "
+                     f"edit the Panelization and pick {what} (Pick edges...)")
 
 
 class Panelization(_StateMixin):
@@ -262,6 +267,8 @@ class Panelization(_StateMixin):
                 continue
             if p.type in ("curves", "uv_curves"):
                 edges = self.linked_edges(obj, p.property)
+                if p.type == "curves":
+                    _check_edge_count(obj, p, edges)
                 if edges or p.type == "curves":
                     params[p.name] = edges
                 continue
@@ -398,12 +405,9 @@ class Panelization(_StateMixin):
         self._failed = None
         self._cache = _Cache(signature, res, self._shapes(res))
 
+    @reports_user_errors
     def execute(self, obj):
-        try:
-            cache = self.result(obj)
-        except Exception as exc:
-            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {without_label(obj, exc)}\n")
-            raise
+        cache = self.result(obj)
         res = cache.result
         s = res.summary
         dev = res.metrics.get("panel_deviation")
@@ -477,15 +481,12 @@ class PanelizationPart(_StateMixin):
         self.setup_properties(obj)
         _attach_view_provider(obj, "ViewProviderPanelizationPart")
 
+    @reports_user_errors
     def execute(self, obj):
         parent = obj.Base
-        try:
-            if parent is None or not is_panelization(parent):
-                raise ValueError("Base must link to a Panelization object")
-            cache = parent.Proxy.result(parent)
-        except Exception as exc:
-            FreeCAD.Console.PrintError(f"Tessella: {obj.Label}: {without_label(obj, exc)}\n")
-            raise
+        if parent is None or not is_panelization(parent):
+            raise ValueError("Base must link to a Panelization object")
+        cache = parent.Proxy.result(parent)
         res = cache.result
         role = obj.Role
         # What this child's outputs depend on: the result, its ID format and

@@ -35,6 +35,7 @@ from .base import (  # noqa: F401
 )
 from ..fabrication import DEFAULT_FOLD_TOLERANCE
 from .panelization import is_panelization
+from .user_errors import reports_user_errors
 
 
 _SIZE = re.compile(r"\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(?:mm)?\s*[xX×*]\s*"
@@ -179,6 +180,7 @@ class Unfold(_StateMixin):
         fabrication.cut_outline(flat[0] if flat else [[0, 0], [1, 0], [0, 1]], o["kerf"])
         return None
 
+    @reports_user_errors
     def execute(self, obj):
         import Part
 

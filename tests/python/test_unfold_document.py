@@ -60,6 +60,9 @@ def test_make_unfold_and_nest(doc):
     d, p = doc
     u = tessella.make_unfold(p)
     check_against_panels(u, p)
+    # laid out beside the model in the XY plane, not over it
+    model, flat = panels_child(p).Shape.BoundBox, u.Shape.BoundBox
+    assert flat.XMin > model.XMax and abs(flat.YMin - model.YMin) < 1e-6, (flat, model)
     assert u.SheetCount == 0 and u.FoldedPanels > 0 and len(u.FoldAngles) == p.PanelCount
     u.Nest = True
     u.SheetWidth, u.SheetHeight = 4000.0, 2500.0
@@ -70,8 +73,9 @@ def test_make_unfold_and_nest(doc):
 
     _res, flat, lay = u.Proxy.compute(u)
     origins = _arrange.sheet_origins(lay)  # sheets in a grid
+    local = u.Placement.inverse().toMatrix()  # the sheets in the Unfold's own frame
     for part, f in zip(u.Shape.childShapes(), flat):
-        bb = part.BoundBox
+        bb = part.transformed(local).BoundBox
         x0, y0 = origins[lay.placements[lay.index(f.id)].sheet]
         assert bb.XMin >= x0 + 10 - 1e-6 and bb.XMax <= x0 + 4000 - 10 + 1e-6
         assert bb.YMin >= y0 + 10 - 1e-6 and bb.YMax <= y0 + 2500 - 10 + 1e-6
