@@ -131,8 +131,11 @@ class ViewProviderPanelizationPart(_VPState):
         vobj.Proxy = self
 
     def attach(self, vobj):
+        from .id_labels import IdLabels
+
         self.ViewObject = vobj
         self.Object = vobj.Object
+        self.id_labels = IdLabels()
         self._add_view_properties(vobj)
 
     def _modes(self):
@@ -146,12 +149,14 @@ class ViewProviderPanelizationPart(_VPState):
         return ["Shape"]
 
     def _add_view_properties(self, vobj):
-        if "ColorBy" in vobj.PropertiesList:
-            return
-        vobj.addProperty("App::PropertyEnumeration", "ColorBy", "Analysis",
-                         "Colour each panel / rod by a measured value (with a legend)")
-        vobj.ColorBy = self._modes()
-        vobj.ColorBy = "Shape"
+        if "ColorBy" not in vobj.PropertiesList:
+            vobj.addProperty("App::PropertyEnumeration", "ColorBy", "Analysis",
+                             "Colour each panel / rod by a measured value (with a legend)")
+            vobj.ColorBy = self._modes()
+            vobj.ColorBy = "Shape"
+        if "ShowIds" not in vobj.PropertiesList:  # documents saved before it get it on open
+            vobj.addProperty("App::PropertyBool", "ShowIds", "Labels",
+                             "Show each panel / rod / node ID as text in the 3D view")
 
     def getIcon(self):
         obj = getattr(self, "Object", None)
@@ -159,19 +164,34 @@ class ViewProviderPanelizationPart(_VPState):
         return icon_path("Tessella_" + role)
 
     def updateData(self, obj, prop):
+        vobj = getattr(self, "ViewObject", None)
+        if vobj is None:
+            return
         if prop in ("Shape", "Deviation", "Planarity", "Area", "Irregular", "PanelType",
                     "RodLengths"):
-            vobj = getattr(self, "ViewObject", None)
-            if vobj is not None and getattr(vobj, "ColorBy", "Shape") != "Shape":
+            if getattr(vobj, "ColorBy", "Shape") != "Shape":
                 self.apply_colors(vobj)
+        if prop in ("Shape", "PanelIds", "RodIds", "NodeIds") and getattr(vobj, "ShowIds", False):
+            self._labels().refresh(vobj)
 
     def onChanged(self, vobj, prop):
         if prop == "ColorBy":
             self.apply_colors(vobj)
-        elif prop == "Visibility" and getattr(vobj, "ColorBy", "Shape") != "Shape":
-            from . import legend
+        elif prop == "ShowIds":
+            self._labels().refresh(vobj)
+        elif prop == "Visibility":
+            self._labels().follow_visibility(vobj)
+            if getattr(vobj, "ColorBy", "Shape") != "Shape":
+                from . import legend
 
-            legend.relayout()  # a hidden object's legend goes, the others close up
+                legend.relayout()  # a hidden object's legend goes, the others close up
+
+    def _labels(self):
+        if getattr(self, "id_labels", None) is None:
+            from .id_labels import IdLabels
+
+            self.id_labels = IdLabels()
+        return self.id_labels
 
     def apply_colors(self, vobj):
         """Colour faces (Panels) or edges (Rods) by the chosen value; draw the legend."""
@@ -211,6 +231,7 @@ class ViewProviderPanelizationPart(_VPState):
 
     def onDelete(self, vobj, subelements):
         self._remove_legend(vobj)
+        self._labels().remove(vobj)
         return True
 
     def has_legend(self):

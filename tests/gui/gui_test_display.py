@@ -4,6 +4,10 @@ Colour legends: one per coloured object, stacked in slots that never overlap,
 clear of the navigation cube, each label readable on the background actually
 rendered (contrast measured on a saved image), values in the unit the unit
 schema picks; a hidden or deleted object takes its legend with it.
+
+ID labels (view property ShowIds): one text per panel / rod / node, the IDs
+of the schedules, at the item's place; they follow a recompute, hide with
+the object and go with it. The Unfold lies beside the model, not over it.
 """
 
 import os
@@ -135,6 +139,80 @@ def test_legends():
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_id_labels_and_unfold_beside():
+    import freecad_workbench as tessella
+    from freecad_workbench.features.panelization import children_of
+
+    ensure_workbench()
+    doc = FreeCAD.newDocument("TessellaIdLabels")
+    try:
+        src = doc.addObject("Part::Feature", "Surface")
+        src.Shape = bspline_face_with_hole()
+        parent = tessella.make_panelization((src, "Face1"), method="iso_grid", size=1500.0)
+        doc.recompute()
+        kids = {c.Role: c for c in children_of(parent)}
+        for role, ids in (("Panels", "PanelIds"), ("Rods", "RodIds"), ("Nodes", "NodeIds")):
+            vobj = kids[role].ViewObject
+            check(f"labels: {role} off by default", "ShowIds" in vobj.PropertiesList
+                  and not vobj.ShowIds and vobj.Proxy.id_labels.texts() == [])
+            vobj.ShowIds = True
+            process_events()
+            texts = vobj.Proxy.id_labels.texts()
+            check(f"labels: {role} one per item, the schedule's IDs",
+                  texts == list(getattr(kids[role], ids)) and len(texts) > 10,
+                  f"{len(texts)} labels, {len(getattr(kids[role], ids))} IDs")
+        # Each panel label sits inside its panel's bounding box (independently: FreeCAD's box).
+        labels = kids["Panels"].ViewObject.Proxy.id_labels
+        group = labels.node.getChild(0)
+        faces = kids["Panels"].Shape.childShapes()
+        inside = 0
+        for k, face in enumerate(faces):
+            x, y, z = group.getChild(2 + k).getChild(0).translation.getValue().getValue()
+            inside += face.BoundBox.isInside(FreeCAD.Vector(x, y, z))
+        check("labels: every panel label inside its panel", inside == len(faces),
+              f"{inside} of {len(faces)}")
+        parent.Size = 2500.0
+        doc.recompute()
+        process_events()
+        check("labels: follow a recompute", labels.texts() == list(kids["Panels"].PanelIds)
+              and len(labels.texts()) == kids["Panels"].Shape.childShapes().__len__(),
+              f"{len(labels.texts())} vs {parent.PanelCount}")
+        kids["Panels"].ViewObject.Visibility = False
+        process_events()
+        check("labels: hidden with the object", labels.texts() == [])
+        kids["Panels"].ViewObject.Visibility = True
+        process_events()
+        check("labels: shown again", len(labels.texts()) == parent.PanelCount)
+
+        unfold = tessella.make_unfold(parent)
+        process_events()
+        model, flat = kids["Panels"].Shape.BoundBox, unfold.Shape.BoundBox
+        check("unfold: beside the model, not over it", flat.XMin > model.XMax
+              and not flat.intersect(model), f"unfold {flat} model {model}")
+        Gui.SendMsgToActiveView("ViewFit")
+        process_events()
+
+        from pivy import coin
+
+        def labels_in_scene():
+            search = coin.SoSearchAction()
+            search.setName("TessellaIdLabels")
+            search.setInterest(coin.SoSearchAction.ALL)
+            search.apply(Gui.ActiveDocument.ActiveView.getSceneGraph())
+            return search.getPaths().getLength()
+
+        check("labels: three label sets in the scene", labels_in_scene() == 3, str(labels_in_scene()))
+        parent.ViewObject.Proxy.onDelete(parent.ViewObject, [])
+        for name in [unfold.Name] + [c.Name for c in children_of(parent)] + [parent.Name]:
+            if doc.getObject(name) is not None:
+                doc.removeObject(name)
+        process_events()
+        check("labels: gone with the object", labels_in_scene() == 0, str(labels_in_scene()))
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
 # FreeCAD runs this file as a script: run the tests, write the result, quit.
 ensure_workbench()
-gui_harness.run("Tessella display GUI test", (test_legends,), "tessella_gui_display_result.json")
+gui_harness.run("Tessella display GUI test", (test_legends, test_id_labels_and_unfold_beside),
+                "tessella_gui_display_result.json")
