@@ -3,12 +3,43 @@
     sheets = tessella.make_schedules(panelization_obj)   # PanelSchedule, RodSchedule, NodeSchedule
 
 The same columns as the CSV files of freecad_workbench.export.members
-(panel fabrication schedule, rod data, node schedule), in one transaction.
+(panel fabrication schedule, rod data, node schedule), in one transaction,
+with readable headers (SHEET_COLUMNS), lengths, angles and areas as FreeCAD
+quantities (areas displayed in m²; `sheet.get("F2").Value` is mm²),
+planarity in percent and the node schedule's rods as "R-0001 (az°, el°)".
 """
 
 import csv
 import os
 import tempfile
+
+
+import re
+
+#: How each CSV column shows in a sheet: (header, kind). Kinds: "text", "count",
+#: "number", a unit the value carries ("mm", "deg", "mm^2" shown in m², read
+#: back as FreeCAD quantities), "percent" (a ratio shown x 100) and "rods" (the
+#: node schedule's "R-0001@az/el" list, shown as "R-0001 (az°, el°), ...").
+SHEET_COLUMNS = {
+    "id": ("ID", "text"), "type": ("Type", "text"), "vertex_count": ("Corners", "count"),
+    "flat_width_mm": ("Flat width", "mm"), "flat_height_mm": ("Flat height", "mm"),
+    "area_mm2": ("Area", "mm^2"), "flat_area_mm2": ("Flat area", "mm^2"),
+    "perimeter_mm": ("Perimeter", "mm"), "deviation_mm": ("Deviation", "mm"),
+    "planarity": ("Planarity (% of edge)", "percent"), "fold": ("Fold diagonal", "text"),
+    "fold_angle_deg": ("Fold angle", "deg"), "fold_valley": ("Valley fold", "count"),
+    "folds": ("Folds", "count"),
+    "node_a": ("Node A", "text"), "node_b": ("Node B", "text"), "length_mm": ("Length", "mm"),
+    "cut_angle_a_deg": ("Cut angle A", "deg"), "cut_angle_b_deg": ("Cut angle B", "deg"),
+    "twist_deg": ("Twist", "deg"),
+    "x": ("X", "mm"), "y": ("Y", "mm"), "z": ("Z", "mm"), "axis_x": ("Axis X", "number"),
+    "axis_y": ("Axis Y", "number"), "axis_z": ("Axis Z", "number"),
+    "valence": ("Rod count", "count"), "rods": ("Rods (azimuth, elevation)", "rods"),
+}
+
+#: Display unit per kind (areas of panels read in m², as quantity surveyors do).
+_DISPLAY_UNIT = {"mm^2": "m^2"}
+
+_ROD_ENTRY = re.compile(r"(.+?)@([-+0-9.eE]+|nan|inf)/([-+0-9.eE]+|nan|inf)(?:\s+|$)")
 
 
 def _col(k):
@@ -20,19 +51,49 @@ def _col(k):
     return s
 
 
+def readable_rods(cell):
+    """'R-0001@12.25/-0.9 R-0002@...' -> 'R-0001 (12.3°, -0.9°), R-0002 (...)'."""
+    return ", ".join(f"{rid} ({float(az):.1f}°, {float(el):.1f}°)"
+                     for rid, az, el in _ROD_ENTRY.findall(cell))
+
+
+def _content(kind, value):
+    """The cell content for one CSV value of the given kind."""
+    if kind in ("text", "rods"):
+        return "'" + (readable_rods(value) if kind == "rods" else value)
+    number = float(value)
+    if kind == "count":
+        return str(int(round(number)))
+    if kind == "number":
+        return repr(number)
+    if kind == "percent":
+        return f"={100.0 * number!r}"
+    return f"={number!r} {kind}"
+
+
 def _fill(sheet, rows):
-    for i, row in enumerate(rows):
+    """Header row (bold, readable names) and one row per item; numbers with
+    units are quantities, so the sheet shows them in the user's unit schema."""
+    header = rows[0]
+    titles = [SHEET_COLUMNS.get(name, (name, "text"))[0] for name in header]
+    kinds = [SHEET_COLUMNS.get(name, (name, "text"))[1] for name in header]
+    for j, title in enumerate(titles):
+        sheet.set(f"{_col(j)}1", "'" + title)
+    for i, row in enumerate(rows[1:], start=2):
         for j, value in enumerate(row):
             if value == "":
                 continue
-            if i > 0:
-                try:
-                    float(value)
-                    sheet.set(f"{_col(j)}{i + 1}", value)
-                    continue
-                except ValueError:
-                    pass
-            sheet.set(f"{_col(j)}{i + 1}", "'" + value)
+            try:
+                sheet.set(f"{_col(j)}{i}", _content(kinds[j], value))
+            except ValueError:  # not a number after all: keep what the CSV says
+                sheet.set(f"{_col(j)}{i}", "'" + value)
+    last = _col(len(header) - 1)
+    sheet.setStyle(f"A1:{last}1", "bold")
+    for j, kind in enumerate(kinds):
+        if kind in _DISPLAY_UNIT and len(rows) > 1:
+            sheet.setDisplayUnit(f"{_col(j)}2:{_col(j)}{len(rows)}", _DISPLAY_UNIT[kind])
+        width = 360 if kind == "rods" else max(90, 8 * len(titles[j]))
+        sheet.setColumnWidth(_col(j), width)
 
 
 def make_schedules(panelization, doc=None, fold_tolerance=0.01):

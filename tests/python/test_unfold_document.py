@@ -3,9 +3,11 @@ Panels child's faces (FreeCAD's own edge lengths), nesting on/off, bad options
 leaving the document untouched, one undo step, save and reopen."""
 
 import os
+import re
 
 import FreeCAD  # noqa: F401  (before Part)
 import Part
+
 import pytest
 
 import freecad_workbench as tessella
@@ -147,18 +149,39 @@ def test_make_schedules_match_the_objects(doc):
     child = panels_child(p)
     faces = child.Shape.childShapes()
     ids = list(child.PanelIds)
-    assert panels.get("A1") == "id" and panels.get(f"A{len(ids) + 1}") == ids[-1]
-    # the area column (3D panel model) against FreeCAD's own face areas
+    assert panels.get("A1") == "ID" and panels.get(f"A{len(ids) + 1}") == ids[-1]
+    # the area column (3D panel model) against FreeCAD's own face areas: a
+    # quantity in mm², displayed in m²
     header = [panels.get(f"{c}1") for c in "ABCDEFGHIJKLMN"]
-    col = "ABCDEFGHIJKLMN"[header.index("area_mm2")]
+    col = "ABCDEFGHIJKLMN"[header.index("Area")]
+    assert panels.getDisplayUnit(f"{col}2") == "m^2"
     for k, face in enumerate(faces):
-        assert panels.get(f"{col}{k + 2}") == pytest.approx(face.Area, rel=1e-6)
+        area = panels.get(f"{col}{k + 2}")
+        assert str(area.Unit) == str(FreeCAD.Units.Area)
+        assert area.Value == pytest.approx(face.Area, rel=1e-6)
+    # planarity in percent of the panel's edge: against the Panels property
+    col = "ABCDEFGHIJKLMN"[header.index("Planarity (% of edge)")]
+    planarity = list(child.Planarity)
+    for k in range(len(faces)):
+        assert panels.get(f"{col}{k + 2}") == pytest.approx(100.0 * planarity[k], rel=1e-12)
     rods_child = [c for c in pfeat.children_of(p) if c.Role == "Rods"][0]
+    assert [rods.get(f"{c}1") for c in "ABCD"] == ["ID", "Node A", "Node B", "Length"]
     for k, edge in enumerate(rods_child.Shape.childShapes()[:50]):
         assert rods.get(f"A{k + 2}") == rods_child.RodIds[k]
-        assert rods.get(f"D{k + 2}") == pytest.approx(edge.Length, rel=1e-9)
+        assert rods.get(f"D{k + 2}").Value == pytest.approx(edge.Length, rel=1e-9)
     nodes_child = [c for c in pfeat.children_of(p) if c.Role == "Nodes"][0]
     assert nodes.get(f"A{len(nodes_child.NodeIds) + 1}") == nodes_child.NodeIds[-1]
+    # the rods column: every rod meeting the node, by ID, with two angles each
+    header = [nodes.get(f"{c}1") for c in "ABCDEFGHIJ"]
+    rods_col = "ABCDEFGHIJ"[header.index("Rods (azimuth, elevation)")]
+    count_col = "ABCDEFGHIJ"[header.index("Rod count")]
+    rod_ids = set(rods_child.RodIds)
+    for k in range(min(40, len(nodes_child.NodeIds))):
+        text = nodes.get(f"{rods_col}{k + 2}")
+        entries = re.findall(r"(\S+) \((-?[0-9.]+)°, (-?[0-9.]+)°\)", text)
+        assert len(entries) == int(nodes.get(f"{count_col}{k + 2}")) > 0, text
+        assert all(rid in rod_ids for rid, _a, _e in entries), text
+        assert text == ", ".join(f"{r} ({a}°, {e}°)" for r, a, e in entries)
     with pytest.raises(ValueError):
         tessella.make_schedules(d.getObject("Surface"))
 
