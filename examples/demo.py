@@ -4,7 +4,8 @@
     # or: PYTHONPATH=/usr/lib/freecad-python3/lib:. /usr/bin/python3 examples/demo.py --out out
 
 Writes into the output folder:
-    tessella_demo.FCStd                  source faces + one Panelization object per run
+    tessella_demo.FCStd                  one source face and one Panelization per run, side
+                                         by side; the first run's schedules (spreadsheets)
     panels_<example>_<method>.csv        panel schedule (rods_*.csv, nodes_*.csv too)
     tessella_demo.png                    panels coloured by deviation, one view per run
 and prints a summary table. Headless, reads no stdin.
@@ -72,15 +73,22 @@ def build_document(runs, path, folder=HERE):
         )
     doc = FreeCAD.newDocument("tessella_demo")
     try:
-        sources = {}
+        x = 0.0
         for name, method, params, result, _ in runs:
-            if name not in sources:
-                feature = doc.addObject("Part::Feature", name)
-                feature.Shape = load_face(name, folder)
-                sources[name] = feature
+            # One source per run, laid out side by side along X (a gap of a
+            # tenth of the face's size), so no two runs overlap when opened.
+            feature = doc.addObject("Part::Feature", name)
+            feature.Label = f"{name}_{method}_source"
+            face = load_face(name, folder)
+            box = face.BoundBox
+            gap = 0.1 * max(box.XLength, box.YLength)
+            feature.Shape = face
+            feature.Placement = FreeCAD.Placement(FreeCAD.Vector(x - box.XMin, -box.YMin, 0.0),
+                                                  FreeCAD.Rotation())
+            x += box.XLength + gap
             if make is not None:
                 parent = tessella.make_panelization(
-                    (sources[name], "Face1"), method=method, doc=doc, **params
+                    (feature, "Face1"), method=method, doc=doc, **params
                 )
                 parent.Label = f"Panelization_{name}_{method}"
                 # The document's objects and the console run must agree.
@@ -97,6 +105,9 @@ def build_document(runs, path, folder=HERE):
                 fallback = doc.addObject("Part::Feature", f"Panels_{name}_{method}")
                 fallback.Shape = panels
         doc.recompute()
+        if make is not None:  # the schedules of the first run, as the Schedules command makes them
+            first = [o for o in doc.Objects if o.Label.startswith("Panelization_")][0]
+            tessella.make_schedules(first)
         broken = [o.Label for o in doc.Objects if "Invalid" in o.State or "Error" in o.State]
         if broken:
             raise RuntimeError(f"objects failed to recompute: {', '.join(broken)}")

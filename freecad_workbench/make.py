@@ -102,12 +102,15 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
             created.append(child.Name)
             feat.PanelizationPart(child, parent, role)
             children.append(child)
+        # The panels take the face's place in the view, as PartDesign hides a
+        # feature's base (in the transaction: undo shows it again); headless
+        # too, so a saved document opens the same way.
         if FreeCAD.GuiUp:
             _attach_gui(parent, children)
-            # The panels take the face's place in the view, as PartDesign hides
-            # a feature's base (in the transaction: undo shows it again).
             if getattr(obj, "ViewObject", None) is not None:
                 obj.ViewObject.Visibility = False
+        elif "Visibility" in obj.PropertiesList:
+            obj.Visibility = False
         doc.recompute()
         broken = [o for o in [parent] + children if not o.isValid() or "Touched" in o.State]
         if broken:

@@ -15,8 +15,10 @@ never import each other.
 
 def attach_view_provider(vobj, class_name):
     """Attach the view provider class `class_name` (view_providers or unfold_view)."""
-    from . import unfold_view, view_providers
+    from . import first_view, unfold_view, view_providers
 
+    if class_name == "ViewProviderPanelization":  # a restored document without its GUI part
+        first_view.schedule(vobj.Object.Document)
     for module in (view_providers, unfold_view):
         cls = getattr(module, class_name, None)
         if isinstance(cls, type):
