@@ -60,6 +60,20 @@ def run_all(runs=RUNS, folder=HERE):
     return out
 
 
+def grid_layout(boxes, columns=3):
+    """Offsets (FreeCAD.Vector) that lay the boxes out in rows of `columns`,
+    a tenth of the largest size apart: a picture that fills a wide view."""
+    gap = 0.1 * max(max(b.XLength, b.YLength) for b in boxes)
+    out, x, y, row_depth = [], 0.0, 0.0, 0.0
+    for k, b in enumerate(boxes):
+        if k and k % columns == 0:
+            x, y, row_depth = 0.0, y - row_depth - gap, 0.0
+        out.append(FreeCAD.Vector(x - b.XMin, y - b.YMax, 0.0))
+        x += b.XLength + gap
+        row_depth = max(row_depth, b.YLength)
+    return out
+
+
 def build_document(runs, path, folder=HERE):
     """A FreeCAD document: one Part::Feature per source face, one Panelization per run."""
     try:
@@ -73,24 +87,23 @@ def build_document(runs, path, folder=HERE):
         )
     doc = FreeCAD.newDocument("tessella_demo")
     try:
-        x = 0.0
-        for name, method, params, result, _ in runs:
-            # One source per run, laid out side by side along X (a gap of a
-            # tenth of the face's size), so no two runs overlap when opened.
+        faces = [load_face(name, folder) for name, *_ in runs]
+        places = grid_layout([f.BoundBox for f in faces])
+        for (name, method, params, result, _), face, place in zip(runs, faces, places):
+            # One source per run, laid out side by side so no two runs overlap.
             feature = doc.addObject("Part::Feature", name)
             feature.Label = f"{name}_{method}_source"
-            face = load_face(name, folder)
-            box = face.BoundBox
-            gap = 0.1 * max(box.XLength, box.YLength)
             feature.Shape = face
-            feature.Placement = FreeCAD.Placement(FreeCAD.Vector(x - box.XMin, -box.YMin, 0.0),
-                                                  FreeCAD.Rotation())
-            x += box.XLength + gap
+            feature.Placement = FreeCAD.Placement(place, FreeCAD.Rotation())
             if make is not None:
                 parent = tessella.make_panelization(
                     (feature, "Face1"), method=method, doc=doc, **params
                 )
                 parent.Label = f"Panelization_{name}_{method}"
+                from freecad_workbench.features.panelization import children_of
+
+                for child in children_of(parent):  # the legend names the run
+                    child.Label = f"{child.Role} {name} {method}"
                 # The document's objects and the console run must agree.
                 got = (parent.PanelCount, parent.RodCount, parent.NodeCount)
                 want = (len(result.panels), len(result.rods), len(result.nodes))

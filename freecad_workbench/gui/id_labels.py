@@ -2,7 +2,8 @@
 
 One label per item, at the panel's centre (mean of its corners), the rod's
 midpoint or the node, so a fitter can match the model against the schedules.
-The labels hang in their own switch under the object's root node: they follow
+The labels hang in their own switch under the object's root node, drawn over
+the surface (a panel's centre lies on or under a curved panel): they follow
 the object's placement, hide with it and go with it. Above MAX_LABELS items a
 label per item is unreadable and slow to draw: only the first MAX_LABELS get
 one, and the report view says so.
@@ -57,6 +58,10 @@ def build(obj, color=(0.05, 0.05, 0.05), font_size=11):
     font.size = font_size
     group.addChild(base)
     group.addChild(font)
+    if hasattr(coin, "SoDepthBuffer"):  # a centre lies on or under a curved panel: draw on top
+        depth = coin.SoDepthBuffer()
+        depth.test = False
+        group.addChild(depth)
     for k in range(count):
         label = coin.SoSeparator()
         where = coin.SoTranslation()
@@ -101,5 +106,18 @@ class IdLabels:
         if self.node is None or self.node.whichChild.getValue() < 0:
             return []
         group = self.node.getChild(0)
-        return [group.getChild(k).getChild(1).string.getValues()[0]
-                for k in range(2, group.getNumChildren())]
+        return [child.getChild(1).string.getValues()[0] for child in self.label_nodes()]
+
+    def label_nodes(self):
+        """The per-item separators (translation, text), in ID order."""
+        if self.node is None:
+            return []
+        group = self.node.getChild(0)
+        items = [group.getChild(k) for k in range(group.getNumChildren())]
+        return [n for n in items if n.isOfType(_separator_type())]
+
+
+def _separator_type():
+    from pivy import coin
+
+    return coin.SoSeparator.getClassTypeId()

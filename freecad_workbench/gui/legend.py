@@ -130,13 +130,16 @@ def free_band(height_px):
 def slots(count, height_px):
     """(title_y, bar_top, bar_bottom) of each of `count` stacked legends."""
     lo, hi = free_band(height_px)
-    title_gap = 2.0 * 18 / height_px  # one text line above each bar
+    line = 2.0 * 16 / height_px  # one text line (16 px) in normalized view units
     each = (hi - lo) / max(count, 1)
     each = min(each, 0.9)
     out = []
     for k in range(count):
         top = hi - k * each
-        out.append((top - 0.5 * title_gap, top - title_gap, top - each + 0.6 * title_gap))
+        # The title on the first line; the top value, centred on the bar's top,
+        # starts a tenth of a line below it; the bottom value, centred on the
+        # bar's bottom, ends above the next slot.
+        out.append((top - 0.5 * line, top - 1.6 * line, top - each + 0.6 * line))
     return out
 
 
@@ -160,7 +163,7 @@ def show(vobj, title, lo, hi, unit, colors):
     the bar's colours."""
     hide(vobj)
     factor, label = display_scale(unit, lo, hi)
-    _LEGENDS[_key(vobj)] = {"vobj": vobj, "title": title, "lo": lo, "hi": hi,
+    _LEGENDS[_key(vobj)] = {"vobj": vobj, "title": title, "lo": lo, "hi": hi, "unit": unit,
                             "factor": factor, "label": label, "colors": colors, "node": None,
                             "labels": []}
     relayout()
@@ -249,7 +252,9 @@ def _build(entry, slot):
         hud.addChild(node)
     f, unit = entry["factor"], entry["label"]
     labels = [(entry["title"], BAR_X1, title_y)]
-    labels += [(format_value(v, f, unit), BAR_X0 - 0.015, y)
+    # Below the kernel's confusion (1e-7 mm) a length reads 0, not 1.5e-11 mm.
+    shown = (lambda v: 0.0 if abs(v) < 1e-6 else v) if entry["unit"] == "mm" else (lambda v: v)
+    labels += [(format_value(shown(v), f, unit), BAR_X0 - 0.015, y)
                for v, y in ((hi, y1), (0.5 * (lo + hi), 0.5 * (y0 + y1)), (lo, y0))]
     placed = []
     for text_value, x, y in labels:

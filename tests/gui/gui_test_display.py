@@ -79,6 +79,11 @@ def test_legends():
         a_low = min([a0] + [y for _, _, y, _ in a["labels"]])
         check("legends: stacked, never overprinting", a_low > b_top or min(
             [b0] + [y for _, _, y, _ in b["labels"]]) > a_top, f"{a['bar']} {b['bar']}")
+        # Within a legend, no two texts closer than a text line (13 px font).
+        closest = min(abs(p[2] - q[2]) for e in (a, b) for i, p in enumerate(e["labels"])
+                      for q in e["labels"][i + 1:])
+        check("legends: title and values never overprint", closest * height / 2.0 >= 14.0,
+              f"closest {closest * height / 2.0:.1f} px")
         # The cube: 132 px in the top-right corner by default (FreeCAD 0.20).
         cube_bottom = 1.0 - 2.0 * 132 / height
         check("legends: below the navigation cube", max(a_top, b_top) + 2.0 * 8 / height
@@ -163,11 +168,11 @@ def test_id_labels_and_unfold_beside():
                   f"{len(texts)} labels, {len(getattr(kids[role], ids))} IDs")
         # Each panel label sits inside its panel's bounding box (independently: FreeCAD's box).
         labels = kids["Panels"].ViewObject.Proxy.id_labels
-        group = labels.node.getChild(0)
+        items = labels.label_nodes()
         faces = kids["Panels"].Shape.childShapes()
         inside = 0
-        for k, face in enumerate(faces):
-            x, y, z = group.getChild(2 + k).getChild(0).translation.getValue().getValue()
+        for item, face in zip(items, faces):
+            x, y, z = item.getChild(0).translation.getValue().getValue()
             inside += face.BoundBox.isInside(FreeCAD.Vector(x, y, z))
         check("labels: every panel label inside its panel", inside == len(faces),
               f"{inside} of {len(faces)}")
