@@ -2,7 +2,8 @@
 
     PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/sweep.py corpus/ \
         [--methods iso_grid equal_size_grid walking_agent boundary_driven] \
-        [--divisions 6 12 24] [--timeout 60] [--max-faces 0] [--remeasure 12] [--csv out.csv]
+        [--divisions 6 12 24] [--timeout 60] [--max-faces 0] [--remeasure 12] [--jobs 1] \
+        [--csv out.csv] [--errors]
 
 (bench/fetch_corpus.py gathers a public corpus from Debian's archive.) Files:
 STEP / IGES / BRep / FCStd (top-level objects' shapes), also gzipped. A face is
@@ -37,6 +38,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -79,8 +81,8 @@ def load_shape(path):
         doc = FreeCAD.openDocument(path)
         try:
             shapes = [o.Shape.copy() for o in doc.Objects
-                      if hasattr(o, "Shape") and not o.Shape.isNull() and not o.InList
-                      and o.Shape.Faces]
+                      if isinstance(getattr(o, "Shape", None), Part.Shape)
+                      and not o.Shape.isNull() and not o.InList and o.Shape.Faces]
         finally:
             FreeCAD.closeDocument(doc.Name)
         return Part.makeCompound(shapes)
@@ -130,22 +132,40 @@ def remeasure(face, r, count, size):
     """(reported / re-measured) per sampled interior quad or triangle."""
     import random
 
-    import FreeCAD
     import numpy as np
-    import Part
 
     if count <= 0 or len(r.panels) == 0:
         return []
     dev = np.asarray(r.metrics["panel_deviation"])
     folds = {frozenset(map(int, f)) for f in np.asarray(r.folds).reshape(-1, 2)}
-    boundary = face.Edges
-    near = 1e-6 * max(size, 1.0)
+    # Trim-side corners: within 1% of the size of the boundary, measured
+    # against the edges discretized to size/50 (segments, vectorized).
+    segs = []
+    for e in face.Edges:
+        pts = np.array([tuple(q) for q in e.discretize(Distance=max(size / 50.0, 1e-9))])
+        if len(pts) >= 2:
+            segs.append(np.stack([pts[:-1], pts[1:]], axis=1))
+    segs = np.concatenate(segs) if segs else np.zeros((0, 2, 3))
+    near = 0.01 * size
+
+    def trim_side(corners):
+        if len(segs) == 0:
+            return False
+        a, b = segs[:, 0], segs[:, 1]
+        ab = b - a
+        den = np.maximum((ab * ab).sum(axis=1), 1e-300)
+        for c in corners:
+            t = np.clip(((c - a) * ab).sum(axis=1) / den, 0.0, 1.0)
+            d = np.linalg.norm(a + t[:, None] * ab - c, axis=1).min()
+            if d < near:
+                return True
+        return False
     order = list(np.argsort(-dev, kind="stable"))
     rng = random.Random(1)
     pool = order[count:]
     rng.shuffle(pool)
     out = []
-    for k in order[: max(1, count // 2)] + pool:
+    for k in (order[: max(1, count // 2)] + pool)[: 10 * count]:  # a bounded search
         if len(out) >= count:
             break
         p = r.vertices[list(r.panels[k])]
@@ -153,7 +173,7 @@ def remeasure(face, r, count, size):
         if len(p) not in (3, 4) or any(frozenset((a, b)) in folds for a in corners
                                        for b in corners if a < b):
             continue  # a bent panel: its model is its flat pieces
-        if any(min(e.distToShape(Part.Vertex(FreeCAD.Vector(*c)))[0] for e in boundary) < near for c in p):
+        if trim_side(p):
             continue  # a trim-side panel: its model follows the trim
         s = np.linspace(0.0, 1.0, 21)
         if len(p) == 4:
@@ -311,6 +331,7 @@ def main(argv=None):
     ap.add_argument("--timeout", type=float, default=60.0, help="seconds per run")
     ap.add_argument("--max-faces", type=int, default=0, help="largest N faces per file (0: all)")
     ap.add_argument("--remeasure", type=int, default=12, help="panels re-measured per ok run")
+    ap.add_argument("--jobs", type=int, default=1, help="runs in parallel (worker processes)")
     ap.add_argument("--csv", help="write every run here")
     ap.add_argument("--errors", action="store_true", help="list every refusal message")
     ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
@@ -324,20 +345,38 @@ def main(argv=None):
     jobs, taken = list_jobs(files, args.methods, args.divisions, args.max_faces)
     print(f"{len(files)} files, {sum(taken.values())} faces, {len(jobs)} runs "
           f"(methods {', '.join(args.methods)}; divisions {args.divisions})", flush=True)
-    rows, w, t0 = [], None, time.perf_counter()
-    for n, job in enumerate(jobs, 1):
-        if w is None or not w.alive():
-            w = Worker(args.remeasure)
-        out = w.run(list(job), args.timeout)
-        path, k, m, d = job
-        rows.append(dict(out, file=os.path.relpath(path, args.folder), face=k, method=m,
-                         divisions=d))
-        if out["status"] in ("crash", "timeout"):
-            print(f"  {out['status']}: {os.path.basename(path)} Face{k + 1} {m} /{d:g}", flush=True)
-        if n % 100 == 0:
-            print(f"  {n}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s", flush=True)
-    if w is not None:
-        w.kill()
+    t0 = time.perf_counter()
+    results = [None] * len(jobs)
+    done = [0]
+    lock = threading.Lock()
+
+    def lane(first):
+        # Worker `first` takes every --jobs-th run: files stay grouped per lane.
+        w = None
+        for n in range(first, len(jobs), args.jobs):
+            if w is None or not w.alive():
+                w = Worker(args.remeasure)
+            path, k, m, d = jobs[n]
+            out = w.run(list(jobs[n]), args.timeout)
+            results[n] = dict(out, file=os.path.relpath(path, args.folder), face=k, method=m,
+                              divisions=d)
+            with lock:
+                done[0] += 1
+                if out["status"] in ("crash", "timeout"):
+                    print(f"  {out['status']}: {os.path.basename(path)} Face{k + 1} {m} /{d:g}",
+                          flush=True)
+                if done[0] % 200 == 0:
+                    print(f"  {done[0]}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s",
+                          flush=True)
+        if w is not None:
+            w.kill()
+
+    lanes = [threading.Thread(target=lane, args=(j,)) for j in range(max(1, args.jobs))]
+    for t in lanes:
+        t.start()
+    for t in lanes:
+        t.join()
+    rows = results
     print(f"\n{len(rows)} runs in {time.perf_counter() - t0:.0f} s\n")
     table(rows, args.methods)
     if args.errors:
