@@ -48,6 +48,7 @@ FREECAD_LIB = "/usr/lib/freecad-python3/lib"
 DEFAULT_METHODS = ("iso_grid", "equal_size_grid", "walking_agent", "boundary_driven")
 BOUND_METHODS = ("walking_agent", "gradient_descent")
 CAD_EXTENSIONS = (".step", ".stp", ".iges", ".igs", ".brep", ".brp", ".fcstd")
+REMEASURE_BUDGET = 10.0  # seconds of independent re-measure per run
 MIN_AREA_FRACTION = 1e-4  # of the file's largest face: smaller faces are fillets and slivers
 
 
@@ -115,13 +116,16 @@ def params_for(method, face, divisions):
     return {"size": math.sqrt(face.Area) / divisions}
 
 
-def _dense(face, pts3):
-    """Largest distance of the points to the face's surface (FreeCAD's projection)."""
+def _dense(face, pts3, deadline=math.inf):
+    """Largest distance of the points to the face's surface (FreeCAD's
+    projection); None when the deadline (perf_counter) passes first."""
     import FreeCAD
 
     surf = face.Surface
     worst = 0.0
     for x in pts3:
+        if time.perf_counter() > deadline:
+            return None
         u, v = surf.parameter(FreeCAD.Vector(*x))
         q = surf.value(u, v)
         worst = max(worst, math.dist((q.x, q.y, q.z), x))
@@ -142,7 +146,12 @@ def remeasure(face, r, count, size):
     # against the edges discretized to size/50 (segments, vectorized).
     segs = []
     for e in face.Edges:
-        pts = np.array([tuple(q) for q in e.discretize(Distance=max(size / 50.0, 1e-9))])
+        if e.isDegenerated() or e.Length <= 0:
+            continue  # a pole or a seam point: no segment
+        try:
+            pts = np.array([tuple(q) for q in e.discretize(Distance=max(size / 50.0, 1e-9))])
+        except Exception:  # OCC cannot discretize it: its end points only
+            pts = np.array([tuple(v.Point) for v in e.Vertexes])
         if len(pts) >= 2:
             segs.append(np.stack([pts[:-1], pts[1:]], axis=1))
     segs = np.concatenate(segs) if segs else np.zeros((0, 2, 3))
@@ -165,8 +174,12 @@ def remeasure(face, r, count, size):
     pool = order[count:]
     rng.shuffle(pool)
     out = []
+    # FreeCAD's projection rebuilds its search on every call: on a surface of
+    # thousands of poles 441 projections take seconds. The re-measure stops
+    # after REMEASURE_BUDGET seconds (the run reports how many it did).
+    started = time.perf_counter()
     for k in (order[: max(1, count // 2)] + pool)[: 10 * count]:  # a bounded search
-        if len(out) >= count:
+        if len(out) >= count or time.perf_counter() - started > REMEASURE_BUDGET:
             break
         p = r.vertices[list(r.panels[k])]
         corners = [int(i) for i in r.panels[k]]
@@ -181,7 +194,9 @@ def remeasure(face, r, count, size):
                    for a in s for b in s]
         else:
             pts = [(1 - a - b) * p[0] + a * p[1] + b * p[2] for a in s for b in s if a + b <= 1]
-        dense = _dense(face, pts)
+        dense = _dense(face, pts, started + REMEASURE_BUDGET)
+        if dense is None:
+            break
         if dense > 1e-9:
             out.append(float(dev[k]) / dense)
     return out
