@@ -146,7 +146,7 @@ def remeasure(face, r, count, size):
     # against the edges discretized to size/50 (segments, vectorized).
     segs = []
     for e in face.Edges:
-        if e.isDegenerated() or e.Length <= 0:
+        if getattr(e, "Degenerated", False) or e.Length <= 0:
             continue  # a pole or a seam point: no segment
         try:
             pts = np.array([tuple(q) for q in e.discretize(Distance=max(size / 50.0, 1e-9))])
