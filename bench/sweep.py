@@ -338,6 +338,42 @@ def table(rows, methods):
               f"{statistics.median([r['seconds'] for r in ok]) if ok else 0:.3f} |")
 
 
+def run_jobs(jobs, folder, lanes_count=1, timeout=60.0, remeasure_count=12):
+    """Run the jobs in `lanes_count` worker lanes; one result dict per job, in order."""
+    t0 = time.perf_counter()
+    results = [None] * len(jobs)
+    done = [0]
+    lock = threading.Lock()
+
+    def lane(first):
+        # Worker `first` takes every --jobs-th run: files stay grouped per lane.
+        w = None
+        for n in range(first, len(jobs), lanes_count):
+            if w is None or not w.alive():
+                w = Worker(remeasure_count)
+            path, k, m, d = jobs[n]
+            out = w.run(list(jobs[n]), timeout)
+            results[n] = dict(out, file=os.path.relpath(path, folder), face=k, method=m,
+                              divisions=d)
+            with lock:
+                done[0] += 1
+                if out["status"] in ("crash", "timeout"):
+                    print(f"  {out['status']}: {os.path.basename(path)} Face{k + 1} {m} /{d:g}",
+                          flush=True)
+                if done[0] % 200 == 0:
+                    print(f"  {done[0]}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s",
+                          flush=True)
+        if w is not None:
+            w.kill()
+
+    lanes = [threading.Thread(target=lane, args=(j,)) for j in range(max(1, lanes_count))]
+    for t in lanes:
+        t.start()
+    for t in lanes:
+        t.join()
+    return results
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("folder", nargs="?")
@@ -361,37 +397,7 @@ def main(argv=None):
     print(f"{len(files)} files, {sum(taken.values())} faces, {len(jobs)} runs "
           f"(methods {', '.join(args.methods)}; divisions {args.divisions})", flush=True)
     t0 = time.perf_counter()
-    results = [None] * len(jobs)
-    done = [0]
-    lock = threading.Lock()
-
-    def lane(first):
-        # Worker `first` takes every --jobs-th run: files stay grouped per lane.
-        w = None
-        for n in range(first, len(jobs), args.jobs):
-            if w is None or not w.alive():
-                w = Worker(args.remeasure)
-            path, k, m, d = jobs[n]
-            out = w.run(list(jobs[n]), args.timeout)
-            results[n] = dict(out, file=os.path.relpath(path, args.folder), face=k, method=m,
-                              divisions=d)
-            with lock:
-                done[0] += 1
-                if out["status"] in ("crash", "timeout"):
-                    print(f"  {out['status']}: {os.path.basename(path)} Face{k + 1} {m} /{d:g}",
-                          flush=True)
-                if done[0] % 200 == 0:
-                    print(f"  {done[0]}/{len(jobs)} runs, {time.perf_counter() - t0:.0f} s",
-                          flush=True)
-        if w is not None:
-            w.kill()
-
-    lanes = [threading.Thread(target=lane, args=(j,)) for j in range(max(1, args.jobs))]
-    for t in lanes:
-        t.start()
-    for t in lanes:
-        t.join()
-    rows = results
+    rows = run_jobs(jobs, args.folder, args.jobs, args.timeout, args.remeasure)
     print(f"\n{len(rows)} runs in {time.perf_counter() - t0:.0f} s\n")
     table(rows, args.methods)
     if args.errors:
