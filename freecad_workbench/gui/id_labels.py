@@ -105,7 +105,6 @@ class IdLabels:
         """The label strings in the scene (for tests); [] when none is shown."""
         if self.node is None or self.node.whichChild.getValue() < 0:
             return []
-        group = self.node.getChild(0)
         return [child.getChild(1).string.getValues()[0] for child in self.label_nodes()]
 
     def label_nodes(self):

@@ -35,6 +35,18 @@ def bspline_face_with_hole():
     return faces[0]
 
 
+def panelized_surface(doc, size=1500.0):
+    """(Panelization, {role: child}) of an iso grid on the B-spline face with a hole."""
+    import freecad_workbench as tessella
+    from freecad_workbench.features.panelization import children_of
+
+    src = doc.addObject("Part::Feature", "Surface")
+    src.Shape = bspline_face_with_hole()
+    parent = tessella.make_panelization((src, "Face1"), method="iso_grid", size=size)
+    doc.recompute()
+    return parent, {c.Role: c for c in children_of(parent)}
+
+
 def rendered_pixel(image, x, y):
     """RGB of the saved image at normalized view coordinates (x, y)."""
     from PySide import QtGui
@@ -49,19 +61,13 @@ def rendered_pixel(image, x, y):
 def test_legends():
     from PySide import QtGui
 
-    import freecad_workbench as tessella
-    from freecad_workbench.features.panelization import children_of
     from freecad_workbench.gui import legend
 
     ensure_workbench()
     doc = FreeCAD.newDocument("TessellaLegends")
     schema = FreeCAD.Units.getSchema()
     try:
-        src = doc.addObject("Part::Feature", "Surface")
-        src.Shape = bspline_face_with_hole()
-        parent = tessella.make_panelization((src, "Face1"), method="iso_grid", size=1500.0)
-        doc.recompute()
-        kids = {c.Role: c for c in children_of(parent)}
+        parent, kids = panelized_surface(doc)
         pvp, rvp = kids["Panels"].ViewObject, kids["Rods"].ViewObject
         pvp.ColorBy = "Deviation"
         rvp.ColorBy = "Length"
@@ -151,11 +157,7 @@ def test_id_labels_and_unfold_beside():
     ensure_workbench()
     doc = FreeCAD.newDocument("TessellaIdLabels")
     try:
-        src = doc.addObject("Part::Feature", "Surface")
-        src.Shape = bspline_face_with_hole()
-        parent = tessella.make_panelization((src, "Face1"), method="iso_grid", size=1500.0)
-        doc.recompute()
-        kids = {c.Role: c for c in children_of(parent)}
+        parent, kids = panelized_surface(doc)
         for role, ids in (("Panels", "PanelIds"), ("Rods", "RodIds"), ("Nodes", "NodeIds")):
             vobj = kids[role].ViewObject
             check(f"labels: {role} off by default", "ShowIds" in vobj.PropertiesList
