@@ -75,8 +75,8 @@ def make_unfold(panelization, doc=None, **options):
             raise RuntimeError(f"the Unfold did not recompute: {', '.join(obj.State)}")
         placement = beside(panelization, obj)
         if placement is not None:
-            obj.Placement = placement
-            doc.recompute()
+            obj.Placement = placement  # moves the shape at once: nothing to recompute
+            obj.purgeTouched()
         if obj.Status != "OK":
             raise ValueError(obj.Status)
     except BaseException:
@@ -113,19 +113,17 @@ def export_unfold(unfold_obj, path, **options):
 
 
 def beside(panelization, unfold):
-    """A Placement that lays the flat parts next to the model: to the right of
-    the panels' bounding box with a gap of a tenth of its size, fronts aligned,
-    still in the XY plane (the workshop floor), so the Unfold never covers the
-    model in the 3D view. None when either shape is empty."""
+    """A Placement that lays the flat parts of a new Unfold (still at the
+    identity) next to the model: to the right of the Panels' bounding box with
+    a gap of a tenth of its size, fronts aligned, still in the XY plane (the
+    workshop floor), so the Unfold never covers the model in the 3D view.
+    None when either shape is empty."""
     from .features.panelization import children_of
 
-    boxes = [c.Shape.BoundBox for c in children_of(panelization)
-             if c.Role == "Panels" and not c.Shape.isNull()]
-    if not boxes or unfold.Shape.isNull():
+    panels = [c for c in children_of(panelization) if c.Role == "Panels"]
+    if not panels or panels[0].Shape.isNull() or unfold.Shape.isNull():
         return None
-    flat_shape = unfold.Shape.copy()
-    flat_shape.Placement = FreeCAD.Placement()  # the layout as unfolded, before any move
-    model, flat = boxes[0], flat_shape.BoundBox
+    model, flat = panels[0].Shape.BoundBox, unfold.Shape.BoundBox
     gap = 0.1 * max(model.XLength, model.YLength, 1.0)
     offset = FreeCAD.Vector(model.XMax + gap - flat.XMin, model.YMin - flat.YMin, 0.0)
     return FreeCAD.Placement(offset, FreeCAD.Rotation())

@@ -45,7 +45,7 @@ from .base import (  # noqa: F401
     add_property,
     value_of,
 )
-from .user_errors import reports_user_errors, without_label  # noqa: F401
+from .user_errors import reports_user_errors
 
 
 def _declared_properties():
