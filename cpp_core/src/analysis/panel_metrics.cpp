@@ -68,6 +68,8 @@ class Prober {
   Prober(const SurfaceFace& face, const std::vector<Vec2>& uv) : face_(face), uv_(uv) {
     for (const Vec2& q : uv) corner_.push_back(face.point(q.x(), q.y()));
     tiny_ = 1e-9 * face.model_size();
+    known_uv_ = uv;
+    known_xyz_ = corner_;
     local_.local_search = true;
   }
 
@@ -84,11 +86,42 @@ class Prober {
   // `start`. Never more than cheap_bound(x, q), S(q) being a real surface
   // point: a Newton run that ended farther found no nearer foot point.
   Probe operator()(const Vec3& x, const Vec2& start, const Vec2& q) const {
-    const Probe p = project(x, start);
+    Probe p = project(x, start);
     const Vec3 s_q = face_.point(q.x(), q.y());
     const double at_q = (s_q - x).norm();
-    if (at_q + tiny_ < p.distance) return {at_q, false, q, s_q};
+    if (at_q + tiny_ < p.distance) p = {at_q, false, q, s_q};
+    p = tighten(x, p);
+    remember(p.foot, p.point);
     return p;
+  }
+
+  // A converged Newton run can stop at a foot point on the wrong sheet of a
+  // folded or strongly curved surface (an orthogonal local minimum, farther
+  // than the true one: MAT.brep reported 3.9 mm where the distance is 2.6).
+  // Every surface point met so far bounds the distance from above, so if
+  // one is nearer than the probe's answer, Newton again from it and keep
+  // the nearer of the two.
+  Probe tighten(const Vec3& x, Probe p) const {
+    std::size_t near = known_uv_.size();
+    double d_near = p.distance;
+    for (std::size_t k = 0; k < known_uv_.size(); ++k) {
+      const double d = (known_xyz_[k] - x).norm();
+      if (d + tiny_ < d_near) d_near = d, near = k;
+    }
+    if (near == known_uv_.size()) return p;
+    const Vec2 from = known_uv_[near];
+    const Projection again = face_.project(x, from, local_);
+    if (again.distance + tiny_ < d_near) {
+      const bool reliable = again.distance <= tiny_ || orthogonal(x, again);
+      return {again.distance, reliable, again.uv, again.point};
+    }
+    return {d_near, false, from, known_xyz_[near]};
+  }
+  // Tighten an earlier probe against every surface point met since.
+  Probe recheck(const Vec3& x, const Probe& p) const {
+    Probe t = tighten(x, p);
+    if (t.distance < p.distance) remember(t.foot, t.point);
+    return t;
   }
 
  private:
@@ -124,9 +157,17 @@ class Prober {
     return std::abs(r.dot(sp.du)) <= 1e-6 * rn * un && std::abs(r.dot(sp.dv)) <= 1e-6 * rn * vn;
   }
 
+  void remember(const Vec2& uv, const Vec3& xyz) const {
+    known_uv_.push_back(uv);
+    known_xyz_.push_back(xyz);
+  }
+
   const SurfaceFace& face_;
   const std::vector<Vec2>& uv_;
   std::vector<Vec3> corner_;
+  // Surface points met by this panel's probes (the corners first).
+  mutable std::vector<Vec2> known_uv_;
+  mutable std::vector<Vec3> known_xyz_;
   double tiny_ = 0;
   ProjectionParams local_;  // a local search before the global one
 };
@@ -352,16 +393,32 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
   const double h = 1.0 / n;
   QuadPoint best;
   std::vector<QuadPoint> probed;
-  for (std::size_t k : order) {
-    const GridSample& g = grid[k];
-    if (g.bound + probe.slack() <= best.probe.distance) break;
-    probed.push_back(dist.of(g.z, g.x, probe(g.x, g.q, g.q)));
-    if (probed.back().probe.distance > best.probe.distance) best = probed.back();
+  std::vector<Vec3> probed_x;
+  std::size_t next = 0;
+  for (;;) {
+    for (; next < order.size(); ++next) {
+      const GridSample& g = grid[order[next]];
+      if (g.bound + probe.slack() <= best.probe.distance) break;
+      probed.push_back(dist.of(g.z, g.x, probe(g.x, g.q, g.q)));
+      probed_x.push_back(g.x);
+      if (probed.back().probe.distance > best.probe.distance) best = probed.back();
+    }
+    // The first probes met few surface points: check them against all met
+    // since; if the largest drops, samples skipped for it are probed after all.
+    const double before = best.probe.distance;
+    best = QuadPoint();
+    for (std::size_t k = 0; k < probed.size(); ++k) {
+      const Probe t = probe.recheck(probed_x[k], probed[k].probe);
+      if (t.distance < probed[k].probe.distance) probed[k] = dist.of(probed[k].z, probed_x[k], t);
+      if (probed[k].probe.distance > best.probe.distance) best = probed[k];
+    }
+    if (!(best.probe.distance < before) || next >= order.size()) break;
   }
   std::stable_sort(probed.begin(), probed.end(), [](const QuadPoint& a, const QuadPoint& b) {
     return a.probe.distance > b.probe.distance;
   });
   std::vector<Vec2> visited;  // starts and ends of the ascents
+  std::vector<QuadPoint> tops;
   for (const QuadPoint& p : probed) {
     if (visited.size() >= 6 || p.probe.distance < 0.9 * best.probe.distance) break;
     bool fresh = true;
@@ -369,12 +426,21 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
       if (std::abs(v.x() - p.z.x()) <= 1.5 * h && std::abs(v.y() - p.z.y()) <= 1.5 * h)
         fresh = false;
     if (!fresh) continue;
-    const QuadPoint top = ascend(dist, p, 0.5 * h);
+    tops.push_back(ascend(dist, p, 0.5 * h));
     visited.push_back(p.z);
-    visited.push_back(top.z);
-    if (top.probe.distance > best.probe.distance) best = top;
+    visited.push_back(tops.back().z);
   }
-  return {best.probe.distance, !best.probe.reliable};
+  // An ascent can climb onto a wrong sheet: each top is checked against every
+  // surface point met, and the largest checked value is the answer.
+  Probe last = best.probe;
+  for (const QuadPoint& top : tops) {
+    Vec3 x;
+    Vec2 q;
+    model.at(-1, top.z.x(), top.z.y(), x, q);
+    const Probe checked = probe.recheck(x, top.probe);
+    if (checked.distance > last.distance) last = checked;
+  }
+  return {last.distance, !last.reliable};
 }
 
 }  // namespace
