@@ -70,6 +70,7 @@ class Prober {
     tiny_ = 1e-9 * face.model_size();
     known_uv_ = uv;
     known_xyz_ = corner_;
+    seed_grid();
     local_.local_search = true;
   }
 
@@ -146,6 +147,31 @@ class Prober {
     offer(again.distance, !again.used_fallback || orthogonal(x, again), again.uv, again.point);
     offer(bound, false, uv_[near], corner_[near]);
     return best;
+  }
+
+  // The corners alone are too few starting points on a surface with waves
+  // shorter than the panel (a 2.5 m cell over 1.75 waves kept a foot on the
+  // wrong wave, 648.5 mm against 626 mm): a 5 x 5 grid of surface points
+  // over the corners' (u,v) box, widened by 10% and kept inside the face's
+  // bounds (a periodic direction is not clamped), joins them. 25 evaluations
+  // a panel, no projection.
+  void seed_grid() {
+    if (uv_.empty()) return;
+    Vec2 lo = uv_[0], hi = uv_[0];
+    for (const Vec2& q : uv_) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+    const Vec2 margin = 0.1 * (hi - lo);
+    lo -= margin, hi += margin;
+    const UvBounds b = face_.bounds();
+    if (!face_.u_periodic()) lo.x() = std::max(lo.x(), b.u_min), hi.x() = std::min(hi.x(), b.u_max);
+    if (!face_.v_periodic()) lo.y() = std::max(lo.y(), b.v_min), hi.y() = std::min(hi.y(), b.v_max);
+    if (!(hi.x() > lo.x() && hi.y() > lo.y())) return;
+    const int k = 5;
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) {
+        const Vec2 q(lo.x() + (hi.x() - lo.x()) * i / (k - 1),
+                     lo.y() + (hi.y() - lo.y()) * j / (k - 1));
+        remember(q, face_.point(q.x(), q.y()));
+      }
   }
 
   bool orthogonal(const Vec3& x, const Projection& pr) const {
@@ -432,7 +458,9 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
   }
   // An ascent can climb onto a wrong sheet: each top is checked against every
   // surface point met, and the largest checked value is the answer.
-  Probe last = best.probe;
+  tops.push_back(best);
+  Probe last;
+  last.distance = -1;
   for (const QuadPoint& top : tops) {
     Vec3 x;
     Vec2 q;
@@ -498,11 +526,26 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
                    [&](std::size_t x, std::size_t y) { return grid_bound[x] > grid_bound[y]; });
   std::vector<char> probed(grid.size(), 0);
   double top = 0;
-  for (std::size_t k : by_bound) {
-    if (grid_bound[k] + probe.slack() < 0.7 * top) break;
-    grid[k].probe = probe(grid_x[k], grid_q[k], grid_q[k]);
-    probed[k] = 1;
-    top = std::max(top, grid[k].probe.distance);
+  std::size_t next = 0;
+  for (;;) {
+    for (; next < by_bound.size(); ++next) {
+      const std::size_t k = by_bound[next];
+      if (grid_bound[k] + probe.slack() < 0.7 * top) break;
+      grid[k].probe = probe(grid_x[k], grid_q[k], grid_q[k]);
+      probed[k] = 1;
+      top = std::max(top, grid[k].probe.distance);
+    }
+    // As for quads: the first probes met few surface points, so each is
+    // checked against all met since; if the largest drops, the samples the
+    // cut-off skipped for it are probed after all.
+    const double before = top;
+    top = 0;
+    for (std::size_t k = 0; k < grid.size(); ++k) {
+      if (!probed[k]) continue;
+      grid[k].probe = probe.recheck(grid_x[k], grid[k].probe);
+      top = std::max(top, grid[k].probe.distance);
+    }
+    if (!(top < before) || next >= by_bound.size()) break;
   }
   // Refine around the largest samples of distinct places (at most three, at
   // least 70% of the largest): the maximum usually lies between grid points.
@@ -525,9 +568,20 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
     if (distinct) seeds.push_back(s);
   }
   if (best.probe.distance > 0) {
-    for (const Sample& s : seeds) {
-      const Sample r = refine(model, probe, s, 0.5 * step[s.tri < 0 ? 0 : s.tri]);
-      if (r.probe.distance > best.probe.distance) best = r;
+    std::vector<Sample> tops;
+    for (const Sample& s : seeds)
+      tops.push_back(refine(model, probe, s, 0.5 * step[s.tri < 0 ? 0 : s.tri]));
+    tops.push_back(best);
+    // A refinement can climb onto a wrong sheet: each top (and the best grid
+    // sample) is checked against every surface point met, and the largest
+    // checked value is the answer.
+    best.probe.distance = -1;
+    for (Sample& t : tops) {
+      Vec3 x;
+      Vec2 q;
+      model.at(t.tri, t.a, t.b, x, q);
+      t.probe = probe.recheck(x, t.probe);
+      if (t.probe.distance >= best.probe.distance) best = t;
     }
   }
   return {best.probe.distance, !best.probe.reliable};
