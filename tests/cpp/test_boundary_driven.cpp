@@ -251,6 +251,76 @@ TEST(BdNetwork, PlateWithHoleFacesTileTheFaceExactly) {
       8);
 }
 
+// A curve end's arc length summed in floating point can fall one ulp short of
+// the trim polyline's vertex it stands on. The trim edge leaving that node
+// then took its own point as "the next vertex" (a zero direction) and was
+// dropped, and the panel beside it with it (0.7% of an SMD fillet lost).
+TEST(BdNetwork, CurveEndsOneUlpShortOfTrimVerticesKeepEveryPanel) {
+  const SurfaceFace f = square_plate(1000);
+  const int n = 64;
+  // The loop [600,1000] x [0,1000], counter-clockwise from (600,0): n
+  // segments along the bottom, then along the top. Near its start a
+  // vertex's arc length is smaller than its u, so one ulp of the arc length
+  // is less than half an ulp of u.
+  BdPolyline loop;
+  for (int k = 0; k <= n; ++k) loop.uv.push_back({600 + 400.0 * k / n, 0});
+  for (int k = n; k >= 0; --k) loop.uv.push_back({600 + 400.0 * k / n, 1000});
+  for (const Vec2& p : loop.uv) loop.xyz.push_back(f.point(p.x(), p.y()));
+  loop.closed = true, loop.loop = 0, loop.outer = true;
+  finish_polyline(loop);
+  // Vertical curves at the bottom vertices where one ulp short of the
+  // vertex's arc length still evaluates to the vertex itself.
+  std::vector<BdCurve> curves;
+  for (int k = 1; k < n; ++k) {
+    const double s0 = std::nextafter(loop.arc[k], 0.0);
+    if (loop.uv_at(s0) != loop.uv[k]) continue;
+    BdCurve c;
+    for (double v : {0.0, 500.0, 1000.0}) {
+      c.uv.push_back({loop.uv[k].x(), v});
+      c.xyz.push_back(f.point(loop.uv[k].x(), v));
+    }
+    c.start = {0, s0};
+    c.end = {0, loop.arc[2 * n + 1 - k]};
+    curves.push_back(c);
+  }
+  ASSERT_GE(curves.size(), 3u);
+  const BdNetwork net = build_bd_network(f, {loop}, curves, {});
+  ASSERT_EQ(net.panels.size(), curves.size() + 1);
+  double area = 0;
+  for (const auto& p : net.panels) area += polygon_area(net.nodes, p);
+  EXPECT_NEAR(area, 4e5, 1e-6);
+}
+
+// A curve across a strip narrower than the shortest edge kept joins two far
+// points of one trim loop: its ends must not merge (that pinched a 0.06 mm
+// fillet to 6 panels covering 0.45 of it).
+TEST(BdRefine, ShortEdgeAcrossAStripIsNotCollapsed) {
+  const SurfaceFace f = square_plate(1000);
+  BdNetwork net;
+  net.loop_lengths = {2 * (1000 + 40)};
+  // the strip [0,1000] x [0,40]: loop counter-clockwise from (0,0)
+  const Vec2 uv[6] = {{0, 0}, {500, 0}, {1000, 0}, {1000, 40}, {500, 40}, {0, 40}};
+  const double s[6] = {0, 500, 1000, 1040, 1540, 2040};
+  for (int k = 0; k < 6; ++k) {
+    BdNode n;
+    n.uv = uv[k], n.xyz = f.point(uv[k].x(), uv[k].y());
+    n.loop = 0, n.s = s[k], n.corner = k % 3 != 1 ? true : false;
+    net.nodes.push_back(n);
+  }
+  net.panels = {{0, 1, 4, 5}, {1, 2, 3, 4}};
+  EXPECT_EQ(collapse_short_edges(f, net, 100.0),
+            0);  // edge 1-4 is 40 long, 1080 apart along the loop
+  EXPECT_EQ(net.panels.size(), 2u);
+  // neighbours along the loop still merge
+  BdNetwork near = net;
+  near.nodes[1].uv = {970, 0}, near.nodes[1].s = 970;
+  near.nodes[1].xyz = f.point(970, 0);
+  near.panels = {{0, 1, 2, 3, 4, 5}};
+  EXPECT_EQ(collapse_short_edges(f, near, 100.0), 1);
+  ASSERT_EQ(near.panels.size(), 1u);
+  EXPECT_EQ(near.panels[0], (std::vector<int>{0, 2, 3, 4, 5}));
+}
+
 // ---------------------------------------------------------------- stage 5
 TEST(BdRefine, SkewedTriangleLosesItsLargestAngleVertex) {
   const SurfaceFace f = square_plate(100);

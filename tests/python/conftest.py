@@ -80,3 +80,27 @@ def dense_quad_deviation(surface, p, n=40):
         q = surface.value(u, v)
         worst = max(worst, math.dist((q.x, q.y, q.z), x))
     return worst
+
+
+def independent_coverage(face, r, samples=3000):
+    """(gap, overlap + outside) as shares of the face's surface area, by random
+    points of the face's parameter range weighted by |Su x Sv|."""
+    import numpy as np
+    from matplotlib.path import Path
+
+    rng = np.random.default_rng(5)
+    u0, u1, v0, v1 = face.ParameterRange
+    pts = np.column_stack([rng.uniform(u0, u1, samples), rng.uniform(v0, v1, samples)])
+    surf = face.Surface
+    inside = np.array([face.isPartOfDomain(u, v) for u, v in pts])
+    weight = np.array([
+        np.linalg.norm(np.cross(np.array(surf.getDN(u, v, 1, 0)), np.array(surf.getDN(u, v, 0, 1))))
+        for u, v in pts])
+    count = np.zeros(samples, int)
+    uv = np.asarray(r.uv)
+    for p in r.panels:
+        count += Path(uv[list(p)]).contains_points(pts)
+    total = (weight * inside).sum()
+    gap = (weight * (inside & (count == 0))).sum() / total
+    extra = (weight * (np.maximum(count - 1, 0) + ((~inside) & (count > 0)))).sum() / total
+    return gap, extra

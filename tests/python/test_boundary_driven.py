@@ -19,6 +19,7 @@ import numpy as np  # noqa: E402
 
 import freecad_workbench as tessella  # noqa: E402
 from freecad_workbench import core  # noqa: E402
+from conftest import independent_coverage  # noqa: E402
 
 SIZE = 900.0
 
@@ -354,3 +355,41 @@ def test_curve_network_object_shows_the_traced_curves(freeform):
             tessella.make_curve_network(iso)
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def _coverage_holds(r, face):
+    """No gap and no overlap: re-measured independently (FreeCAD's trim test,
+    random points, conftest.independent_coverage), within the sampling's
+    resolution. The flat panels' area is the face's less what their chords
+    cut off: at least 2 panels span the 90 deg arc, sin(pi/8) / (pi/8) =
+    0.974 of it."""
+    gap, extra = independent_coverage(face, r)
+    assert gap <= 2e-3 and extra <= 2e-3, (gap, extra)
+    assert 0.97 * face.Area <= r.metrics["panel_area"].sum() <= face.Area * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("scale", [1.0, 1000.0])
+def test_strip_narrower_than_a_panel(scale):
+    """A quarter-cylinder fillet 63 x 6,270 (x scale) wide, at a size 1.7 x
+    its width: the curves across the strip are shorter than the shortest
+    edge kept, and their two trim ends, on one loop but 6 km apart along it,
+    used to be merged, pinching the strip to 6 panels (0.45 of its area)."""
+    face = Part.makeCylinder(0.04 * scale, 6.27 * scale, FreeCAD.Vector(), FreeCAD.Vector(0, 0, 1),
+                             90).Faces[0]
+    size = math.sqrt(face.Area) / 6
+    assert size > 0.0628 * scale
+    r = tessella.panelize(face, method="boundary_driven", size=size)
+    _coverage_holds(r, face)
+    assert len(r.panels) >= 6.27 / (2 * size / scale)
+
+
+def test_node_one_ulp_short_of_a_trim_vertex_keeps_its_trim_edge():
+    """A 0.015 mm fillet (an SMD part from FreeCAD's test files): a curve end's
+    arc length one ulp short of the trim polyline's vertex it stands on gave
+    its trim edge a zero direction; the edge was dropped and with it a panel
+    (0.7% of the face uncovered)."""
+    face = Part.makeCylinder(0.015, 0.8, FreeCAD.Vector(0, 0, -1.2), FreeCAD.Vector(0, 0, 1),
+                             90).Faces[0]
+    for d in (12, 24):
+        r = tessella.panelize(face, method="boundary_driven", size=math.sqrt(face.Area) / d)
+        _coverage_holds(r, face)

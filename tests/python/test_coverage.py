@@ -15,10 +15,9 @@ import FreeCAD  # noqa: F401  (before Part)
 import Part
 import numpy as np
 import pytest
-from matplotlib.path import Path
 
 import freecad_workbench as tessella
-from conftest import dense_quad_deviation
+from conftest import dense_quad_deviation, independent_coverage
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 TILING = ("iso_grid", "equal_size_grid", "walking_agent", "gradient_descent", "boundary_driven")
@@ -37,27 +36,6 @@ def params(method, face):
     if method in ("walking_agent", "gradient_descent"):
         return {"max_deviation": 0.002 * face.BoundBox.DiagonalLength}
     return {"size": math.sqrt(face.Area) / 12}
-
-
-def independent_coverage(face, r, samples=SAMPLES):
-    """(gap, overlap + outside) as shares of the face's surface area, by random
-    points of the face's parameter range weighted by |Su x Sv|."""
-    rng = np.random.default_rng(5)
-    u0, u1, v0, v1 = face.ParameterRange
-    pts = np.column_stack([rng.uniform(u0, u1, samples), rng.uniform(v0, v1, samples)])
-    surf = face.Surface
-    inside = np.array([face.isPartOfDomain(u, v) for u, v in pts])
-    weight = np.array([
-        np.linalg.norm(np.cross(np.array(surf.getDN(u, v, 1, 0)), np.array(surf.getDN(u, v, 0, 1))))
-        for u, v in pts])
-    count = np.zeros(samples, int)
-    uv = np.asarray(r.uv)
-    for p in r.panels:
-        count += Path(uv[list(p)]).contains_points(pts)
-    total = (weight * inside).sum()
-    gap = (weight * (inside & (count == 0))).sum() / total
-    extra = (weight * (np.maximum(count - 1, 0) + ((~inside) & (count > 0)))).sum() / total
-    return gap, extra
 
 
 #: every tiling method on two of the faces (the independent re-measure costs

@@ -76,6 +76,7 @@ struct BdNetwork {
   std::vector<BdNode> nodes;
   std::vector<std::array<int, 2>> edges;  // after pruning
   std::vector<std::vector<int>> panels;   // node cycles, counter-clockwise in (u,v)
+  std::vector<double> loop_lengths;       // 3D length of each trim loop (for BdNode::s)
 };
 
 struct BoundaryDrivenParams {

@@ -39,6 +39,7 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
   require_in_range("corner_angle (deg)", params.corner_angle_deg, 1.0, 179.0);
   const double ms = face.model_size();
   BdNetwork net;
+  for (const BdPolyline& line : boundary) net.loop_lengths.push_back(line.length());
   auto add_node = [&](const Vec2& uv, int loop, double s, bool corner) {
     BdNode n;
     n.uv = uv;
@@ -150,6 +151,9 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
 
   // ---- edges along curves and loops, with their directions at both ends
   std::vector<HalfEdge> half;
+  // The direction of an edge at its end: toward the polyline's next vertex,
+  // else (that vertex is the end itself) along the chord.
+  auto or_chord = [](const Vec2& d, const Vec2& chord) { return d.norm() > 0 ? d : chord; };
   auto add_edge = [&](int a, int b, const Vec2& dir_a, const Vec2& dir_b, bool boundary_edge) {
     if (a == b || dir_a.norm() == 0 || dir_b.norm() == 0) return;
     half.push_back({a, b, std::atan2(dir_a.y(), dir_a.x()), false});
@@ -175,7 +179,7 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
       const double na = std::floor(e0.param) + 1, nb = std::ceil(e1.param) - 1;
       const Vec2 qa = na < e1.param ? curve_uv(C, na) : pb;
       const Vec2 qb = nb > e0.param ? curve_uv(C, nb) : pa;
-      add_edge(e0.node, e1.node, qa - pa, qb - pb, false);
+      add_edge(e0.node, e1.node, or_chord(qa - pa, pb - pa), or_chord(qb - pb, pa - pb), false);
     }
   }
   for (std::size_t k = 0; k < boundary.size(); ++k) {
@@ -188,18 +192,24 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
       const Vec2 pa = L.uv_at(sa), pb = L.uv_at(sb);
       // the first polyline vertex after sa and the last one before sb (arc
       // lengths unwrapped past the loop's start)
-      double x = sa;
+      // A node's s is an arc length summed in floating point: one ulp short
+      // of a polyline vertex it stands on, the "next vertex" would be its own
+      // point (a zero direction, the edge dropped and the panels on both
+      // sides of it lost), hence the shift by eps.
+      const double eps = 1e-9 * len;
+      double x = sa + eps;
       const int ia = L.segment_at(x);
-      const double va = L.arc[ia + 1] + (sa - x);
+      const double va = L.arc[ia + 1] + (sa + eps - x);
       const Vec2 qa = va < sb ? L.uv_at(va) : pb;
-      double y = sb;
+      double y = sb - eps;
       const int ib = L.segment_at(y);
       const double vb =
           (y > L.arc[ib] ? L.arc[ib]
                          : (ib > 0 ? L.arc[ib - 1] : L.arc[L.segment_count() - 1] - len)) +
-          (sb - y);
+          (sb - eps - y);
       const Vec2 qb = vb > sa ? L.uv_at(vb) : pa;
-      add_edge(es[i].node, i + 1 < m ? es[i + 1].node : es[0].node, qa - pa, qb - pb, true);
+      add_edge(es[i].node, i + 1 < m ? es[i + 1].node : es[0].node, or_chord(qa - pa, pb - pa),
+               or_chord(qb - pb, pa - pb), true);
     }
   }
 

@@ -33,6 +33,20 @@ std::map<int, int> loop_node_counts(const BdNetwork& net) {
 }
 constexpr int kMinLoopNodes = 4;
 
+// Whether trim node v may merge into w: w on the same loop and near v along
+// it, not only in space. A short edge between two far points of one loop (a
+// curve across a strip narrower than the spacing, or across a notch) is a
+// real edge of the tiling; merging its ends pinches the face and the panels
+// no longer cover it (a 0.06 mm wide cylinder strip lost all but 6 panels).
+bool may_merge_along_loop(const BdNetwork& net, int v, int w) {
+  const BdNode &a = net.nodes[v], &b = net.nodes[w];
+  if (a.loop < 0 || b.loop != a.loop) return false;
+  double arc = std::abs(a.s - b.s);
+  if (static_cast<std::size_t>(a.loop) < net.loop_lengths.size())
+    arc = std::min(arc, net.loop_lengths[a.loop] - arc);
+  return arc <= 1.5 * (a.xyz - b.xyz).norm() + 1e-12;
+}
+
 // Whether replacing node v by w (w moved to w_uv) keeps every panel around v
 // and w unfolded in (u,v) (panels that vanish do not count).
 bool merge_keeps_panels(const BdNetwork& net, const std::vector<int>& panels, int v, int w,
@@ -181,7 +195,7 @@ int remove_skewed_triangles(BdNetwork& net, double ratio) {
                   : b;
       if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);  // v is removed, w kept
       if (rank(net.nodes[v]) == 2) continue;
-      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && !may_merge_along_loop(net, v, w)) continue;
       if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
       if (!merge_keeps_panels(net, incident[v], v, w, net.nodes[w].uv)) continue;
       if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
@@ -228,7 +242,7 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
       if (touched[v] || touched[w]) continue;
       if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);
       if (rank(net.nodes[v]) == 2) continue;
-      if (rank(net.nodes[v]) == 1 && net.nodes[w].loop != net.nodes[v].loop) continue;
+      if (rank(net.nodes[v]) == 1 && !may_merge_along_loop(net, v, w)) continue;
       if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
       // would a panel visit w twice?
       bool bad = false;

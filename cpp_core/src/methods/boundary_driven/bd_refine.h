@@ -12,18 +12,18 @@ namespace tessella {
 // Section 3.1: a triangle whose smallest / largest corner angle (3D) is under
 // `ratio` loses the corner with the largest angle, which is replaced by the
 // nearest other corner of the triangle. Trim corners are never removed; a node
-// on the trim only merges into a node on the same loop (an interior node
-// merging with a trim node keeps the trim node). Returns the number removed.
+// on the trim only merges into a node near it along the same loop (not one
+// across a narrow strip or a notch; an interior node merging with a trim node
+// keeps the trim node). Returns the number removed.
 int remove_skewed_triangles(BdNetwork& net, double ratio);
 
 // The same vertex replacement for the network's short edges (a generalization
 // of section 3.1 we add: curves that cross or meet the trim close to another
 // node leave tiny faces and sharp corners). Every panel edge shorter than
 // `min_length` (mm, 3D) merges its two ends, under the same rules (trim corners
-// stay, trim nodes merge only along their loop, an interior node merging with a
-// trim node keeps the trim node; two interior nodes meet half-way, projected
-// onto the surface). A merge that would make a panel visit a node twice is
-// skipped. Returns the number of merges.
+// stay, trim nodes merge only with nodes near them along their loop, an interior node merging with
+// a trim node keeps the trim node; two interior nodes meet half-way, projected onto the surface). A
+// merge that would make a panel visit a node twice is skipped. Returns the number of merges.
 int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_length);
 
 // Section 3.2: every panel with n corners becomes n quads by its centre and its
