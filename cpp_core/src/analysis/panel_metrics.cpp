@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 
+#include "analysis/known_surface_points.h"
 #include "common/parallel_chunks.h"
 #include "mesh/panel_model.h"
 #include "tessella/errors.h"
@@ -68,8 +69,6 @@ class Prober {
   Prober(const SurfaceFace& face, const std::vector<Vec2>& uv) : face_(face), uv_(uv) {
     for (const Vec2& q : uv) corner_.push_back(face.point(q.x(), q.y()));
     tiny_ = 1e-9 * face.model_size();
-    known_uv_ = uv;
-    known_xyz_ = corner_;
     seed_grid();
     local_.local_search = true;
   }
@@ -103,20 +102,16 @@ class Prober {
   // one is nearer than the probe's answer, Newton again from it and keep
   // the nearer of the two.
   Probe tighten(const Vec3& x, Probe p) const {
-    std::size_t near = known_uv_.size();
     double d_near = p.distance;
-    for (std::size_t k = 0; k < known_uv_.size(); ++k) {
-      const double d = (known_xyz_[k] - x).norm();
-      if (d + tiny_ < d_near) d_near = d, near = k;
-    }
-    if (near == known_uv_.size()) return p;
-    const Vec2 from = known_uv_[near];
+    const std::size_t near = known_.nearer(x, d_near, tiny_);
+    if (near == known_.size()) return p;
+    const Vec2 from = known_.uv(near);
     const Projection again = face_.project(x, from, local_);
     if (again.distance + tiny_ < d_near) {
       const bool reliable = again.distance <= tiny_ || orthogonal(x, again);
       return {again.distance, reliable, again.uv, again.point};
     }
-    return {d_near, false, from, known_xyz_[near]};
+    return {d_near, false, from, known_.xyz(near)};
   }
   // Tighten an earlier probe against every surface point met since.
   Probe recheck(const Vec3& x, const Probe& p) const {
@@ -156,22 +151,37 @@ class Prober {
   // bounds (a periodic direction is not clamped), joins them. 25 evaluations
   // a panel, no projection.
   void seed_grid() {
-    if (uv_.empty()) return;
-    Vec2 lo = uv_[0], hi = uv_[0];
-    for (const Vec2& q : uv_) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
-    const Vec2 margin = 0.1 * (hi - lo);
-    lo -= margin, hi += margin;
-    const UvBounds b = face_.bounds();
-    if (!face_.u_periodic()) lo.x() = std::max(lo.x(), b.u_min), hi.x() = std::min(hi.x(), b.u_max);
-    if (!face_.v_periodic()) lo.y() = std::max(lo.y(), b.v_min), hi.y() = std::min(hi.y(), b.v_max);
-    if (!(hi.x() > lo.x() && hi.y() > lo.y())) return;
-    const int k = 5;
-    for (int i = 0; i < k; ++i)
-      for (int j = 0; j < k; ++j) {
-        const Vec2 q(lo.x() + (hi.x() - lo.x()) * i / (k - 1),
-                     lo.y() + (hi.y() - lo.y()) * j / (k - 1));
-        remember(q, face_.point(q.x(), q.y()));
-      }
+    std::vector<Vec2> seed_uv;
+    std::vector<Vec3> seed_xyz;
+    if (!uv_.empty()) {
+      Vec2 lo = uv_[0], hi = uv_[0];
+      for (const Vec2& q : uv_) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+      const Vec2 margin = 0.1 * (hi - lo);
+      lo -= margin, hi += margin;
+      const UvBounds b = face_.bounds();
+      if (!face_.u_periodic())
+        lo.x() = std::max(lo.x(), b.u_min), hi.x() = std::min(hi.x(), b.u_max);
+      if (!face_.v_periodic())
+        lo.y() = std::max(lo.y(), b.v_min), hi.y() = std::min(hi.y(), b.v_max);
+      const int k = 5;
+      if (hi.x() > lo.x() && hi.y() > lo.y())
+        for (int i = 0; i < k; ++i)
+          for (int j = 0; j < k; ++j) {
+            const Vec2 q(lo.x() + (hi.x() - lo.x()) * i / (k - 1),
+                         lo.y() + (hi.y() - lo.y()) * j / (k - 1));
+            seed_uv.push_back(q);
+            seed_xyz.push_back(face_.point(q.x(), q.y()));
+          }
+    }
+    // The index's box: the corners and the seed points (later feet lie
+    // near them; one outside still lands in a border cell).
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec3& c : corner_) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+    for (const Vec3& c : seed_xyz) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+    if (!(lo.x() <= hi.x())) lo = hi = Vec3::Zero();
+    known_.reset(lo, hi);
+    for (std::size_t c = 0; c < corner_.size(); ++c) remember(uv_[c], corner_[c]);
+    for (std::size_t c = 0; c < seed_uv.size(); ++c) remember(seed_uv[c], seed_xyz[c]);
   }
 
   bool orthogonal(const Vec3& x, const Projection& pr) const {
@@ -183,17 +193,13 @@ class Prober {
     return std::abs(r.dot(sp.du)) <= 1e-6 * rn * un && std::abs(r.dot(sp.dv)) <= 1e-6 * rn * vn;
   }
 
-  void remember(const Vec2& uv, const Vec3& xyz) const {
-    known_uv_.push_back(uv);
-    known_xyz_.push_back(xyz);
-  }
+  void remember(const Vec2& uv, const Vec3& xyz) const { known_.add(uv, xyz); }
 
   const SurfaceFace& face_;
   const std::vector<Vec2>& uv_;
   std::vector<Vec3> corner_;
   // Surface points met by this panel's probes (the corners first).
-  mutable std::vector<Vec2> known_uv_;
-  mutable std::vector<Vec3> known_xyz_;
+  mutable KnownSurfacePoints known_;
   double tiny_ = 0;
   ProjectionParams local_;  // a local search before the global one
 };

@@ -1,0 +1,87 @@
+#include "analysis/known_surface_points.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessella {
+
+namespace {
+constexpr int kMaxCells = 8;  // per axis
+}
+
+void KnownSurfacePoints::reset(const Vec3& lo, const Vec3& hi) {
+  origin_ = lo;
+  const Vec3 extent = (hi - lo).cwiseMax(0.0);
+  const double side = extent.maxCoeff();
+  const double cell = side / kMaxCells;
+  inv_cell_ = cell > 0 && std::isfinite(cell) ? 1.0 / cell : 0.0;
+  for (int a = 0; a < 3; ++a)
+    n_[a] = inv_cell_ > 0 ? std::clamp(int(std::ceil(extent[a] * inv_cell_)), 1, kMaxCells) : 1;
+  head_.assign(std::size_t(n_[0]) * n_[1] * n_[2], -1);
+  next_.clear();
+  uv_.clear();
+  xyz_.clear();
+}
+
+void KnownSurfacePoints::cell_range(const Vec3& lo, const Vec3& hi, int first[3],
+                                    int last[3]) const {
+  for (int a = 0; a < 3; ++a) {
+    // Clamped floor, monotone: a point inside [lo, hi] lands in the range
+    // even when it lies outside the grid's box (NaN goes to cell 0 and the
+    // range then spans the axis).
+    auto index = [&](double c) {
+      const double f = std::floor((c - origin_[a]) * inv_cell_);
+      return f >= n_[a] - 1 ? n_[a] - 1 : (f > 0 ? int(f) : 0);
+    };
+    first[a] = index(lo[a]);
+    last[a] = index(hi[a]);
+    if (!(lo[a] <= hi[a])) first[a] = 0, last[a] = n_[a] - 1;
+  }
+}
+
+int KnownSurfacePoints::cell_of(const Vec3& p) const {
+  int first[3], last[3];
+  cell_range(p, p, first, last);
+  return (first[2] * n_[1] + first[1]) * n_[0] + first[0];
+}
+
+void KnownSurfacePoints::add(const Vec2& uv, const Vec3& xyz) {
+  const int c = cell_of(xyz);
+  next_.push_back(head_[std::size_t(c)]);
+  head_[std::size_t(c)] = static_cast<int>(xyz_.size());
+  uv_.push_back(uv);
+  xyz_.push_back(xyz);
+}
+
+std::size_t KnownSurfacePoints::nearer(const Vec3& x, double& d_near, double tiny) const {
+  const std::size_t none = xyz_.size();
+  if (!(d_near > tiny)) return none;  // nothing can be nearer by more than tiny
+  // Only a point with |p - x| + tiny < d_near (as given) can ever be taken:
+  // those lie in the ball of radius d_near around x.
+  int first[3], last[3];
+  if (std::isfinite(d_near)) {
+    const Vec3 r = Vec3::Constant(d_near);
+    cell_range(x - r, x + r, first, last);
+  } else {
+    for (int a = 0; a < 3; ++a) first[a] = 0, last[a] = n_[a] - 1;
+  }
+  candidates_.clear();
+  const double limit = d_near;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i)
+        for (int p = head_[std::size_t((k * n_[1] + j) * n_[0] + i)]; p >= 0;
+             p = next_[std::size_t(p)])
+          if ((xyz_[std::size_t(p)] - x).norm() + tiny < limit) candidates_.push_back(p);
+  if (candidates_.empty()) return none;
+  // The scan's rule, in the order the points were added.
+  std::sort(candidates_.begin(), candidates_.end());
+  std::size_t near = none;
+  for (int p : candidates_) {
+    const double d = (xyz_[std::size_t(p)] - x).norm();
+    if (d + tiny < d_near) d_near = d, near = std::size_t(p);
+  }
+  return near;
+}
+
+}  // namespace tessella
