@@ -158,5 +158,29 @@ TEST(TriangulatePolygon, CellCutByACurvedTrim) {
   EXPECT_NEAR(area, outline, 1e-12);
 }
 
+TEST(TriangulatePolygon, CocircularAndRepeatedCorners) {
+  // Corners on one circle (every flip a tie within rounding: a trim circle in
+  // (u,v)), a circle with a notch, and outlines with repeated corners (ear
+  // clipping then cuts degenerate ears and repeats directed edges): the flips
+  // must still be those of the reference, index for index.
+  std::vector<std::vector<Vec2>> cases;
+  for (int n : {8, 24, 61}) {
+    std::vector<Vec2> c;
+    for (int i = 0; i < n; ++i)
+      c.emplace_back(std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n));
+    cases.push_back(c);
+    c[n / 2] *= 0.4;
+    cases.push_back(c);
+    std::vector<Vec2> twice;
+    for (int i = 0; i < n; ++i) {
+      twice.push_back(c[i]);
+      if (i % 5 == 0) twice.push_back(c[i]);
+    }
+    cases.push_back(twice);
+  }
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    ASSERT_EQ(triangulate_polygon(cases[k]), reference(cases[k])) << "case " << k;
+}
+
 }  // namespace
 }  // namespace tessella

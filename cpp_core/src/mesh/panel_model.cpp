@@ -108,13 +108,33 @@ bool opposite_angles_exceed_pi(const Vec2& a, const Vec2& b, const Vec2& c, cons
   return angle_at(a, c, b) + angle_at(b, d, a) > kPiDelaunay + 1e-12;
 }
 
+// Flip decision and flip of the inner edge (a, b) of triangle t1 (at k1)
+// whose twin (b, a) is in t2 (at k2); true if flipped.
+bool flip_if_not_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>& tris,
+                          int t1, int k1, int t2, int k2) {
+  const int a = tris[t1][k1], b = tris[t1][(k1 + 1) % 3];
+  const int c = tris[t1][(k1 + 2) % 3];  // opposite in t1
+  const int d = tris[t2][(k2 + 2) % 3];  // opposite in t2
+  if (!opposite_angles_exceed_pi(uv[a], uv[b], uv[c], uv[d])) return false;
+  // The quad a-d-b-c must be convex for the flip (c and d on both sides of a-b
+  // is given; a and b must lie on both sides of c-d).
+  const double sa = cross2(uv[c], uv[d], uv[a]), sb = cross2(uv[c], uv[d], uv[b]);
+  if (!(sa * sb < 0)) return false;
+  const bool ccw = cross2(uv[a], uv[b], uv[c]) > 0;
+  tris[t1] = ccw ? std::array<int, 3>{c, a, d} : std::array<int, 3>{c, d, a};
+  tris[t2] = ccw ? std::array<int, 3>{d, b, c} : std::array<int, 3>{d, c, b};
+  return true;
+}
+
 // Lawson flips: an inner edge whose two opposite angles sum to more than pi is
 // replaced by the other diagonal of its (convex) quad, until none is left.
 // Ear clipping alone leaves long slivers between two runs of close outline
 // points; mapped onto a curved surface such a sliver can even turn over.
 // The outline edges never flip, so the result is the constrained Delaunay
-// triangulation of the outline.
-void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>& tris) {
+// triangulation of the outline. Each pass visits every directed edge in
+// sorted order and flips those whose triangles no flip of the pass touched
+// yet (the definition; make_delaunay below gives the same flips faster).
+void make_delaunay_by_passes(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>& tris) {
   for (int pass = 0; pass < 64; ++pass) {
     // Directed edge -> (tri, k), sorted by edge; of repeated edges the last
     // triangle counts. (A sorted vector: the order of a std::map, without its
@@ -135,21 +155,78 @@ void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>&
       if (other == edge.end()) continue;  // an outline edge
       const int t1 = tk.first, t2 = other->second.first;
       if (touched[t1] || touched[t2]) continue;
-      const int a = e.first, b = e.second;
-      const int c = tris[t1][(tk.second + 2) % 3];             // opposite in t1
-      const int d = tris[t2][(other->second.second + 2) % 3];  // opposite in t2
-      if (!opposite_angles_exceed_pi(uv[a], uv[b], uv[c], uv[d])) continue;
-      // The quad a-d-b-c must be convex for the flip (c and d on both sides of a-b
-      // is given; a and b must lie on both sides of c-d).
-      const double sa = cross2(uv[c], uv[d], uv[a]), sb = cross2(uv[c], uv[d], uv[b]);
-      if (!(sa * sb < 0)) continue;
-      const bool ccw = cross2(uv[a], uv[b], uv[c]) > 0;
-      tris[t1] = ccw ? std::array<int, 3>{c, a, d} : std::array<int, 3>{c, d, a};
-      tris[t2] = ccw ? std::array<int, 3>{d, b, c} : std::array<int, 3>{d, c, b};
+      if (!flip_if_not_delaunay(uv, tris, t1, tk.second, t2, other->second.second)) continue;
       touched[t1] = touched[t2] = 1;
       flipped = true;
     }
     if (!flipped) break;
+  }
+}
+
+// The passes of make_delaunay_by_passes, flip for flip, without visiting
+// every edge in every pass: an edge whose two triangles no flip touched in
+// the last pass was judged then, on the same four corners, and kept; so a
+// pass only needs the edges of the triangles the last pass touched (and
+// their twins), in the same sorted order. Directed edges live in a hash map
+// (edge -> 3 t + k). A triangulation with a repeated directed edge (a
+// degenerate ear), before or after a flip, goes to the passes themselves.
+void make_delaunay(const std::vector<Vec2>& uv, std::vector<std::array<int, 3>>& tris) {
+  int corners = 0;
+  for (const auto& t : tris) corners = std::max({corners, t[0] + 1, t[1] + 1, t[2] + 1});
+  if (corners >= (1 << 21) || 3 * tris.size() >= (std::size_t(1) << 30))
+    return make_delaunay_by_passes(uv, tris);
+  auto key = [](int a, int b) { return std::uint64_t(a) << 21 | std::uint64_t(b); };
+  const std::vector<std::array<int, 3>> input = tris;
+  std::unordered_map<std::uint64_t, int> edge;
+  edge.reserve(6 * tris.size());
+  for (int t = 0; t < int(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (!edge.emplace(key(tris[t][k], tris[t][(k + 1) % 3]), 3 * t + k).second)
+        return make_delaunay_by_passes(uv, tris);
+  // This pass's directed edges (key, 3 t + k), sorted by key as the passes are.
+  std::vector<std::pair<std::uint64_t, int>> todo;
+  todo.reserve(edge.size());
+  for (const auto& [e, tk] : edge) todo.emplace_back(e, tk);
+  std::vector<char> touched(tris.size(), 0);
+  std::vector<int> touched_list;
+  for (int pass = 0; pass < 64 && !todo.empty(); ++pass) {
+    std::sort(todo.begin(), todo.end());
+    for (int t : touched_list) touched[t] = 0;
+    touched_list.clear();
+    for (const auto& [e, tk] : todo) {
+      const int t1 = tk / 3, k1 = tk % 3;
+      const int a = int(e >> 21), b = int(e & ((1u << 21) - 1));
+      const auto other = edge.find(key(b, a));
+      if (other == edge.end()) continue;  // an outline edge
+      const int t2 = other->second / 3, k2 = other->second % 3;
+      if (touched[t1] || touched[t2]) continue;
+      const std::array<int, 3> old1 = tris[t1], old2 = tris[t2];
+      if (!flip_if_not_delaunay(uv, tris, t1, k1, t2, k2)) continue;
+      for (int k = 0; k < 3; ++k) {
+        edge.erase(key(old1[k], old1[(k + 1) % 3]));
+        edge.erase(key(old2[k], old2[(k + 1) % 3]));
+      }
+      for (int t : {t1, t2})
+        for (int k = 0; k < 3; ++k)
+          if (!edge.emplace(key(tris[t][k], tris[t][(k + 1) % 3]), 3 * t + k).second) {
+            tris = input;  // a repeated edge after the flip: the passes decide
+            return make_delaunay_by_passes(uv, tris);
+          }
+      touched[t1] = touched[t2] = 1;
+      touched_list.push_back(t1);
+      touched_list.push_back(t2);
+    }
+    // Next pass: the edges of the touched triangles and their twins.
+    todo.clear();
+    for (int t : touched_list)
+      for (int k = 0; k < 3; ++k) {
+        const int a = tris[t][k], b = tris[t][(k + 1) % 3];
+        todo.emplace_back(key(a, b), 3 * t + k);
+        const auto twin = edge.find(key(b, a));
+        if (twin != edge.end()) todo.emplace_back(twin->first, twin->second);
+      }
+    std::sort(todo.begin(), todo.end());
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
   }
 }
 
