@@ -6,7 +6,7 @@
 namespace tessella {
 
 namespace {
-constexpr int kMaxCells = 8;  // per axis
+constexpr int kMaxCells = 16;  // per axis
 }
 
 void KnownSurfacePoints::reset(const Vec3& lo, const Vec3& hi) {
@@ -67,12 +67,17 @@ std::size_t KnownSurfacePoints::nearer(const Vec3& x, double& d_near, double tin
   }
   candidates_.clear();
   const double limit = d_near;
+  // A cheap pre-test on squared distances, loose enough (1e-12) that no
+  // point the exact test takes is dropped.
+  const double limit2 = limit * limit * (1 + 1e-12);
   for (int k = first[2]; k <= last[2]; ++k)
     for (int j = first[1]; j <= last[1]; ++j)
       for (int i = first[0]; i <= last[0]; ++i)
         for (int p = head_[std::size_t((k * n_[1] + j) * n_[0] + i)]; p >= 0;
              p = next_[std::size_t(p)])
-          if ((xyz_[std::size_t(p)] - x).norm() + tiny < limit) candidates_.push_back(p);
+          if ((xyz_[std::size_t(p)] - x).squaredNorm() <= limit2 &&
+              (xyz_[std::size_t(p)] - x).norm() + tiny < limit)
+            candidates_.push_back(p);
   if (candidates_.empty()) return none;
   // The scan's rule, in the order the points were added.
   std::sort(candidates_.begin(), candidates_.end());
