@@ -77,17 +77,22 @@ class Prober {
   // to the surface point at q itself, one evaluation and no projection. A
   // probe never returns more than this + slack(), so a sample whose bound
   // cannot beat a distance already found is not projected.
-  double cheap_bound(const Vec3& x, const Vec2& q) const {
-    return (face_.point(q.x(), q.y()) - x).norm();
+  // S(q) goes to *at_q if given, for the probe at the same sample.
+  double cheap_bound(const Vec3& x, const Vec2& q, Vec3* at_q = nullptr) const {
+    const Vec3 s_q = face_.point(q.x(), q.y());
+    if (at_q) *at_q = s_q;
+    return (s_q - x).norm();
   }
   double slack() const { return tiny_; }
 
   // The distance from x (model parameters q) to the surface, projecting from
   // `start`. Never more than cheap_bound(x, q), S(q) being a real surface
   // point: a Newton run that ended farther found no nearer foot point.
-  Probe operator()(const Vec3& x, const Vec2& start, const Vec2& q) const {
+  // `known_s_q`: S(q) if cheap_bound already evaluated it.
+  Probe operator()(const Vec3& x, const Vec2& start, const Vec2& q,
+                   const Vec3* known_s_q = nullptr) const {
     Probe p = project(x, start);
-    const Vec3 s_q = face_.point(q.x(), q.y());
+    const Vec3 s_q = known_s_q ? *known_s_q : face_.point(q.x(), q.y());
     const double at_q = (s_q - x).norm();
     if (at_q + tiny_ < p.distance) p = {at_q, false, q, s_q};
     p = tighten(x, p);
@@ -274,8 +279,9 @@ Sample refine(const PanelModel& model, const Prober& probe, Sample s, double h0)
         Vec2 q;
         model.at(s.tri, a, b, x, q);
         --budget;
-        if (probe.cheap_bound(x, q) + probe.slack() <= s.probe.distance) continue;  // no gain
-        const Probe pr = probe(x, s.probe.reliable ? s.probe.foot : q, q);
+        Vec3 s_q;
+        if (probe.cheap_bound(x, q, &s_q) + probe.slack() <= s.probe.distance) continue;  // no gain
+        const Probe pr = probe(x, s.probe.reliable ? s.probe.foot : q, q, &s_q);
         if (pr.distance > s.probe.distance) {
           s = {s.tri, a, b, pr};
           moved = true;
@@ -406,15 +412,16 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
     Vec2 z;
     Vec3 x;
     Vec2 q;
+    Vec3 s_q;  // S(q)
     double bound;
   };
   std::vector<GridSample> grid;
   grid.reserve(std::size_t(n + 1) * std::size_t(n + 1));
   for (int i = 0; i <= n; ++i) {
     for (int j = 0; j <= n; ++j) {
-      GridSample g{{double(i) / n, double(j) / n}, Vec3::Zero(), Vec2::Zero(), 0};
+      GridSample g{{double(i) / n, double(j) / n}, Vec3::Zero(), Vec2::Zero(), Vec3::Zero(), 0};
       model.at(-1, g.z.x(), g.z.y(), g.x, g.q);
-      g.bound = probe.cheap_bound(g.x, g.q);
+      g.bound = probe.cheap_bound(g.x, g.q, &g.s_q);
       grid.push_back(g);
     }
   }
@@ -431,7 +438,7 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
     for (; next < order.size(); ++next) {
       const GridSample& g = grid[order[next]];
       if (g.bound + probe.slack() <= best.probe.distance) break;
-      probed.push_back(dist.of(g.z, g.x, probe(g.x, g.q, g.q)));
+      probed.push_back(dist.of(g.z, g.x, probe(g.x, g.q, g.q, &g.s_q)));
       probed_x.push_back(g.x);
       if (probed.back().probe.distance > best.probe.distance) best = probed.back();
     }
@@ -490,6 +497,7 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
   std::vector<Vec3> grid_x;
   std::vector<Vec2> grid_q;
   std::vector<double> grid_bound;  // cheap_bound of each sample
+  std::vector<Vec3> grid_s;        // S(q) of each sample
   std::vector<double> step;        // grid step of each piece, in its parameters
   auto sample_piece = [&](int tri, int n) {
     step.push_back(1.0 / n);
@@ -502,7 +510,9 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
         grid.push_back(s);
         grid_x.push_back(x);
         grid_q.push_back(q);
-        grid_bound.push_back(probe.cheap_bound(x, q));
+        Vec3 s_q;
+        grid_bound.push_back(probe.cheap_bound(x, q, &s_q));
+        grid_s.push_back(s_q);
       }
     }
   };
@@ -537,7 +547,7 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
     for (; next < by_bound.size(); ++next) {
       const std::size_t k = by_bound[next];
       if (grid_bound[k] + probe.slack() < 0.7 * top) break;
-      grid[k].probe = probe(grid_x[k], grid_q[k], grid_q[k]);
+      grid[k].probe = probe(grid_x[k], grid_q[k], grid_q[k], &grid_s[k]);
       probed[k] = 1;
       top = std::max(top, grid[k].probe.distance);
     }
