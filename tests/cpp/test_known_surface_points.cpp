@@ -13,10 +13,10 @@ using namespace tessella;
 
 namespace {
 
-std::size_t linear_nearer(const std::vector<Vec3>& pts, const Vec3& x, double& d_near,
-                          double tiny) {
+std::size_t linear_nearer(const std::vector<Vec3>& pts, const Vec3& x, double& d_near, double tiny,
+                          std::size_t from = 0) {
   std::size_t near = pts.size();
-  for (std::size_t k = 0; k < pts.size(); ++k) {
+  for (std::size_t k = from; k < pts.size(); ++k) {
     const double d = (pts[k] - x).norm();
     if (d + tiny < d_near) d_near = d, near = k;
   }
@@ -54,6 +54,13 @@ void check_against_scan(const Vec3& box_lo, const Vec3& box_hi, double spread, d
         ++taken;
         EXPECT_EQ(known.uv(got), Vec2(double(got), -double(got)));
         EXPECT_EQ(known.xyz(got), pts[got]);
+      }
+      // Only the points from `from` on (a recheck of an earlier probe).
+      for (std::size_t from : {std::size_t(0), pts.size() / 3, pts.size() - 1, pts.size()}) {
+        double c = a, d = a;
+        ASSERT_EQ(known.nearer(x, c, tiny, from), linear_nearer(pts, x, d, tiny, from))
+            << "step " << step << " from " << from;
+        ASSERT_EQ(c, d);
       }
     }
   }

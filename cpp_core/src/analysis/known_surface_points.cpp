@@ -53,9 +53,10 @@ void KnownSurfacePoints::add(const Vec2& uv, const Vec3& xyz) {
   xyz_.push_back(xyz);
 }
 
-std::size_t KnownSurfacePoints::nearer(const Vec3& x, double& d_near, double tiny) const {
+std::size_t KnownSurfacePoints::nearer(const Vec3& x, double& d_near, double tiny,
+                                       std::size_t from) const {
   const std::size_t none = xyz_.size();
-  if (!(d_near > tiny)) return none;  // nothing can be nearer by more than tiny
+  if (!(d_near > tiny) || from >= none) return none;  // nothing can be nearer by more than tiny
   // Only a point with |p - x| + tiny < d_near (as given) can ever be taken:
   // those lie in the ball of radius d_near around x.
   int first[3], last[3];
@@ -73,8 +74,9 @@ std::size_t KnownSurfacePoints::nearer(const Vec3& x, double& d_near, double tin
   for (int k = first[2]; k <= last[2]; ++k)
     for (int j = first[1]; j <= last[1]; ++j)
       for (int i = first[0]; i <= last[0]; ++i)
-        for (int p = head_[std::size_t((k * n_[1] + j) * n_[0] + i)]; p >= 0;
-             p = next_[std::size_t(p)])
+        // A cell's list runs from its newest point back: stop below `from`.
+        for (int p = head_[std::size_t((k * n_[1] + j) * n_[0] + i)];
+             p >= 0 && std::size_t(p) >= from; p = next_[std::size_t(p)])
           if ((xyz_[std::size_t(p)] - x).squaredNorm() <= limit2 &&
               (xyz_[std::size_t(p)] - x).norm() + tiny < limit)
             candidates_.push_back(p);

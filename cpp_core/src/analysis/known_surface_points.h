@@ -31,10 +31,10 @@ class KnownSurfacePoints {
   const Vec2& uv(std::size_t k) const { return uv_[k]; }
   const Vec3& xyz(std::size_t k) const { return xyz_[k]; }
 
-  // The linear scan "for k in order: if |xyz_k - x| + tiny < d_near, take k"
-  // started from d_near: the index it ends on (size() if none) and d_near
-  // lowered to that point's distance.
-  std::size_t nearer(const Vec3& x, double& d_near, double tiny) const;
+  // The linear scan "for k = from, from + 1, ...: if |xyz_k - x| + tiny <
+  // d_near, take k" started from d_near: the index it ends on (size() if
+  // none) and d_near lowered to that point's distance.
+  std::size_t nearer(const Vec3& x, double& d_near, double tiny, std::size_t from = 0) const;
 
  private:
   int cell_of(const Vec3& p) const;

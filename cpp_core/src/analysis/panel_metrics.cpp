@@ -59,6 +59,10 @@ struct Probe {
   bool reliable = true;
   Vec2 foot = Vec2::Zero();
   Vec3 point = Vec3::Zero();  // S(foot)
+  // The prober's first `checked` known surface points are none nearer to
+  // the sample than `distance` by more than its slack (a recheck need only
+  // look at the points met since).
+  std::size_t checked = 0;
 };
 
 // Every distance here is that of x to a true surface point, so each is an
@@ -106,17 +110,23 @@ class Prober {
   // Every surface point met so far bounds the distance from above, so if
   // one is nearer than the probe's answer, Newton again from it and keep
   // the nearer of the two.
+  // The points before p.checked are none of them nearer by more than the
+  // slack (the scan's rule), so they are not scanned again: the same answer.
   Probe tighten(const Vec3& x, Probe p) const {
     double d_near = p.distance;
-    const std::size_t near = known_.nearer(x, d_near, tiny_);
-    if (near == known_.size()) return p;
+    const std::size_t near = known_.nearer(x, d_near, tiny_, p.checked);
+    const std::size_t now = known_.size();
+    if (near == now) {
+      p.checked = now;
+      return p;
+    }
     const Vec2 from = known_.uv(near);
     const Projection again = face_.project(x, from, local_);
     if (again.distance + tiny_ < d_near) {
       const bool reliable = again.distance <= tiny_ || orthogonal(x, again);
-      return {again.distance, reliable, again.uv, again.point};
+      return {again.distance, reliable, again.uv, again.point, now};
     }
-    return {d_near, false, from, known_.xyz(near)};
+    return {d_near, false, from, known_.xyz(near), now};
   }
   // Tighten an earlier probe against every surface point met since.
   Probe recheck(const Vec3& x, const Probe& p) const {
