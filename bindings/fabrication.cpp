@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "tessella/errors.h"
+#include "tessella/face_set.h"
 #include "tessella/flatten.h"
 #include "tessella/nest.h"
 #include "tessella/outline_offset.h"
@@ -73,6 +74,11 @@ void bind_fabrication(py::module_& m) {
   m.def("flatten_panels", [](const SurfaceFace& f, const PanelMesh& mesh, const FlattenParams& p) {
     py::gil_scoped_release release;
     return flatten_panels(f, mesh, p);
+  });
+  m.def("flatten_face_set_panels", [](const FaceSet& set, const PanelMesh& mesh,
+                                      const std::vector<int>& panel_face, const FlattenParams& p) {
+    py::gil_scoped_release release;
+    return flatten_face_set_panels(set, mesh, panel_face, p);
   });
 
   py::class_<NestParams>(m, "NestParams")

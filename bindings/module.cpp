@@ -108,6 +108,14 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("uv", [](const PanelMesh& mesh) { return rows<2>(mesh.uv); })
       .def_property_readonly("xyz", [](const PanelMesh& mesh) { return rows<3>(mesh.xyz); })
       .def_readonly("panels", &PanelMesh::panels)
+      // Each panel's corner (u,v)s (panel_corner_uv: a face set's on its own face).
+      .def_property_readonly("corner_uv",
+                             [](const PanelMesh& mesh) {
+                               py::list out;
+                               for (std::size_t p = 0; p < mesh.panels.size(); ++p)
+                                 out.append(rows<2>(panel_corner_uv(mesh, p)));
+                               return out;
+                             })
       .def_property_readonly(
           "rods",
           [](const PanelMesh& mesh) {

@@ -115,6 +115,8 @@ class PanelizeResult:
     _mesh: object = field(default=None, repr=False)
     #: the core's result: keeps the parsed face (unfolding and flattening reuse it)
     _core: object = field(default=None, repr=False)
+    #: the core.FaceSet of a face-set result (flattening reuses its faces)
+    _face_set: object = field(default=None, repr=False)
     #: Python formats of the IDs from the item number (1-based); a Panelization
     #: sets them from its PanelIdFormat / RodIdFormat / NodeIdFormat. Every
     #: writer (unfold, nest, DXF, SVG, schedules, structural export) reads the IDs here.
@@ -411,7 +413,9 @@ def panelize_faces_brep(brep, method="iso_grid", progress=None, threads=0, **par
     face_set = core.FaceSet.from_brep_string(brep)
     values = core_values(method, params)
     r = core.panelize_faces(face_set, method, values, progress, int(threads))
-    return _face_set_result(r, method, values, params)
+    result = _face_set_result(r, method, values, params)
+    result._face_set = face_set
+    return result
 
 
 def _face_set_result(r, method, values, params):

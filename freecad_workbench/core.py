@@ -31,6 +31,7 @@ from ._core import (  # noqa: E402,F401
     BoundaryDrivenParams,
     FlattenParams,
     flatten_panels,
+    flatten_face_set_panels,
     NestParams,
     PanelTypeParams,
     flat_panel_types,

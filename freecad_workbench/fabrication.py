@@ -447,7 +447,8 @@ class FlatPatch:
 
 def flatten(result, face=None, subdivisions=8):
     """Flatten every panel as the curved patch of `face` it covers (the face the
-    result was panelized from; optional: the result keeps it). Each patch is meshed with subdivisions^2 pieces per
+    result was panelized from; optional: the result keeps it; a face-set result
+    flattens each panel on its own face). Each patch is meshed with subdivisions^2 pieces per
     triangle of its (u,v) outline, flattened by least-squares conformal maps and
     scaled to its 3D area. Returns one FlatPatch per panel, with the strain."""
     from .api import face_to_brep
@@ -460,12 +461,31 @@ def flatten(result, face=None, subdivisions=8):
     # The face the result was built on (no second parse); a face passed with a
     # result made elsewhere is parsed.
     surface = result.surface
-    if surface is None and getattr(result, "face_count", 1) > 1:
-        raise ValueError(f"flatten works on one face; this result covers {result.face_count} "
-                         "faces: panelize the face on its own to flatten its panels")
+    if getattr(result, "face_count", 1) > 1:
+        # Each panel on its own face (its corners' (u,v) are on that face).
+        face_set = getattr(result, "_face_set", None)
+        if face_set is None:
+            from .selection import faces_of
+            import Part
+
+            if face is None:
+                raise ValueError(f"flatten: this result covers {result.face_count} faces and "
+                                 "does not keep them: pass the faces (face=...)")
+            found = faces_of(face, context="face")
+            if len(found) != result.face_count:
+                raise ValueError(f"flatten: the result covers {result.face_count} faces, "
+                                 f"{len(found)} were given")
+            face_set = core.FaceSet.from_brep_string(Part.Compound(found).exportBrepToString())
+        patches = core.flatten_face_set_panels(face_set, result._mesh,
+                                               result.panel_face.tolist(), p)
+        return _flat_patches(result, patches)
     if surface is None:
         surface = core.SurfaceFace.from_brep_string(face_to_brep(face))
     patches = core.flatten_panels(surface, result._mesh, p)
+    return _flat_patches(result, patches)
+
+
+def _flat_patches(result, patches):
     return [FlatPatch(pid, np.asarray(f.outline), list(f.corner_index), float(f.strain_max),
                       float(f.strain_mean), float(f.area_3d), tuple(f.u_direction))
             for pid, f in zip(result.panel_ids, patches)]

@@ -41,7 +41,8 @@ def make_unfold(panelization, doc=None, **options):
     doc = doc or panelization.Document
     res = panelization.Proxy.result(panelization).result
     if options.get("curved_panels"):
-        face_arg, _label = panelization.Proxy.source_face(panelization)
+        face_arg = (None if res.face_count > 1
+                    else panelization.Proxy.source_face(panelization)[0])
         flat = fabrication.flatten(res, face_arg, subdivisions=options.get("subdivisions", 8))
     else:
         flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance",

@@ -151,7 +151,9 @@ class Unfold(_StateMixin):
         res = base.Proxy.result(base).result  # carries the Panelization's ID formats
         o = self.options(obj)
         if o["curved"]:
-            face_arg, _label = base.Proxy.source_face(base)
+            # A face set's result keeps its faces; one face is named for a
+            # result made elsewhere.
+            face_arg = None if res.face_count > 1 else base.Proxy.source_face(base)[0]
             flat = fabrication.flatten(res, face_arg, subdivisions=o["subdivisions"])
         else:
             flat = fabrication.unfold(res, fold_tolerance=o["fold_tolerance"])

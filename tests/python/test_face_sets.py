@@ -241,6 +241,15 @@ def test_document_face_set_recomputes_saves_and_reopens(shell, tmp_path):
         doc.recompute()
         assert p.isValid() and p.Proxy.result(p).result.face_count == 4
         assert p.PanelCount == len(p.Proxy.result(p).result.panels)
+        # The Unfold's curved mode flattens the set's panels, each on its face.
+        u = tessella.make_unfold(p, curved_panels=True)
+        doc.recompute()
+        assert u.isValid() and u.CurvedPanels, u.Status
+        assert len(u.Shape.childShapes()) == p.PanelCount
+        assert 0 < u.MaxStrain < 0.05
+        u.CurvedPanels = False  # and back to the unfolded flat panels
+        doc.recompute()
+        assert u.isValid()
     finally:
         FreeCAD.closeDocument(doc.Name)
 
@@ -262,3 +271,35 @@ def test_progress_covers_the_set_and_cancel_stops_it(shell):
 
     with pytest.raises(tessella.Cancelled):
         tessella.panelize_faces(shell, method="iso_grid", size=600.0, progress=stop, threads=2)
+
+
+def test_curved_panels_of_a_face_set_flatten_on_their_own_faces():
+    """Flattening (Unfold's curved mode) works on a face set: each panel is
+    flattened as the patch of its own face. On the filleted box a vertex on a
+    shared edge belongs to two surfaces with unrelated (u,v) (a plane and a
+    cylinder, a cylinder and a sphere): each panel keeps its corners' (u,v)
+    on its own face, so the patches tile every face (areas by FreeCAD)."""
+    shape = filleted_box_shell()
+    r = tessella.panelize_faces(shape, method="iso_grid", size=250.0)
+    flat = tessella.flatten(r)
+    assert len(flat) == len(r.panels)
+    assert [f.id for f in flat] == list(r.panel_ids)
+    area = np.zeros(len(shape.Faces))
+    for f, p in zip(r.panel_face, flat):
+        area[f] += p.area_3d
+        assert abs(p.area / p.area_3d - 1) < 1e-6  # scaled to its 3D area
+    # A panel's patch is bounded by straight (u,v) lines between its corners:
+    # on a sphere corner (a pole in its (u,v)) they cut a little off.
+    for k, face in enumerate(shape.Faces):
+        assert abs(area[k] / face.Area - 1) < 0.05, (k, area[k], face.Area)
+    assert abs(area.sum() / shape.Area - 1) < 5e-3
+    # The fillets are cylinders and spheres: a cylinder patch flattens without
+    # strain, a sphere corner patch with a little.
+    assert max(p.strain_max for p in flat) < 0.05
+    # Every panel's corners lie on its own face where their (u,v) say.
+    uv = r._mesh.corner_uv
+    assert len(uv) == len(r.panels)
+    for p, (panel, corners) in enumerate(zip(r.panels, uv)):
+        surface = shape.Faces[r.panel_face[p]].Surface
+        for v, (u, w) in zip(panel, corners):
+            assert (surface.value(u, w) - V(*r.vertices[v])).Length < 1e-3

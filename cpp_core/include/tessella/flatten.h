@@ -10,6 +10,7 @@
 namespace tessella {
 
 class SurfaceFace;
+class FaceSet;
 struct PanelMesh;
 
 struct FlattenParams {
@@ -35,5 +36,11 @@ FlatPatch flatten_patch(const SurfaceFace& face, const std::vector<Vec2>& corner
 // flatten_patch for every panel of the mesh (panel order).
 std::vector<FlatPatch> flatten_panels(const SurfaceFace& face, const PanelMesh& mesh,
                                       const FlattenParams& params = {});
+
+// The panels of a face set's combined mesh, each on its own face
+// (panel_face[p], an index into `set`; the mesh's corner_uv are on that face).
+std::vector<FlatPatch> flatten_face_set_panels(const FaceSet& set, const PanelMesh& mesh,
+                                               const std::vector<int>& panel_face,
+                                               const FlattenParams& params = {});
 
 }  // namespace tessella

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "tessella/errors.h"
+#include "tessella/face_set.h"
 #include "tessella/panel_mesh.h"
 #include "mesh/panel_model.h"
 #include "tessella/surface_face.h"
@@ -210,6 +211,23 @@ std::vector<FlatPatch> flatten_panels(const SurfaceFace& face, const PanelMesh& 
   std::vector<FlatPatch> out;
   for (std::size_t p = 0; p < mesh.panels.size(); ++p)
     out.push_back(flatten_patch(face, panel_corner_uv(mesh, p), params));
+  return out;
+}
+
+std::vector<FlatPatch> flatten_face_set_panels(const FaceSet& set, const PanelMesh& mesh,
+                                               const std::vector<int>& panel_face,
+                                               const FlattenParams& params) {
+  if (panel_face.size() != mesh.panels.size())
+    throw InvalidParameter("flatten: one face index per panel expected");
+  std::vector<FlatPatch> out;
+  out.reserve(mesh.panels.size());
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+    const int f = panel_face[p];
+    if (f < 0 || std::size_t(f) >= set.size())
+      throw InvalidParameter("flatten: panel " + std::to_string(p + 1) + " names face " +
+                             std::to_string(f + 1) + " of a set of " + std::to_string(set.size()));
+    out.push_back(flatten_patch(*set.face(std::size_t(f)), panel_corner_uv(mesh, p), params));
+  }
   return out;
 }
 

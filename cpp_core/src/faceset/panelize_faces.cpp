@@ -66,8 +66,11 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
                 static_cast<long long>(std::floor(p.y() / tol)),
                 static_cast<long long>(std::floor(p.z() / tol))};
   };
-  bool any_corner_uv = false;
-  for (const PanelizeResult& r : faces) any_corner_uv |= !r.mesh.corner_uv.empty();
+  // Each panel keeps its corners' (u,v) on its own face: a vertex on a shared
+  // edge is stored once, with the (u,v) of the first face that has it, which
+  // mean nothing on the other face's surface (pieces triangulated in (u,v),
+  // the dent test of a quad, flattening).
+  const bool any_corner_uv = faces.size() > 1 || (!faces.empty() && !faces[0].mesh.corner_uv.empty());
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const PanelizeResult& r = faces[f];
     const PanelMesh& fm = r.mesh;
