@@ -21,28 +21,33 @@ void KnownSurfacePoints::reset(const Vec3& lo, const Vec3& hi) {
   next_.clear();
   uv_.clear();
   xyz_.clear();
+  // A panel meets a few dozen points, a boundary panel hundreds.
+  next_.reserve(64);
+  uv_.reserve(64);
+  xyz_.reserve(64);
 }
+
+namespace {
+// The clamped floor of the coordinate in cells, monotone: a point inside a
+// query box lands in the box's cell range even when it lies outside the
+// grid's box. (For f >= 0, int(f) is floor(f); NaN goes to cell 0.)
+inline int clamped_cell(double f, int n) { return f >= n - 1 ? n - 1 : (f > 0 ? int(f) : 0); }
+}  // namespace
 
 void KnownSurfacePoints::cell_range(const Vec3& lo, const Vec3& hi, int first[3],
                                     int last[3]) const {
   for (int a = 0; a < 3; ++a) {
-    // Clamped floor, monotone: a point inside [lo, hi] lands in the range
-    // even when it lies outside the grid's box (NaN goes to cell 0 and the
-    // range then spans the axis).
-    auto index = [&](double c) {
-      const double f = std::floor((c - origin_[a]) * inv_cell_);
-      return f >= n_[a] - 1 ? n_[a] - 1 : (f > 0 ? int(f) : 0);
-    };
-    first[a] = index(lo[a]);
-    last[a] = index(hi[a]);
-    if (!(lo[a] <= hi[a])) first[a] = 0, last[a] = n_[a] - 1;
+    first[a] = clamped_cell((lo[a] - origin_[a]) * inv_cell_, n_[a]);
+    last[a] = clamped_cell((hi[a] - origin_[a]) * inv_cell_, n_[a]);
+    if (!(lo[a] <= hi[a])) first[a] = 0, last[a] = n_[a] - 1;  // NaN: the whole axis
   }
 }
 
 int KnownSurfacePoints::cell_of(const Vec3& p) const {
-  int first[3], last[3];
-  cell_range(p, p, first, last);
-  return (first[2] * n_[1] + first[1]) * n_[0] + first[0];
+  const int i = clamped_cell((p.x() - origin_.x()) * inv_cell_, n_[0]);
+  const int j = clamped_cell((p.y() - origin_.y()) * inv_cell_, n_[1]);
+  const int k = clamped_cell((p.z() - origin_.z()) * inv_cell_, n_[2]);
+  return (k * n_[1] + j) * n_[0] + i;
 }
 
 void KnownSurfacePoints::add(const Vec2& uv, const Vec3& xyz) {
