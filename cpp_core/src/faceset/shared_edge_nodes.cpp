@@ -292,9 +292,19 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
       };
       // Per-panel corner (u,v)s are kept (a periodic face's seam corners).
       const bool corner_uv = !m.corner_uv.empty();
+      // The vertices on this edge (t_of's): a panel with none of them, and no
+      // corner repeated, comes out of the walk below as it went in.
+      std::vector<char> on_this_edge(m.vertex_count(), 0);
+      for (const auto& [v, t] : t_of[static_cast<std::size_t>(s)])
+        on_this_edge[static_cast<std::size_t>(v)] = 1;
       for (std::size_t p = 0; p < m.panels.size(); ++p) {
         std::vector<int>& panel = m.panels[p];
         const std::size_t n = panel.size();
+        bool untouched = true;
+        for (std::size_t i = 0; i < n && untouched; ++i)
+          untouched =
+              !on_this_edge[static_cast<std::size_t>(panel[i])] && panel[i] != panel[(i + 1) % n];
+        if (untouched) continue;
         std::vector<Vec2> cuv = panel_corner_uv(m, p);
         // A corner moved onto a merged node: its (u,v) follows, on its own side
         // of a seam.
