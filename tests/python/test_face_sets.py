@@ -186,6 +186,21 @@ def test_periodic_side_next_to_a_planar_top():
     assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 1e-2
 
 
+def test_one_panel_covering_a_disc_takes_the_rim_nodes():
+    """walking_agent makes the planar top one panel whose whole outline is the
+    closed shared edge (as it does for the top alone): the join must give it
+    the side's nodes all round the rim. It kept its own outline, and the run
+    was refused (the top's panels 1.077 x its area: overlapping in space)."""
+    shape = cylinder_and_top()
+    alone = tessella.panelize(shape.Faces[1], method="walking_agent",
+                              max_deviation=0.002 * shape.BoundBox.DiagonalLength)
+    assert len(alone.panels) == 1
+    r = tessella.panelize_faces(shape, method="walking_agent",
+                                max_deviation=0.002 * shape.BoundBox.DiagonalLength)
+    assert check_conforming(shape, r) >= 12
+    assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 1e-2
+
+
 def test_guide_line_methods_take_one_face(shell):
     edge = shell.Faces[0].Edges[0]
     with pytest.raises(ValueError, match="guides lie on one face; pick one face"):

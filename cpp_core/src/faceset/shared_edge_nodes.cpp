@@ -323,7 +323,11 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
         // Start the walk at a corner that begins a run (not inside one).
         std::size_t start = 0;
         while (any && start < n && !(seg[start] && !seg[(start + n - 1) % n])) ++start;
-        if (!any || start == n) {  // nothing along the edge (or all of it: left)
+        // Every side along a closed edge (one panel covering a disc whose rim
+        // is the edge): one run from corner 0 round the whole loop.
+        const bool whole_loop = any && start == n && e.closed;
+        if (whole_loop) start = 0;
+        if (!any || start == n) {  // nothing along the edge
           out = panel;
           out_uv = cuv;
         }
@@ -352,11 +356,33 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
             return e.closed ? std::fmod(std::fmod(d, span) + span, span) : d;
           };
           bool up = tb > ta;
-          if (len >= 2) {
+          if (whole_loop) {
+            // The way to the next corner (a neighbour along the loop).
+            up =
+                ahead(ta, t_of[static_cast<std::size_t>(s)][panel[(i + 1) % n]], true) < 0.5 * span;
+          } else if (len >= 2) {
             const double tm = t_of[static_cast<std::size_t>(s)][panel[(i + len / 2) % n]];
             up = e.closed ? ahead(ta, tm, true) < ahead(ta, tb, true) : tm > ta;
           } else if (e.closed) {
             up = ahead(ta, tb, true) < 0.5 * span;
+          }
+          if (whole_loop) {
+            // The outline is the rim: every merged node, in order round the
+            // loop from corner i's place (corner i itself only if a node).
+            std::vector<std::pair<double, std::size_t>> round;
+            for (std::size_t k = 0; k < nodes.size(); ++k)
+              round.push_back({ahead(ta, nodes[k].t, up), k});
+            std::sort(round.begin(), round.end());
+            out.clear();
+            out_uv.clear();
+            Vec2 near = cuv[i];
+            for (const auto& [key, k] : round) {
+              out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
+              near = side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, near);
+              out_uv.push_back(near);
+            }
+            step += len;
+            continue;
           }
           const double reach = ahead(ta, tb, up);
           std::vector<std::pair<double, std::size_t>> between;
