@@ -465,17 +465,8 @@ def flatten(result, face=None, subdivisions=8):
         # Each panel on its own face (its corners' (u,v) are on that face).
         face_set = getattr(result, "_face_set", None)
         if face_set is None:
-            from .selection import faces_of
-            import Part
-
-            if face is None:
-                raise ValueError(f"flatten: this result covers {result.face_count} faces and "
-                                 "does not keep them: pass the faces (face=...)")
-            found = faces_of(face, context="face")
-            if len(found) != result.face_count:
-                raise ValueError(f"flatten: the result covers {result.face_count} faces, "
-                                 f"{len(found)} were given")
-            face_set = core.FaceSet.from_brep_string(Part.Compound(found).exportBrepToString())
+            raise ValueError(f"flatten: this result covers {result.face_count} faces but does "
+                             "not keep them: flatten a result of tessella.panelize_faces")
         patches = core.flatten_face_set_panels(face_set, result._mesh,
                                                result.panel_face.tolist(), p)
         return _flat_patches(result, patches)

@@ -40,13 +40,9 @@ def make_unfold(panelization, doc=None, **options):
         raise ValueError(f"unknown option(s) {unknown}; accepted: {sorted(_OPTIONS)}")
     doc = doc or panelization.Document
     res = panelization.Proxy.result(panelization).result
-    if options.get("curved_panels"):
-        face_arg = (None if res.face_count > 1
-                    else panelization.Proxy.source_face(panelization)[0])
-        flat = fabrication.flatten(res, face_arg, subdivisions=options.get("subdivisions", 8))
-    else:
-        flat = fabrication.unfold(res, fold_tolerance=options.get("fold_tolerance",
-                                                                fabrication.DEFAULT_FOLD_TOLERANCE))
+    flat = feat.flat_panels(panelization, res, options.get("curved_panels", False),
+                            options.get("subdivisions", 8),
+                            options.get("fold_tolerance", fabrication.DEFAULT_FOLD_TOLERANCE))
     kerf = options.get("kerf", 0.0)
     if "stock_sizes" in options:  # entries like "2500 x 1250" or (width, height) pairs
         options["stock_sizes"] = feat.format_stock_sizes(options["stock_sizes"])

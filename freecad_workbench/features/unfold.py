@@ -66,6 +66,20 @@ def format_stock_sizes(sizes):
     return [f"{w:g} x {h:g}" for w, h in parse_stock_sizes(sizes)]
 
 
+def flat_panels(panelization, result, curved, subdivisions, fold_tolerance):
+    """The flat panels of `result` (the Panelization's): flattened curved
+    patches (`curved`) or unfolded flat panels."""
+    from .. import fabrication
+
+    if curved:
+        # A face set's result keeps its faces; one face is named for a
+        # result made elsewhere.
+        face_arg = (None if result.face_count > 1
+                    else panelization.Proxy.source_face(panelization)[0])
+        return fabrication.flatten(result, face_arg, subdivisions=subdivisions)
+    return fabrication.unfold(result, fold_tolerance=fold_tolerance)
+
+
 class Unfold(_StateMixin):
     def __init__(self, obj, base=None):
         self._restore(None)
@@ -143,20 +157,12 @@ class Unfold(_StateMixin):
         }
 
     def _unfold(self, obj):
-        from .. import fabrication
-
         base = obj.Base
         if base is None or not is_panelization(base):
             raise ValueError("Base must link to a Panelization object")
         res = base.Proxy.result(base).result  # carries the Panelization's ID formats
         o = self.options(obj)
-        if o["curved"]:
-            # A face set's result keeps its faces; one face is named for a
-            # result made elsewhere.
-            face_arg = None if res.face_count > 1 else base.Proxy.source_face(base)[0]
-            flat = fabrication.flatten(res, face_arg, subdivisions=o["subdivisions"])
-        else:
-            flat = fabrication.unfold(res, fold_tolerance=o["fold_tolerance"])
+        flat = flat_panels(base, res, o["curved"], o["subdivisions"], o["fold_tolerance"])
         return res, flat
 
     def compute_flat(self, obj):

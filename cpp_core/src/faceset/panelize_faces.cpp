@@ -70,7 +70,8 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
   // edge is stored once, with the (u,v) of the first face that has it, which
   // mean nothing on the other face's surface (pieces triangulated in (u,v),
   // the dent test of a quad, flattening).
-  const bool any_corner_uv = faces.size() > 1 || (!faces.empty() && !faces[0].mesh.corner_uv.empty());
+  const bool keep_corner_uv =
+      faces.size() > 1 || (!faces.empty() && !faces[0].mesh.corner_uv.empty());
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const PanelizeResult& r = faces[f];
     const PanelMesh& fm = r.mesh;
@@ -108,7 +109,7 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
       std::vector<int> panel;
       for (int v : fm.panels[p]) panel.push_back(index[static_cast<std::size_t>(v)]);
       m.panels.push_back(std::move(panel));
-      if (any_corner_uv) m.corner_uv.push_back(panel_corner_uv(fm, p));
+      if (keep_corner_uv) m.corner_uv.push_back(panel_corner_uv(fm, p));
       m.bends.push_back(p < fm.bends.size() ? fm.bends[p] : std::vector<std::array<int, 2>>{});
       out.panel_face.push_back(static_cast<int>(f));
     }

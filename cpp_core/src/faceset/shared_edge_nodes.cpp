@@ -323,11 +323,30 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
         // Start the walk at a corner that begins a run (not inside one).
         std::size_t start = 0;
         while (any && start < n && !(seg[start] && !seg[(start + n - 1) % n])) ++start;
-        // Every side along a closed edge (one panel covering a disc whose rim
-        // is the edge): one run from corner 0 round the whole loop.
-        const bool whole_loop = any && start == n && e.closed;
-        if (whole_loop) start = 0;
-        if (!any || start == n) {  // nothing along the edge
+        // Parameter distance from `from` to `to` along the edge, going up or
+        // down it (round a closed edge: in [0, span)).
+        auto ahead = [&](double from, double to, bool up) {
+          const double d = up ? to - from : from - to;
+          return e.closed ? std::fmod(std::fmod(d, span) + span, span) : d;
+        };
+        if (any && start == n && e.closed) {
+          // Every side along the closed edge (one panel covering a disc whose
+          // rim is the edge): the outline is every merged node in order round
+          // the loop, the way corner 0 goes to corner 1.
+          const double t0 = t_of[static_cast<std::size_t>(s)][panel[0]];
+          const bool up =
+              ahead(t0, t_of[static_cast<std::size_t>(s)][panel[1 % n]], true) < 0.5 * span;
+          std::vector<std::pair<double, std::size_t>> round;
+          for (std::size_t k = 0; k < nodes.size(); ++k)
+            round.push_back({ahead(t0, nodes[k].t, up), k});
+          std::sort(round.begin(), round.end());
+          Vec2 near = cuv[0];
+          for (const auto& [key, k] : round) {
+            out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
+            near = side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, near);
+            out_uv.push_back(near);
+          }
+        } else if (!any || start == n) {  // nothing along the edge
           out = panel;
           out_uv = cuv;
         }
@@ -351,38 +370,12 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
           // its middle corner (not its second: a crossing snapped onto the
           // curve may lie just past the next trim point); node to node, the
           // shorter way round a closed edge.
-          auto ahead = [&](double from, double to, bool up) {
-            const double d = up ? to - from : from - to;
-            return e.closed ? std::fmod(std::fmod(d, span) + span, span) : d;
-          };
           bool up = tb > ta;
-          if (whole_loop) {
-            // The way to the next corner (a neighbour along the loop).
-            up =
-                ahead(ta, t_of[static_cast<std::size_t>(s)][panel[(i + 1) % n]], true) < 0.5 * span;
-          } else if (len >= 2) {
+          if (len >= 2) {
             const double tm = t_of[static_cast<std::size_t>(s)][panel[(i + len / 2) % n]];
             up = e.closed ? ahead(ta, tm, true) < ahead(ta, tb, true) : tm > ta;
           } else if (e.closed) {
             up = ahead(ta, tb, true) < 0.5 * span;
-          }
-          if (whole_loop) {
-            // The outline is the rim: every merged node, in order round the
-            // loop from corner i's place (corner i itself only if a node).
-            std::vector<std::pair<double, std::size_t>> round;
-            for (std::size_t k = 0; k < nodes.size(); ++k)
-              round.push_back({ahead(ta, nodes[k].t, up), k});
-            std::sort(round.begin(), round.end());
-            out.clear();
-            out_uv.clear();
-            Vec2 near = cuv[i];
-            for (const auto& [key, k] : round) {
-              out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
-              near = side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, near);
-              out_uv.push_back(near);
-            }
-            step += len;
-            continue;
           }
           const double reach = ahead(ta, tb, up);
           std::vector<std::pair<double, std::size_t>> between;
