@@ -393,3 +393,27 @@ def test_node_one_ulp_short_of_a_trim_vertex_keeps_its_trim_edge():
     for d in (12, 24):
         r = tessella.panelize(face, method="boundary_driven", size=math.sqrt(face.Area) / d)
         _coverage_holds(r, face)
+
+
+@pytest.mark.parametrize("solid, size", [
+    (lambda: Part.makeCylinder(3000.0, 5000.0), 391.0),
+    (lambda: Part.makeCylinder(800.0, 2600.0), 150.0)])
+def test_closed_periodic_face_has_one_node_per_seam_position(solid, size):
+    """A full cylinder side (built here; its seam inside the face) is traced
+    from both sides of the seam: each seam node once and shared by the panels
+    of both sides, as the grids have it (it had three twins at 0, 1/2 and 1 of
+    the height, and T-junctions between them)."""
+    side = max(solid().Faces, key=lambda f: f.Area)
+    r = tessella.panelize(side, method="boundary_driven", size=size)
+    nodes = r.vertices[r.nodes]
+    order = np.lexsort(nodes.T)
+    gaps = np.linalg.norm(np.diff(nodes[order], axis=0), axis=1)
+    assert gaps.min() > 1e-6 * side.BoundBox.DiagonalLength
+    # The seam's nodes are shared by the panels on both sides of it.
+    seam = [v for v in r.nodes if abs(r.vertices[v][1]) < 1e-6 and r.vertices[v][0] > 0]
+    assert len(seam) >= 3
+    for v in seam:
+        around = [p for p in r.panels if v in p]
+        xs = [x for p in around for x in r.vertices[list(p)][:, 1]]
+        assert min(xs) < -1.0 and max(xs) > 1.0  # panels on both sides
+    assert abs(r.metrics["panel_area"].sum() / side.Area - 1) < 1e-2

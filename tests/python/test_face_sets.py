@@ -201,6 +201,22 @@ def test_one_panel_covering_a_disc_takes_the_rim_nodes():
     assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 1e-2
 
 
+@pytest.mark.parametrize("size", [391.0, 248.0])
+def test_boundary_driven_on_a_periodic_side_next_to_its_top(size):
+    """boundary_driven on the cylinder's side (periodic, seam) joined to its
+    top along the closed rim: a rim vertex moved onto a merged node has one
+    (u,v), on one side of the seam; the seam panel on the other side must keep
+    its own (it spanned the whole period, and the set was refused for a hole
+    'the width of the face' that was not there)."""
+    shape = cylinder_and_top()
+    r = tessella.panelize_faces(shape, method="boundary_driven", size=size)
+    assert check_conforming(shape, r) >= 12
+    assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 1e-2
+    side = r.panel_face == 0
+    alone = tessella.panelize(shape.Faces[0], method="boundary_driven", size=size)
+    assert abs(r.metrics["panel_area"][side].sum() / alone.metrics["panel_area"].sum() - 1) < 1e-3
+
+
 def test_guide_line_methods_take_one_face(shell):
     edge = shell.Faces[0].Edges[0]
     with pytest.raises(ValueError, match="guides lie on one face; pick one face"):

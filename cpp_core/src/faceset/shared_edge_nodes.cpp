@@ -242,6 +242,17 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
 
     for (int s = 0; s < 2; ++s) {
       PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
+      // On a periodic face a vertex moved onto a node has one (u,v), on one
+      // side of the seam; a panel on the other side needs its own: each
+      // panel keeps its corners' (u,v) from here on (without them a seam
+      // panel spanned the whole period in (u,v) and the coverage check
+      // found a hole the width of the face).
+      if (m.corner_uv.empty() && (face[static_cast<std::size_t>(s)]->u_periodic() ||
+                                  face[static_cast<std::size_t>(s)]->v_periodic())) {
+        m.corner_uv.reserve(m.panels.size());
+        for (std::size_t p = 0; p < m.panels.size(); ++p)
+          m.corner_uv.push_back(panel_corner_uv(m, p));
+      }
       // Each merged node's vertex on this side: the first of its own there
       // (moved onto the node), else a new one; its other ones join it.
       std::map<int, int> replace;    // vertex -> the vertex standing for its node

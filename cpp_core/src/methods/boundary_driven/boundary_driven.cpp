@@ -7,6 +7,7 @@
 #include <string>
 
 #include "geometry/trim_deflection.h"
+#include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
@@ -202,6 +203,9 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
   for (const BdNode& n : net.nodes) m.uv.push_back(n.uv), m.xyz.push_back(n.xyz);
   m.panels = net.panels;
   follow_trims(r.boundary, net.nodes, m);
+  // A face closed round its period (a full cylinder) has its seam traced
+  // from both sides: joined as two faces along a shared edge.
+  join_seam_sides(face, m);
   if (static_cast<long long>(m.panels.size()) > params.max_panels)
     throw LimitExceeded(std::to_string(m.panels.size()) +
                         " panels exceed max_panels = " + std::to_string(params.max_panels));

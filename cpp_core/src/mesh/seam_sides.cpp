@@ -1,0 +1,91 @@
+#include "mesh/seam_sides.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+namespace {
+
+bool spans_period(bool periodic, double lo, double hi, double period) {
+  return periodic && period > 0 && hi - lo >= period * (1 - 1e-9);
+}
+
+// Seam of one axis (0: u = u0 or u0 + period; 1: the same in v).
+void join_along(PanelMesh& m, int axis, double lo, double period) {
+  const int along = 1 - axis;
+  const double eps = 1e-9 * period;
+  auto side_of = [&](double c) {  // 0 / 1: which copy of the seam; -1: off it
+    if (std::abs(c - lo) <= eps) return 0;
+    if (std::abs(c - (lo + period)) <= eps) return 1;
+    return -1;
+  };
+  // The seam's vertices by their parameter along it (from the corners that
+  // lie on it; a vertex once).
+  std::vector<std::pair<double, int>> seam;
+  for (std::size_t p = 0; p < m.panels.size(); ++p)
+    for (std::size_t i = 0; i < m.panels[p].size(); ++i)
+      if (side_of(m.corner_uv[p][i][axis]) >= 0)
+        seam.push_back({m.corner_uv[p][i][along], m.panels[p][i]});
+  std::sort(seam.begin(), seam.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  seam.erase(std::unique(seam.begin(), seam.end(),
+                         [](const auto& a, const auto& b) { return a.second == b.second; }),
+             seam.end());
+  std::sort(seam.begin(), seam.end());
+  if (seam.size() < 3) return;
+  for (std::size_t p = 0; p < m.panels.size(); ++p) {
+    const std::vector<int>& panel = m.panels[p];
+    const std::vector<Vec2>& uv = m.corner_uv[p];
+    const std::size_t n = panel.size();
+    std::vector<int> out;
+    std::vector<Vec2> out_uv;
+    for (std::size_t i = 0; i < n; ++i) {
+      out.push_back(panel[i]);
+      out_uv.push_back(uv[i]);
+      const std::size_t j = (i + 1) % n;
+      const int s = side_of(uv[i][axis]);
+      if (s < 0 || side_of(uv[j][axis]) != s) continue;  // not a side along the seam
+      const double a = uv[i][along], b = uv[j][along];
+      const auto first = std::upper_bound(seam.begin(), seam.end(), std::min(a, b),
+                                          [](double t, const auto& x) { return t < x.first; });
+      const auto last = std::lower_bound(seam.begin(), seam.end(), std::max(a, b),
+                                         [](const auto& x, double t) { return x.first < t; });
+      std::vector<std::pair<double, int>> between(first, std::max(first, last));
+      if (a > b) std::reverse(between.begin(), between.end());
+      for (const auto& [t, v] : between) {
+        if (v == panel[i] || v == panel[j]) continue;
+        Vec2 q = uv[i];
+        q[along] = t;
+        out.push_back(v);
+        out_uv.push_back(q);
+      }
+    }
+    m.panels[p] = std::move(out);
+    m.corner_uv[p] = std::move(out_uv);
+  }
+}
+
+}  // namespace
+
+bool closed_round_a_seam(const SurfaceFace& face) {
+  const UvBounds b = face.bounds();
+  return spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period()) ||
+         spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period());
+}
+
+void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
+  if (!closed_round_a_seam(face)) return;
+  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  const UvBounds b = face.bounds();
+  if (spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period()))
+    join_along(mesh, 0, b.u_min, face.u_period());
+  if (spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period()))
+    join_along(mesh, 1, b.v_min, face.v_period());
+}
+
+}  // namespace tessella

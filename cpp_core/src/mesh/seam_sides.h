@@ -1,0 +1,24 @@
+// One mesh across a periodic face's seam. A method that traces a face closed
+// round its period (a full cylinder side) from its trim meets the seam from
+// both sides: each side puts its own nodes on it, at u0 and at u0 + period.
+// Joined here as the faces of a set are along a shared edge: one vertex per
+// position, and every panel side along the seam passes through every seam
+// vertex between its ends (no T-junction, one rod per segment).
+#pragma once
+
+#include "tessella/panel_mesh.h"
+
+namespace tessella {
+
+class SurfaceFace;
+
+// Whether the face's (u,v) domain spans a whole period in u or in v (its
+// seam lies inside it).
+bool closed_round_a_seam(const SurfaceFace& face);
+
+// Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
+// (u,v)) and inserts into each panel side along the seam the seam vertices
+// strictly between its ends. Nothing for a face not closed round a seam.
+void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh);
+
+}  // namespace tessella
