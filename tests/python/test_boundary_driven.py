@@ -397,12 +397,16 @@ def test_node_one_ulp_short_of_a_trim_vertex_keeps_its_trim_edge():
 
 @pytest.mark.parametrize("solid, size", [
     (lambda: Part.makeCylinder(3000.0, 5000.0), 391.0),
-    (lambda: Part.makeCylinder(800.0, 2600.0), 150.0)])
+    (lambda: Part.makeCylinder(800.0, 2600.0), 150.0),
+    (lambda: Part.makeCone(2000.0, 800.0, 3000.0), 300.0),
+    (lambda: Part.makeCone(500.0, 1500.0, 2000.0), 180.0)])
 def test_closed_periodic_face_has_one_node_per_seam_position(solid, size):
-    """A full cylinder side (built here; its seam inside the face) is traced
-    from both sides of the seam: each seam node once and shared by the panels
-    of both sides, as the grids have it (it had three twins at 0, 1/2 and 1 of
-    the height, and T-junctions between them)."""
+    """A full cylinder or cone side (built here; its seam inside the face) is
+    traced from both sides of the seam: each seam node once and shared by the
+    panels of both sides, as the grids have it (the cylinder had three twins
+    at 0, 1/2 and 1 of the height, and T-junctions between them; on a cone a
+    panel was cut along the seam, a rounding beside its points, and lost
+    them)."""
     side = max(solid().Faces, key=lambda f: f.Area)
     r = tessella.panelize(side, method="boundary_driven", size=size)
     nodes = r.vertices[r.nodes]

@@ -47,9 +47,13 @@ void join_along(PanelMesh& m, int axis, double lo, double period) {
     for (std::size_t i = 0; i < n; ++i) {
       out.push_back(panel[i]);
       out_uv.push_back(uv[i]);
+      // Exactly on its copy of the seam: a straight (u,v) line along the seam
+      // then passes through the seam vertices, not a rounding beside them
+      // (boundary pieces may not cut a panel along it).
+      const int on = side_of(uv[i][axis]);
+      if (on >= 0) out_uv.back()[axis] = on == 0 ? lo : lo + period;
       const std::size_t j = (i + 1) % n;
-      const int s = side_of(uv[i][axis]);
-      if (s < 0 || side_of(uv[j][axis]) != s) continue;  // not a side along the seam
+      if (on < 0 || side_of(uv[j][axis]) != on) continue;  // not a side along the seam
       const double a = uv[i][along], b = uv[j][along];
       const auto first = std::upper_bound(seam.begin(), seam.end(), std::min(a, b),
                                           [](double t, const auto& x) { return t < x.first; });
@@ -59,7 +63,7 @@ void join_along(PanelMesh& m, int axis, double lo, double period) {
       if (a > b) std::reverse(between.begin(), between.end());
       for (const auto& [t, v] : between) {
         if (v == panel[i] || v == panel[j]) continue;
-        Vec2 q = uv[i];
+        Vec2 q = out_uv.back();
         q[along] = t;
         out.push_back(v);
         out_uv.push_back(q);
