@@ -267,6 +267,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
       const SurfaceFace::FastEvaluation fast(face);
       face.reset_global_projections();
       modelled[f] = run_method(face, decl, face_values[f]);
+      promote_hard_bound_trim_nodes(face, decl, face_values[f], modelled[f]);
       // The faces already keep the threads busy.
       modelled[f].metrics_threads_requested = n > 1 && workers > 1 ? 1 : threads;
     });

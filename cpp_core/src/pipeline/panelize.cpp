@@ -155,9 +155,50 @@ Modelled run_method(const SurfaceFace& face, const MethodDeclaration& decl,
   return out;
 }
 
+namespace {
+
+BoundaryPiecesParams boundary_pieces_params(const ParamValues& values,
+                                            const MethodDeclaration& decl, double allowed,
+                                            double min_rod_length) {
+  const std::string& method = decl.name;
+  BoundaryPiecesParams bp;
+  bp.max_deviation = allowed;
+  // boundary_driven's point is an all-quad layout: its boundary quads are
+  // bent along a diagonal, not refined with new trim nodes (which would make
+  // them pentagons and split them), unless boundary_deviation asks for it.
+  if (method == "boundary_driven" && !(value_or<double>(values, decl, "boundary_deviation") > 0)) {
+    bp.max_deviation = 0;
+    bp.may_add_nodes = false;
+  }
+  bp.samples = value_or<int>(values, decl, "samples");
+  // New nodes on the trim keep min_rod_length from the others.
+  bp.min_node_spacing = min_rod_length;
+  bp.hard_bound =
+      method == "walking_agent" && !(value_or<double>(values, decl, "boundary_deviation") > 0);
+  return bp;
+}
+
+}  // namespace
+
+int promote_hard_bound_trim_nodes(const SurfaceFace& face, const MethodDeclaration& decl,
+                                  const ParamValues& values, Modelled& m) {
+  if (m.mesh.is_node.empty()) return 0;  // every vertex is a node already
+  // A hard bound is a given number: no metrics of the full panels needed.
+  const BoundaryPiecesParams bp =
+      boundary_pieces_params(values, decl, allowed_boundary_deviation(values, decl, PanelMetrics{}),
+                             m.merged.min_rod_length);
+  if (!bp.hard_bound || !(bp.max_deviation > 0)) return 0;
+  PanelMesh trial = m.mesh;
+  model_boundary_pieces(face, trial, bp);
+  int promoted = 0;
+  const std::size_t n = std::min(m.mesh.is_node.size(), trial.is_node.size());
+  for (std::size_t v = 0; v < n; ++v)
+    if (!m.mesh.is_node[v] && trial.is_node[v]) m.mesh.is_node[v] = 1, ++promoted;
+  return promoted;
+}
+
 void model_and_measure(const SurfaceFace& face, const MethodDeclaration& decl,
                        const ParamValues& values, Modelled& out) {
-  const std::string& method = decl.name;
   const auto metrics_started = std::chrono::steady_clock::now();
   MetricsParams mp;
   mp.samples = value_or<int>(values, decl, "samples");
@@ -168,20 +209,9 @@ void model_and_measure(const SurfaceFace& face, const MethodDeclaration& decl,
   std::vector<char> full(out.mesh.panels.size());
   for (std::size_t k = 0; k < full.size(); ++k) full[k] = modelled_as_pieces(out.mesh, k) ? 0 : 1;
   const PanelMetrics full_metrics = measure_panels(face, out.mesh, mp, full);
-  BoundaryPiecesParams bp;
-  bp.max_deviation = allowed_boundary_deviation(values, decl, full_metrics);
-  // boundary_driven's point is an all-quad layout: its boundary quads are
-  // bent along a diagonal, not refined with new trim nodes (which would make
-  // them pentagons and split them), unless boundary_deviation asks for it.
-  if (method == "boundary_driven" && !(value_or<double>(values, decl, "boundary_deviation") > 0)) {
-    bp.max_deviation = 0;
-    bp.may_add_nodes = false;
-  }
-  bp.samples = mp.samples;
-  // New nodes on the trim keep min_rod_length from the others.
-  bp.min_node_spacing = out.merged.min_rod_length;
-  bp.hard_bound =
-      method == "walking_agent" && !(value_or<double>(values, decl, "boundary_deviation") > 0);
+  const BoundaryPiecesParams bp =
+      boundary_pieces_params(values, decl, allowed_boundary_deviation(values, decl, full_metrics),
+                             out.merged.min_rod_length);
   report_stage(0.0, "modelling boundary pieces");
   out.pieces = model_boundary_pieces(face, out.mesh, bp);
   for (std::size_t k = 0; k < out.pieces.changed.size(); ++k)

@@ -50,6 +50,15 @@ Modelled run_method(const SurfaceFace& face, const MethodDeclaration& decl,
 void model_and_measure(const SurfaceFace& face, const MethodDeclaration& decl,
                        const ParamValues& values, Modelled& out);
 
+// Under a hard deviation bound (walking_agent's), the trim points the boundary
+// pieces stage would make nodes, made nodes now: a face set joins its faces
+// along shared edges before that stage, and a node it added after the join
+// would stand on one side of the edge only (without it a boundary panel of
+// the split roof measured 52 mm against a bound of 30, and its whole face was
+// walked again at a tighter bound: 78% more panels). Returns how many.
+int promote_hard_bound_trim_nodes(const SurfaceFace& face, const MethodDeclaration& decl,
+                                  const ParamValues& values, Modelled& m);
+
 // Irregular panels, nodes, folds, summary and the coverage check.
 PanelizeResult finish_result(std::shared_ptr<const SurfaceFace> face, const MethodDeclaration& decl,
                              const ParamValues& values, Modelled&& m,
