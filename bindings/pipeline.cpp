@@ -165,7 +165,8 @@ void bind_pipeline(py::module_& m) {
              if (i >= s.size()) throw py::index_error("face index out of range");
              return std::const_pointer_cast<SurfaceFace>(s.face(i));
            })
-      .def_property_readonly("shared_edge_count", &FaceSet::shared_edge_count);
+      .def_property_readonly("shared_edge_count", &FaceSet::shared_edge_count)
+      .def_property_readonly("sewn", &FaceSet::sewn);
   py::class_<FaceSetResult>(m, "FaceSetResult")
       .def_readonly("combined", &FaceSetResult::combined)
       .def_property_readonly(

@@ -363,7 +363,7 @@ class PreparedRun:
         if not self.several:
             return panelize_surface(self.target, self.method, self.values, self.params, progress)
         r = core.panelize_faces(self.target, self.method, self.values, progress, 0)
-        return _face_set_result(r, self.method, self.values, self.params)
+        return _face_set_result(r, self.method, self.values, self.params, self.target)
 
 
 def panelize_brep(brep, method="iso_grid", progress=None, **params):
@@ -389,9 +389,12 @@ def panelize_faces(faces, method="iso_grid", progress=None, threads=0, **params)
     nodes cover all of them.
 
     faces: a shape (a shell, a solid, a compound: all its faces), a list of
-    faces or shapes, a document object, (obj, ["Face1", "Face3"]). Faces of one
-    shape share their common edges; along such an edge both faces get the same
-    nodes (one node at each position, one rod per segment, no T-junction).
+    faces or shapes, a document object, (obj, ["Face1", "Face3"]), a list of
+    such pairs. Faces of one shape share their common edges; along such an
+    edge both faces get the same nodes (one node at each position, one rod per
+    segment, no T-junction). Faces that touch along edges they do not share
+    (of several objects, an unsewn STEP shell) are sewn first (within 1e-5 of
+    the shape's size; `r.summary["sewn"]` tells).
     Faces are panelized side by side on `threads` threads (0: every core), with
     the same result for any count. `r.panel_face`, `r.vertex_face` and
     `r.rod_face` give each item's face (0-based, in the order given);
@@ -413,14 +416,14 @@ def panelize_faces_brep(brep, method="iso_grid", progress=None, threads=0, **par
     face_set = core.FaceSet.from_brep_string(brep)
     values = core_values(method, params)
     r = core.panelize_faces(face_set, method, values, progress, int(threads))
-    result = _face_set_result(r, method, values, params)
-    result._face_set = face_set
-    return result
+    return _face_set_result(r, method, values, params, face_set)
 
 
-def _face_set_result(r, method, values, params):
-    """The Python result of a core FaceSetResult."""
+def _face_set_result(r, method, values, params, face_set):
+    """The Python result of a core FaceSetResult on `face_set`."""
     result = _result(r.combined, method, values, params)
+    result._face_set = face_set
+    result.summary["sewn"] = face_set.sewn
     result.panel_face = np.asarray(r.panel_face, dtype=np.int64)
     result.vertex_face = np.asarray(r.vertex_face, dtype=np.int64)
     result.rod_face = np.asarray(r.rod_face, dtype=np.int64)

@@ -33,7 +33,9 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
 
     source: (document object, "FaceN") or a document object with one face; or
         several faces of one object, (obj, ["Face1", "Face3"]) or the object
-        itself (all its faces): one envelope, joined along the shared edges.
+        itself (all its faces): one envelope, joined along the shared edges; or
+        faces of several objects, [(a, ["Face1"]), (b, ["Face2"])] (where they
+        touch along edges they do not share, they are sewn).
     method: one of freecad_workbench.api.METHODS.
     params: the keyword parameters of freecad_workbench.panelize (size, u_count,
         v_count, sliver_fraction, min_angle, max_panels, trim_deflection, samples).
@@ -46,16 +48,18 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
     from . import api
     from .features import panelization as feat
 
-    obj, subs = selection.face_set_link(source)
-    several = len(selection.faces_of((obj, subs) if subs else obj)) > 1
+    sources = selection.face_set_links(source)
+    obj, subs = sources[0]
+    several = len(selection.faces_of(sources)) > 1
     sub = None if several else (subs[0] if subs else "Face1")
     if doc is None:
         doc = obj.Document
-    elif doc is not obj.Document:
-        raise ValueError(
-            f"the source {obj.Label!r} is in document {obj.Document.Name!r}, "
-            f"not in {doc.Name!r}"
-        )
+    for owner, _subs in sources:
+        if owner.Document is not doc:
+            raise ValueError(
+                f"the source {owner.Label!r} is in document {owner.Document.Name!r}, "
+                f"not in {doc.Name!r}"
+            )
     from .methods import METHODS
 
     if method not in METHODS:
@@ -69,8 +73,7 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
     # computing the result once; the new object starts from it (no second run).
     try:
         if several:
-            result = api.panelize_faces((obj, subs) if subs else obj, method=method,
-                                        progress=progress, **params)
+            result = api.panelize_faces(sources, method=method, progress=progress, **params)
         else:
             result = api.panelize((obj, sub), method=method, progress=progress, **params)
     finally:
@@ -85,6 +88,9 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         created.append(parent.Name)
         feat.Panelization(parent)
         parent.Source = (obj, subs if several else [sub])
+        if len(sources) > 1:
+            # A whole object as (object, ['']): FreeCAD drops (object, []).
+            parent.MoreSources = [(o, names or [""]) for o, names in sources[1:]]
         parent.Method = method
         for key, value in params.items():
             if to_property[key] not in links:
@@ -107,10 +113,11 @@ def make_panelization(source, method="iso_grid", doc=None, progress=None, **para
         # too, so a saved document opens the same way.
         if FreeCAD.GuiUp:
             _attach_gui(parent, children)
-            if getattr(obj, "ViewObject", None) is not None:
-                obj.ViewObject.Visibility = False
-        elif "Visibility" in obj.PropertiesList:
-            obj.Visibility = False
+        for owner, _subs in sources:
+            if FreeCAD.GuiUp and getattr(owner, "ViewObject", None) is not None:
+                owner.ViewObject.Visibility = False
+            elif not FreeCAD.GuiUp and "Visibility" in owner.PropertiesList:
+                owner.Visibility = False
         doc.recompute()
         broken = [o for o in [parent] + children if not o.isValid() or "Touched" in o.State]
         if broken:

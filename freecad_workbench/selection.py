@@ -19,6 +19,7 @@ Results:
 
     one_face(x)     -> Part.Face                 faces_of(x)  -> [Part.Face]
     face_link(x)    -> (object, "FaceN")         (to store in a PropertyLinkSub)
+    face_set_links(x) -> [(object, ["FaceN", ...])] (faces of one or more objects)
     one_edge(x)     -> Part.Edge or Part.Wire    edges_of(x)  -> [Part.Edge / Part.Wire]
     edge_links(x)   -> [(object, "EdgeN" or "")] (to store in a PropertyLinkSubList)
     links_of(x)     -> [(object, "SubName" or "")]
@@ -228,11 +229,13 @@ def one_face(x, context=None):
     return _one_face_of_shape(_element(obj, shape, sub, context), context)
 
 
-def face_set_link(x, context=None):
-    """(document object, ['FaceN', ...]) naming one or more faces of one object:
-    from (obj, 'FaceN'), (obj, ['Face1', 'Face3']), an object (all its faces:
-    an empty list), the selected faces of one object. Faces of several objects
-    are refused (their shared edges are only shared within one shape)."""
+def face_set_links(x, context=None):
+    """[(document object, ['FaceN', ...]), ...] naming one or more faces: one
+    entry per object, in the order first met ([] = all the object's faces);
+    from (obj, 'FaceN'), (obj, ['Face1', 'Face3']), objects, the selected faces
+    (of one object or several), a Source / MoreSources value, lists of these.
+    Faces of several objects make one envelope: where they touch along edges
+    they do not share, the face set sews them (core.FaceSet)."""
     items = list(_items(x, FACE))
     for item in items:
         if item[0] != "link" or not isinstance(item[1], FreeCAD.DocumentObject):
@@ -241,30 +244,25 @@ def face_set_link(x, context=None):
                 f"not {type(item[1]).__name__}"))
     if not items:
         raise ValueError(_prefix(context, "nothing given: select one or more faces"))
-    owners = []
-    for _kind, obj, _sub in items:
+    owners, subs_of = [], {}
+    for _kind, obj, sub in items:
         if obj not in owners:
             owners.append(obj)
-    if len(owners) > 1:
-        raise ValueError(_prefix(
-            context, f"faces of {len(owners)} objects ({', '.join(_label(o) for o in owners)}): "
-            "select faces of one object, or make the faces one shape first "
-            "(Part: Compound or Shell) so their common edges are shared"))
-    obj = owners[0]
-    shape = _shape_of(obj, context)
-    subs = []
-    for _kind, _obj, sub in items:
+            subs_of[obj.Name] = []
+        shape = _shape_of(obj, context)
+        subs = subs_of[obj.Name]
         if not sub:
             if not shape.Faces:
                 raise ValueError(_prefix(context, f"{_label(obj)!r} has no faces"))
-            return obj, []  # the whole object
+            subs_of[obj.Name] = None  # the whole object
+            continue
         if not is_element(sub, FACE):
             raise ValueError(_prefix(
                 context, f"{sub!r} is not a face: select a face, not an edge or a vertex"))
         _element(obj, shape, sub, context)
-        if sub not in subs:
+        if subs is not None and sub not in subs:
             subs.append(sub)
-    return obj, subs
+    return [(obj, subs_of[obj.Name] or []) for obj in owners]
 
 
 def faces_of(x, context=None):

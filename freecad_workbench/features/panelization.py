@@ -165,7 +165,11 @@ class Panelization(_StateMixin):
         """Add every property this version knows (missing ones only)."""
         api = _api()
         add_property(obj, "App::PropertyLinkSub", "Source", "Input",
-                     "The face to panelize: (object, ['FaceN'])")
+                     "The face to panelize: (object, ['FaceN']); several faces of the object, "
+                     "or the object itself (all its faces), make one envelope")
+        add_property(obj, "App::PropertyLinkSubList", "MoreSources", "Input",
+                     "Faces of other objects panelized with Source's as one envelope (where "
+                     "they touch along edges they do not share, the faces are sewn)")
         methods = list(api.METHODS)
         add_property(obj, "App::PropertyEnumeration", "Method", "Panelization",
                      "; ".join(f"{m.name}: {m.doc}" for m in api.METHODS.values()),
@@ -242,17 +246,33 @@ class Panelization(_StateMixin):
         label = f"{owner.Label}.{sub}" if named else owner.Label
         return (owner, sub), label
 
-    def source_faces(self, obj):
-        """(faces, label, count) of the Source: the Part.Faces it names (one, the
-        listed ones, or all faces of the object when it names none)."""
+    def source_links(self, obj):
+        """[(object, ['FaceN', ...]), ...]: Source's object first, then
+        MoreSources' ([] = all the object's faces)."""
         src = obj.Source
         if not src or src[0] is None:
             raise ValueError(f"{obj.Label}: no source face (set Source to a face)")
-        owner, subs = selection.face_set_link(src, context=f"{obj.Label}: Source")
-        faces = selection.faces_of((owner, subs) if subs else owner,
-                                   context=f"{obj.Label}: Source")
+        more = list(getattr(obj, "MoreSources", None) or [])
+        return selection.face_set_links([src] + more, context=f"{obj.Label}: Source")
+
+    def source_objects(self, obj):
+        """The document objects whose faces are panelized (Source's, MoreSources')."""
+        found = [obj.Source[0]] if obj.Source and obj.Source[0] is not None else []
+        for owner, _subs in getattr(obj, "MoreSources", None) or []:
+            if owner is not None and owner not in found:
+                found.append(owner)
+        return found
+
+    def source_faces(self, obj):
+        """(faces, label, count) of the Source and MoreSources: the Part.Faces
+        they name (one, the listed ones, or all faces of an object that names none)."""
+        links = self.source_links(obj)
+        faces = selection.faces_of(links, context=f"{obj.Label}: Source")
         if len(faces) == 1:
             return faces, self.source_face(obj)[1], 1
+        if len(links) > 1:
+            return faces, f"{len(faces)} faces of {len(links)} objects", len(faces)
+        owner, subs = links[0]
         named = f"{len(subs)} faces" if subs else f"all {len(faces)} faces"
         return faces, f"{owner.Label} ({named})", len(faces)
 

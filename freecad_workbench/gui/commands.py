@@ -17,7 +17,7 @@ _warn = warn  # the name other modules imported from here
 #: The message shown when the selection is not exactly one face.
 SELECT_ONE_FACE = (
     "Select a face to panelize (click a face of a surface in the 3D view), or several "
-    "faces of one object (Ctrl+click), or the object itself, then run Panelize again."
+    "faces (Ctrl+click; of one object or several), or an object, then run Panelize again."
 )
 
 
@@ -50,13 +50,13 @@ class PanelizeCommand(DocumentCommand):
 
     ICON = "Tessella_Panelize"
     MENU_TEXT = "Panelize face(s)"
-    TOOL_TIP = ("Cut the selected face (or faces of one object: one envelope, joined "
+    TOOL_TIP = ("Cut the selected face (or several faces: one envelope, joined "
                 "along their shared edges) into panels, rods and nodes: a task panel "
                 "with a live preview sets the method and its parameters. "
                 "Select a face first")
 
     def IsActive(self):
-        """Greyed out until a face (or faces of one object) is selected, and while
+        """Greyed out until a face (or several faces) is selected, and while
         a task panel is open (Activated still checks, for a replayed macro)."""
         if FreeCAD.ActiveDocument is None or Gui.Control.activeDialog():
             return False
@@ -65,7 +65,7 @@ class PanelizeCommand(DocumentCommand):
     def Activated(self):
         pick = selected_face()
         several = selected_faces() if pick is None else None
-        if several is not None:  # faces of one object: one envelope
+        if several is not None:  # several faces (of one object or more): one envelope
             self._open(several, selection_shape(several))
             return
         if pick is None:
@@ -96,13 +96,12 @@ class PanelizeCommand(DocumentCommand):
 
 
 def selection_shape(source):
-    """The faces a (object, ['FaceN', ...]) source names, as one compound."""
+    """The faces a [(object, ['FaceN', ...]), ...] source names, as one compound."""
     import Part
 
     from .. import selection
 
-    obj, subs = source
-    return Part.Compound(selection.faces_of((obj, subs) if subs else obj))
+    return Part.Compound(selection.faces_of(source))
 
 
 Gui.addCommand("Tessella_Panelize", PanelizeCommand())

@@ -57,18 +57,18 @@ def selected_face():
 
 
 def selected_faces():
-    """(object, ['FaceN', ...]) when two or more faces of one object are selected
-    (or an object of several faces), else None."""
+    """[(object, ['FaceN', ...]), ...] when two or more faces are selected (of
+    one object or several, or an object of several faces), else None."""
     import FreeCADGui as Gui
 
     from .. import selection
 
     sel = Gui.Selection.getSelectionEx()
     try:
-        obj, subs = selection.face_set_link(sel)
-        if len(selection.faces_of((obj, subs) if subs else obj)) < 2:
+        links = selection.face_set_links(sel)
+        if len(selection.faces_of(links)) < 2:
             return None
-        return obj, subs
+        return links
     except (ValueError, TypeError):
         return None
 

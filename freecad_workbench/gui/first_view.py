@@ -77,9 +77,9 @@ def apply(name, visible=None):
     for obj in doc.Objects:
         if not is_panelization(obj):
             continue
-        source = obj.Source[0] if obj.Source else None
-        if source is not None and source.ViewObject is not None:
-            source.ViewObject.Visibility = False
+        for source in obj.Proxy.source_objects(obj):
+            if source.ViewObject is not None:
+                source.ViewObject.Visibility = False
         for child in children_of(obj):
             vobj = child.ViewObject
             if child.Role == "Panels" and vobj is not None and len(child.Deviation):

@@ -106,10 +106,17 @@ class PanelizationTaskPanel:
 
     def _source_text(self):
         if self.obj is not None:
-            src = self.obj.Source
-            subs = [s for s in (src[1] or []) if s] if src else []
-            return f"{src[0].Label}.{subs[0]}" if src and src[0] and subs else "(none)"
-        obj, sub = self.source
+            try:
+                return self.obj.Proxy.source_faces(self.obj)[1]
+            except (ValueError, TypeError):
+                return "(none)"
+        if isinstance(self.source, list):  # several faces: [(object, [subs]), ...]
+            if len(self.source) > 1:
+                count = len(selection.faces_of(self.source))
+                return f"{count} faces of {len(self.source)} objects"
+            obj, sub = self.source[0]
+        else:
+            obj, sub = self.source
         if isinstance(sub, (list, tuple)):  # several faces of one object
             return f"{obj.Label} ({len(sub)} faces)" if sub else f"{obj.Label} (all faces)"
         return f"{obj.Label}.{sub}"
@@ -119,8 +126,7 @@ class PanelizationTaskPanel:
         try:
             if self.obj is not None:
                 return self.obj.Proxy.source_faces(self.obj)[0]
-            return selection.faces_of(self.source if not isinstance(self.source[1], list)
-                                      or self.source[1] else self.source[0])
+            return selection.faces_of(self.source)
         except (ValueError, TypeError):
             return []
 
@@ -129,7 +135,7 @@ class PanelizationTaskPanel:
             return self.picked
         if self.obj is not None:
             if self.obj.Proxy.source_faces(self.obj)[2] > 1:
-                return selection.face_set_link(self.obj.Source)
+                return self.obj.Proxy.source_links(self.obj)
             return self.obj.Proxy.source_face(self.obj)[0]
         return self.source
 
@@ -285,15 +291,19 @@ class PanelizationTaskPanel:
         command (the panel cleared the selection under its preview)."""
         if self.obj is not None or not self.source:
             return
-        obj, sub = self.source
+        links = self.source if isinstance(self.source, list) else [self.source]
         try:
-            for name in (sub if isinstance(sub, (list, tuple)) else [sub]) or [""]:
-                Gui.Selection.addSelection(obj.Document.Name, obj.Name, name)
+            for obj, sub in links:
+                for name in (sub if isinstance(sub, (list, tuple)) else [sub]) or [""]:
+                    Gui.Selection.addSelection(obj.Document.Name, obj.Name, name)
         except Exception:  # noqa: BLE001  (the object may be gone: nothing to select)
             pass
 
     def _create(self, method, params):
-        obj, sub = self.source
+        links = self.source if isinstance(self.source, list) else [self.source]
+        source = ", ".join(f"({object_ref(obj)}, {sub!r})" for obj, sub in links)
+        if isinstance(self.source, list):
+            source = f"[{source}]"
 
         def literal(key, value):
             if key == "guides":  # document objects: write how to find them
@@ -304,7 +314,7 @@ class PanelizationTaskPanel:
         args = ", ".join(f"{k}={literal(k, v)}" for k, v in params.items())
         # gui_progress() is None in a headless replay of the recorded macro.
         call = ("tessella.make_panelization("
-                f"({object_ref(obj)}, {sub!r}), "
+                f"{source}, "
                 f"method={method!r}, {args}, progress=tessella.gui_progress())")
         Gui.doCommand("import freecad_workbench as tessella")
         Gui.doCommand(call)
@@ -333,6 +343,7 @@ class PanelizationTaskPanel:
             if self.picked is not None:
                 lines.append(f"{ref}.Source = ({object_ref(self.picked[0])}, "
                              f"[{self.picked[1]!r}])")
+                lines.append(f"{ref}.MoreSources = []")  # the picked face alone
             lines.append(f"{ref}.Method = {method!r}")
             if method == "iso_grid":  # counts of 0 mean: use the size
                 params.setdefault("u_count", 0)

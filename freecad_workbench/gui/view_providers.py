@@ -107,9 +107,9 @@ class ViewProviderPanelization(_VPState):
         for child in children_of(obj):
             if doc.getObject(child.Name) is not None:
                 doc.removeObject(child.Name)
-        source = obj.Source[0] if obj.Source else None
-        if source is not None and getattr(source, "ViewObject", None) is not None:
-            source.ViewObject.Visibility = True
+        for source in obj.Proxy.source_objects(obj):
+            if getattr(source, "ViewObject", None) is not None:
+                source.ViewObject.Visibility = True
         from . import legend
 
         legend.relayout()  # the children's legends went with them

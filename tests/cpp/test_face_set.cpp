@@ -5,10 +5,12 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRep_Builder.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <TopoDS_Compound.hxx>
 #include <cmath>
 #include <map>
 #include <set>
@@ -36,6 +38,28 @@ std::string split_patch() {
   sewing.Add(BRepBuilderAPI_MakeFace(s, 0.4, 1.0, 0.0, 1.0, 1e-7).Face());
   sewing.Perform();
   return test::brep(sewing.SewedShape());
+}
+
+// The same two faces built apart (a compound: the cut is two edges), the
+// second lifted by `lift` mm.
+std::string unsewn_patch(double lift) {
+  TColgp_Array2OfPnt poles(1, 4, 1, 4);
+  for (int i = 1; i <= 4; ++i)
+    for (int j = 1; j <= 4; ++j)
+      poles(i, j) = gp_Pnt(3000.0 * i, 2500.0 * j, 700.0 * std::sin(1.3 * i) * std::cos(0.9 * j));
+  TColStd_Array1OfReal knots(1, 2);
+  knots(1) = 0, knots(2) = 1;
+  TColStd_Array1OfInteger mults(1, 2);
+  mults(1) = mults(2) = 4;
+  Handle(Geom_BSplineSurface) s = new Geom_BSplineSurface(poles, knots, knots, mults, mults, 3, 3);
+  Handle(Geom_BSplineSurface) t = Handle(Geom_BSplineSurface)::DownCast(s->Copy());
+  t->Translate(gp_Vec(0, 0, lift));
+  TopoDS_Compound c;
+  BRep_Builder b;
+  b.MakeCompound(c);
+  b.Add(c, BRepBuilderAPI_MakeFace(s, 0.0, 0.4, 0.0, 1.0, 1e-7).Face());
+  b.Add(c, BRepBuilderAPI_MakeFace(t, 0.4, 1.0, 0.0, 1.0, 1e-7).Face());
+  return test::brep(c);
 }
 
 // Panel sides (vertex pairs) with the faces of the panels along them.
@@ -93,6 +117,26 @@ TEST(FaceSet, SameResultOnOneAndTwoThreads) {
   EXPECT_EQ(one.combined.mesh.xyz, two.combined.mesh.xyz);
   EXPECT_EQ(one.combined.metrics.deviation, two.combined.metrics.deviation);
   EXPECT_EQ(one.panel_face, two.panel_face);
+}
+
+TEST(FaceSet, FacesTouchingAlongUnsharedEdgesAreSewn) {
+  const FaceSet sewn_already = FaceSet::from_brep_string(split_patch());
+  EXPECT_FALSE(sewn_already.sewn());
+  // Built apart: sewn, in the order given, the cut one shared edge; the
+  // result the same as the sewn shell's.
+  const FaceSet apart = FaceSet::from_brep_string(unsewn_patch(0.0));
+  ASSERT_EQ(apart.size(), 2u);
+  EXPECT_TRUE(apart.sewn());
+  EXPECT_EQ(apart.shared_edge_count(), 1u);
+  EXPECT_LT(apart.face(0)->bounds().u_max, 0.4 + 1e-9);
+  const FaceSetResult a = panelize_faces(apart, "equal_size_grid", {{"size", 900.0}});
+  const FaceSetResult b = panelize_faces(sewn_already, "equal_size_grid", {{"size", 900.0}});
+  EXPECT_EQ(a.combined.mesh.panels.size(), b.combined.mesh.panels.size());
+  EXPECT_EQ(a.shared_edge_nodes, b.shared_edge_nodes);
+  // Lifted by 1 mm (1e-5 of the size is about 0.12 mm): not sewn, no shared edge.
+  const FaceSet lifted = FaceSet::from_brep_string(unsewn_patch(1.0));
+  EXPECT_FALSE(lifted.sewn());
+  EXPECT_EQ(lifted.shared_edge_count(), 0u);
 }
 
 TEST(FaceSet, RefusesWhatItCannotJoin) {

@@ -746,6 +746,66 @@ def test_analysis_colors():
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_command_faces_of_two_objects():
+    """The tops of two boxes side by side (two objects: the edge they touch
+    along is two edges) selected: one envelope, sewn where they touch; OK makes
+    one Panelization with Source and MoreSources, hides and (deleted) shows
+    both boxes."""
+    from freecad_workbench.gui import task_panel
+
+    doc = FreeCAD.newDocument("TessellaTwoObjects")
+    try:
+        west = doc.addObject("Part::Box", "West")
+        east = doc.addObject("Part::Box", "East")
+        for b in (west, east):
+            b.Length, b.Width, b.Height = 4000, 3000, 2000
+        east.Placement.Base = FreeCAD.Vector(4000, 0, 0)
+        doc.recompute()
+        doc.clearUndos()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, west.Name, "Face6")
+        Gui.Selection.addSelection(doc.Name, east.Name, "Face6")
+        with DialogCatcher() as dc:
+            Gui.runCommand("Tessella_Panelize")
+        check("two objects: no message box", not dc.texts, str(dc.texts))
+        panel = task_panel.active()
+        if not check("two objects: the task panel opens", panel is not None):
+            return
+        check("two objects: the panel names the faces and objects",
+              panel.source_label.text() == "2 faces of 2 objects", panel.source_label.text())
+        panel.timer.stop()
+        panel.update_preview()
+        res = panel.last_result
+        check("two objects: preview over both tops, sewn", res is not None
+              and res.face_count == 2 and res.summary.get("sewn")
+              and res.summary.get("shared_edges") == 1, str(panel.last_error))
+        check("two objects: OK", panel.accept())
+        process_events()
+        made = panelizations(doc)
+        check("two objects: one Panelization", len(made) == 1)
+        if made:
+            p = made[0]
+            check("two objects: Source and MoreSources",
+                  p.Source[0] == west and list(p.Source[1]) == ["Face6"]
+                  and p.MoreSources == [(east, ("Face6",))], f"{p.Source} {p.MoreSources}")
+            r = p.Proxy.result(p).result
+            check("two objects: shared-edge nodes joined", r.summary["shared_edge_nodes"] > 1
+                  and sorted(set(r.panel_face.tolist())) == [0, 1])
+            check("two objects: one undo step", doc.UndoCount == 1, str(doc.UndoNames))
+            check("two objects: both boxes hidden",
+                  not west.ViewObject.Visibility and not east.ViewObject.Visibility)
+            p.ViewObject.Proxy.onDelete(p.ViewObject, [])
+            doc.removeObject(p.Name)
+            process_events()
+            check("two objects: deleted, both boxes show again",
+                  west.ViewObject.Visibility and east.ViewObject.Visibility)
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Selection.clearSelection()
+        FreeCAD.closeDocument(doc.Name)
+
+
 def test_command_several_faces():
     """Faces of one object selected: the task panel previews them as one envelope
     and OK makes one Panelization over them (one undo step)."""
@@ -1050,7 +1110,8 @@ def test_units_after_method_switches():
 ensure_workbench()
 gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command_failure, test_open_headless_document,
     test_analysis_colors, test_task_panel_edit, test_units_after_method_switches,
-    test_command_several_faces, test_defaults_open_without_errors,
+    test_command_several_faces, test_command_faces_of_two_objects,
+    test_defaults_open_without_errors,
     test_report_line_names_the_object_once, test_preview_keeps_the_gui_turning,
     test_task_panel_guides,
     test_progress_cancel,

@@ -285,6 +285,70 @@ def test_faces_of_an_object_by_name(shell):
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_loose_faces_touching_are_sewn(shell):
+    """Faces copied out of their shell (as faces of separate objects, or an
+    unsewn STEP shell, arrive) share no edge: they are sewn, and the result
+    conforms along the edges they touch; a shell's faces are not sewn."""
+    loose = [f.copy() for f in shell.Faces]
+    fs = tessella.core.FaceSet.from_brep_string(Part.Compound(loose).exportBrepToString())
+    assert fs.sewn and fs.shared_edge_count == 4
+    whole = tessella.core.FaceSet.from_brep_string(shell.exportBrepToString())
+    assert not whole.sewn and whole.shared_edge_count == 4
+    for method, params in [("iso_grid", {"size": 1300.0}),
+                           ("walking_agent", {"max_deviation": 25.0})]:
+        r = tessella.panelize_faces(loose, method=method, **params)
+        assert r.summary["sewn"] and r.summary["shared_edges"] == 4
+        assert check_conforming(shell, r) > 8
+        assert abs(r.metrics["panel_area"].sum() / shell.Area - 1) < 5e-3
+    # Faces apart (a gap of 1% of the size) are not sewn: no shared edge.
+    moved = [f.copy() for f in shell.Faces]
+    moved[0].translate(V(0, 0, 0.01 * shell.BoundBox.DiagonalLength))
+    fs = tessella.core.FaceSet.from_brep_string(Part.Compound(moved).exportBrepToString())
+    assert fs.shared_edge_count == 2  # face 0 touched two of the others
+
+
+def test_faces_of_several_objects_make_one_panelization(shell, tmp_path):
+    """Two objects holding two faces each (built apart: no shared edge between
+    them): one Panelization, Source and MoreSources, one undo step, conforming
+    along the edges the objects touch, recomputed when the second object
+    changes, saved and reopened."""
+    doc = FreeCAD.newDocument("SeveralObjects")
+    try:
+        doc.UndoMode = 1
+        a = doc.addObject("Part::Feature", "West")
+        a.Shape = Part.Compound([f.copy() for f in shell.Faces[:2]])
+        b = doc.addObject("Part::Feature", "East")
+        b.Shape = Part.Compound([f.copy() for f in shell.Faces[2:]])
+        doc.recompute()
+        doc.clearUndos()
+        p = tessella.make_panelization([(a, []), (b, ["Face1", "Face2"])],
+                                       method="iso_grid", size=1300.0)
+        assert doc.UndoCount == 1
+        assert p.Source[0] == a and p.MoreSources == [(b, ("Face1", "Face2"))]
+        res = p.Proxy.result(p).result
+        assert res.face_count == 4 and res.summary["sewn"]
+        assert check_conforming(shell, res) > 8
+        assert sorted(set(res.panel_face.tolist())) == [0, 1, 2, 3]
+        assert p.Proxy.source_faces(p)[1] == "4 faces of 2 objects"
+        count = p.PanelCount
+        # The second object changes: the panelization follows.
+        b.Shape = Part.Compound([shell.Faces[2].copy()])
+        p.MoreSources = [(b, ["Face1"])]
+        doc.recompute()
+        assert p.Proxy.result(p).result.face_count == 3 and p.PanelCount < count
+        path = str(tmp_path / "several.FCStd")
+        name, count = p.Name, p.PanelCount
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+        p = doc.getObject(name)
+        p.touch()
+        doc.recompute()
+        assert p.PanelCount == count and p.Proxy.result(p).result.face_count == 3
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
 def test_document_face_set_recomputes_saves_and_reopens(shell, tmp_path):
     doc = FreeCAD.newDocument("FaceSetDoc")
     try:

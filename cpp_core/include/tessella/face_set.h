@@ -16,8 +16,11 @@ namespace tessella {
 class FaceSet {
  public:
   // Every face of the shape, in OCCT's explorer order (a face met twice, as
-  // in a compound holding it twice, once). Throws InvalidGeometry for a shape
-  // without faces or a face that cannot be evaluated (naming it: "face 3: ...").
+  // in a compound holding it twice, once). Faces that touch along edges they
+  // do not share (faces of several objects, an unsewn STEP shell) are sewn
+  // first, so those edges are shared (sewn() tells). Throws InvalidGeometry
+  // for a shape without faces or a face that cannot be evaluated (naming it:
+  // "face 3: ...").
   static FaceSet from_brep_string(const std::string& brep);
 
   std::size_t size() const;
@@ -25,6 +28,8 @@ class FaceSet {
   std::shared_ptr<const SurfaceFace> face(std::size_t i) const;
   // Edges bounding exactly two different faces of the set.
   std::size_t shared_edge_count() const;
+  // Whether faces were sewn along edges they did not share.
+  bool sewn() const;
 
   struct Impl;
   const Impl& impl() const { return *impl_; }

@@ -1,13 +1,19 @@
+#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Copy.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <cmath>
 
 #include "faceset/face_set_impl.h"
+#include "faceset/touching_faces.h"
 #include "geometry/brep_string.h"
 #include "tessella/errors.h"
 
@@ -19,12 +25,41 @@ std::size_t FaceSet::size() const { return impl_->faces.size(); }
 std::shared_ptr<const SurfaceFace> FaceSet::face(std::size_t i) const { return impl_->faces.at(i); }
 std::size_t FaceSet::shared_edge_count() const { return impl_->shared.size(); }
 
+namespace {
+
+// Faces closer than this along edges they do not share are sewn: 1e-5 of the
+// shape's size (0.65 mm on a 65 m roof, 0.1 mm on a 10 m box) bridges the
+// gaps of faces modelled apart or exported without sewing, and is far below
+// any panel.
+constexpr double kSewFraction = 1e-5;
+
+}  // namespace
+
+bool FaceSet::sewn() const { return impl_->sewn; }
+
 FaceSet FaceSet::from_brep_string(const std::string& brep) {
-  const TopoDS_Shape shape = shape_from_brep_string(brep);
+  TopoDS_Shape shape = shape_from_brep_string(brep);
   TopTools_IndexedMapOfShape face_map;
   TopExp::MapShapes(shape, TopAbs_FACE, face_map);
   if (face_map.IsEmpty()) throw InvalidGeometry("the shape has no face: select faces");
   auto impl = std::make_shared<Impl>();
+  if (face_map.Extent() > 1) {
+    std::vector<TopoDS_Face> faces;
+    for (int i = 1; i <= face_map.Extent(); ++i) faces.push_back(TopoDS::Face(face_map(i)));
+    Bnd_Box box;
+    BRepBndLib::Add(shape, box);
+    const double tolerance = box.IsVoid() ? 0.0 : kSewFraction * std::sqrt(box.SquareExtent());
+    if (tolerance > 0 && have_touching_free_edges(faces, tolerance)) {
+      faces = sew_faces(faces, tolerance);
+      TopoDS_Compound sewn;
+      BRep_Builder builder;
+      builder.MakeCompound(sewn);
+      face_map.Clear();
+      for (const TopoDS_Face& f : faces) builder.Add(sewn, f), face_map.Add(f);
+      shape = sewn;
+      impl->sewn = true;
+    }
+  }
   // Each face copied with its geometry (BRepBuilderAPI_Copy): faces built on
   // one surface would otherwise share it across threads. The copier maps
   // every edge to its copy, whose curve on the copied face is looked up.

@@ -29,6 +29,7 @@ struct FaceSet::Impl {
   std::vector<TopoDS_Face> occt;  // the copies the SurfaceFaces were built from
   std::vector<std::shared_ptr<const SurfaceFace>> faces;
   std::vector<SharedEdge> shared;
+  bool sewn = false;  // faces touching along edges they did not share were sewn
 };
 
 }  // namespace tessella
