@@ -164,7 +164,6 @@ def coarsest_iso_grid(face, bound, quick=False, cap=40000):
                 return True
             p = core.IsoGridParams()
             p.u_count, p.v_count = nu, nv
-            p.clip.max_panels = cap
             mesh = core.iso_grid(surface, p)
             cache[(nu, nv)] = max(core.measure_panels(surface, mesh, mp).deviation) <= bound
         return cache[(nu, nv)]

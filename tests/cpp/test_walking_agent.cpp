@@ -62,7 +62,9 @@ TEST(WalkingAgent, CylinderPanelAngleIsTheLongestTenthStepWithinTheBound) {
   int k = 1;
   while (r * (1 - std::cos((k + 1) * tenth / 2)) <= bound) ++k;
   ASSERT_EQ(k, 5);  // 9 degrees
-  const PanelMesh m = walking_agent(f, agent(bound));
+  WalkingAgentParams p = agent(bound);
+  p.iso_fallback = false;  // the agents' own rule (the fallback: next test)
+  const PanelMesh m = walking_agent(f, p);
   const std::vector<double> a = angles(m);
   ASSERT_EQ(a.size(), 40u);
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -103,11 +105,44 @@ TEST(WalkingAgent, MaxSizeStepsBackToTheLimit) {
   const SurfaceFace f = cylinder_face(5000, 8000);
   WalkingAgentParams p = agent(20);
   p.max_size = 3000;
+  p.iso_fallback = false;
   const std::vector<double> z = heights(walking_agent(f, p));
   ASSERT_EQ(z.size(), 4u);
   EXPECT_NEAR(z[1], 3000, 1e-6);
   EXPECT_NEAR(z[2], 6000, 1e-6);
   EXPECT_NEAR(z[3], 8000, 1e-6);
+}
+
+// Where curvature is even the agents' tenth steps cost panels: on the
+// cylinder (R = 5000, bound 20 mm, checked at 0.98 x the bound) 9-degree
+// steps make 40 panels, while n equal panels hold it for the least n with
+// R (1 - cos(pi / n)) <= 19.6: n = 36. The fallback keeps that grid, one
+// panel high (ceil(8000 / max_size) with a max_size).
+TEST(WalkingAgent, EvenCurvatureFallsBackToTheCoarsestIsoGrid) {
+  const double r = 5000, bound = 20;
+  const SurfaceFace f = cylinder_face(r, 8000);
+  int n = 3;
+  while (r * (1 - std::cos(kPi / n)) > 0.98 * bound) ++n;
+  ASSERT_EQ(n, 36);
+  WalkingAgentReport rep;
+  const PanelMesh m = walking_agent(f, agent(bound), &rep);
+  EXPECT_EQ(rep.iso_u_count * rep.iso_v_count, 36);
+  const std::vector<double> a = angles(m);
+  ASSERT_EQ(a.size(), 36u);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double next = i + 1 < a.size() ? a[i + 1] : 2 * kPi;
+    EXPECT_NEAR(next - a[i], 2 * kPi / 36, 1e-9);
+  }
+  EXPECT_EQ(m.panels.size(), 36u);
+  EXPECT_LE(max_of(measure_panels(f, m).deviation), bound);
+  // With max_size 3000 mm: three rows of 8000 / 3 mm.
+  WalkingAgentParams p = agent(bound);
+  p.max_size = 3000;
+  const PanelMesh limited = walking_agent(f, p);
+  const std::vector<double> z = heights(limited);
+  ASSERT_EQ(z.size(), 4u);
+  EXPECT_NEAR(z[1], 8000.0 / 3, 1e-6);
+  EXPECT_EQ(limited.panels.size(), 108u);
 }
 
 TEST(WalkingAgent, EveryStartKeepsTheBoundOnADoublyCurvedPatch) {

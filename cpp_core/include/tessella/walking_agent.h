@@ -54,6 +54,10 @@ struct WalkingAgentParams {
   double edge_share = 0.0;
   // Rounds of the hard-bound refinement before giving up with an error.
   int max_refinements = 40;
+  // Keep the coarsest iso grid (u_count x v_count over the face's bounds,
+  // quads folded where that holds the bound) that holds the bound with fewer
+  // panels than the agents' layout, if there is one.
+  bool iso_fallback = true;
   GridClipParams clip;
 };
 
@@ -64,6 +68,10 @@ struct WalkingAgentReport {
   int bound_lines = 0;        // lines the hard bound inserted
   double max_estimate = 0.0;  // largest panel deviation estimate at the end (mm)
   double edge_share = 1.0;    // share of the bound the kept layout was walked with
+  double grid_cells = 0.0;    // cells of the agents' line grid (before the trim cut)
+  // The coarsest iso grid holding the bound, kept instead of the agents'
+  // layout because it has fewer panels (0 x 0: the agents' layout kept).
+  int iso_u_count = 0, iso_v_count = 0;
 };
 
 PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& params,

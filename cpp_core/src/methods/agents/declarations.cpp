@@ -54,7 +54,12 @@ std::vector<MethodDeclaration> agent_methods() {
                decl("edge_share", ParamKind::Real, "", 0.0, 1.0, "Edge share (0: try 1, 0.7, 0.5)",
                     "The agents' edge rule uses this share of DeviationBound (0 = try 1, 0.7, "
                     "0.5 and keep the fewest panels)",
-                    kGroup, "EdgeShare"));
+                    kGroup, "EdgeShare"))
+        .param(&P::iso_fallback,
+               decl("iso_fallback", ParamKind::Boolean, "", 0, 1, "Iso grid fallback",
+                    "Where a uniform (u,v) grid holds the bound with fewer panels than the "
+                    "agents' lines (even curvature), keep the coarsest such grid",
+                    kGroup, "IsoFallback"));
     out.push_back(
         with_clip(b).build([](const SurfaceFace& f, const P& p) { return walking_agent(f, p); }));
   }

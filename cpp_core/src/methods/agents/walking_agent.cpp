@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
-#include "methods/agents/agent_walk.h"
-#include "tessella/errors.h"
 #include "mesh/grid_clipping.h"
 #include "mesh/panel_model.h"
+#include "methods/agents/agent_walk.h"
+#include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -270,6 +272,202 @@ void apply_fold(PanelMesh& mesh, std::size_t p, int k,
   mesh.folds.push_back(fold);
 }
 
+// Applies the folds (quad index, diagonal) found by the hard bound: folded
+// quads keep their place, their second triangles follow all panels; rods rebuilt.
+void apply_folds(PanelMesh& mesh, const std::vector<std::pair<std::size_t, int>>& folds) {
+  std::vector<std::vector<int>> extra;
+  for (const auto& [p, k] : folds) apply_fold(mesh, p, k, extra);
+  if (!mesh.corner_uv.empty()) {
+    for (const auto& [p, k] : folds) {
+      const std::vector<Vec2> c = mesh.corner_uv[p];
+      const int a = k, b = k + 1, d = (k + 3) % 4, e = k + 2;
+      mesh.corner_uv[p] = {c[a], c[b], c[e]};
+      mesh.corner_uv.push_back({c[a], c[e], c[d]});
+    }
+  }
+  for (auto& panel : extra) mesh.panels.push_back(std::move(panel));
+  build_rods(mesh);
+}
+
+// The hard bound on one panel whose estimate is `e`: kept as it is, or (a
+// quad) folded along its better diagonal; `kept` is the estimate it keeps.
+struct Verdict {
+  bool ok = false;
+  int fold = -1;  // the diagonal to fold along, -1: none
+  double kept = 0;
+};
+Verdict judge_panel(const Gauge& gauge, const std::vector<Vec3>& x, const std::vector<Vec2>& q,
+                    double e) {
+  if (e <= gauge.limit) return {true, -1, e};
+  if (x.size() == 4) {
+    const double f0 = fold_deviation(gauge, x, q, 0), f1 = fold_deviation(gauge, x, q, 1);
+    const int k = f0 <= f1 ? 0 : 1;
+    if (std::min(f0, f1) <= gauge.limit) return {true, k, std::min(f0, f1)};
+  }
+  return {};
+}
+
+// The uniform (u,v) grid of nu x nv cells over the face's bounds, as iso_grid
+// places it.
+Lines iso_lines(const UvBounds& b, int nu, int nv) {
+  Lines lines;
+  for (int i = 0; i <= nu; ++i) lines.u.push_back(b.u_min + (b.u_max - b.u_min) * i / nu);
+  for (int j = 0; j <= nv; ++j) lines.v.push_back(b.v_min + (b.v_max - b.v_min) * j / nv);
+  lines.u.back() = b.u_max, lines.v.back() = b.v_max;
+  return lines;
+}
+
+// The coarsest iso grid that holds the hard bound with fewer panels than
+// `fewer_than`, if there is one: the walking agent's fallback (where
+// curvature is even its lines, each obeying its worst row, cost more panels
+// than a uniform grid: a gentle dome took 49 against 42).
+//
+// The search walks the frontier of the smallest feasible v count per u count
+// (it does not grow with the u count): a grid is first screened on its whole
+// cells with a corner or middle inside the trim, from the cell of largest
+// curvature outwards, stopping at the first over the bound (an infeasible grid
+// costs a few estimates); the candidate then has to pass the hard bound on its
+// clipped panels, folds allowed. `share` (panels per cell of the agents'
+// grid) turns the panel budget into a cell budget on a trimmed face.
+// The longest side of an outline.
+double longest_side(const std::vector<Vec3>& x) {
+  double longest = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    longest = std::max(longest, (x[(i + 1) % x.size()] - x[i]).norm());
+  return longest;
+}
+
+// Area of the panels' outlines (each a fan of flat triangles).
+double panels_area(const PanelMesh& mesh) {
+  double area = 0;
+  for (const auto& p : mesh.panels)
+    for (std::size_t i = 1; i + 1 < p.size(); ++i)
+      area +=
+          0.5 * (mesh.xyz[p[i]] - mesh.xyz[p[0]]).cross(mesh.xyz[p[i + 1]] - mesh.xyz[p[0]]).norm();
+  return area;
+}
+
+std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrimClassifier& trim,
+                                           const Gauge& gauge, const GridClipParams& clip,
+                                           double sample_step, double max_size,
+                                           const PanelMesh& agents, double share,
+                                           WalkingAgentReport& rep) {
+  const std::size_t fewer_than = agents.panels.size();
+  const double covered = panels_area(agents);
+  const UvBounds b = face.bounds();
+  // Where grids failed so far (first: the point of largest curvature), most
+  // recent first: the next grid is tried there first, so an infeasible grid
+  // costs one or two cell estimates.
+  std::vector<Vec2> failed{agents::max_curvature_point(face, trim, sample_step)};
+  auto screen = [&](int nu, int nv) {
+    const Lines l = iso_lines(b, nu, nv);
+    auto cell_of = [&](const Vec2& p) {
+      const int i =
+          std::clamp(static_cast<int>((p.x() - b.u_min) / (b.u_max - b.u_min) * nu), 0, nu - 1);
+      const int j =
+          std::clamp(static_cast<int>((p.y() - b.v_min) / (b.v_max - b.v_min) * nv), 0, nv - 1);
+      return std::array<int, 2>{i, j};
+    };
+    std::vector<Vec3> x(4);
+    std::vector<Vec2> q(4);
+    // Whether cell (i, j) holds the bound (a cell wholly outside the trim does).
+    auto holds = [&](int i, int j) {
+      q = {{l.u[i], l.v[j]}, {l.u[i + 1], l.v[j]}, {l.u[i + 1], l.v[j + 1]}, {l.u[i], l.v[j + 1]}};
+      bool inside = trim.contains(0.5 * (q[0] + q[2]));
+      for (const Vec2& c : q) inside = inside || trim.contains(c);
+      if (!inside) return true;
+      for (int c = 0; c < 4; ++c) x[c] = face.point(q[c].x(), q[c].y());
+      if (longest_side(x) > max_size) return false;
+      return judge_panel(gauge, x, q, bilinear_estimate(gauge, x, q)).ok;
+    };
+    auto fail_at = [&](int i, int j) {
+      const Vec2 centre(0.5 * (l.u[i] + l.u[i + 1]), 0.5 * (l.v[j] + l.v[j + 1]));
+      failed.insert(failed.begin(), centre);
+      if (failed.size() > 8) failed.pop_back();
+      return false;
+    };
+    std::set<std::array<int, 2>> tried;
+    for (const Vec2& f : std::vector<Vec2>(failed)) {
+      const std::array<int, 2> c = cell_of(f);
+      if (!tried.insert(c).second) continue;
+      if (!holds(c[0], c[1])) return fail_at(c[0], c[1]);
+    }
+    // The rest by their distance (in cells) from the first, then row-major.
+    const std::array<int, 2> h = cell_of(failed.front());
+    std::vector<std::array<int, 3>> order;
+    order.reserve(static_cast<std::size_t>(nu) * nv);
+    for (int j = 0; j < nv; ++j)
+      for (int i = 0; i < nu; ++i)
+        if (!tried.count({i, j}))
+          order.push_back({std::max(std::abs(i - h[0]), std::abs(j - h[1])), j, i});
+    std::sort(order.begin(), order.end());
+    for (const auto& [ring, j, i] : order) {
+      (void)ring;
+      if (!holds(i, j)) return fail_at(i, j);
+    }
+    return true;
+  };
+  // The clipped grid under the hard bound (folds applied; counted in `got`),
+  // or nothing.
+  WalkingAgentReport got;
+  auto bounded = [&](int nu, int nv) -> std::optional<PanelMesh> {
+    const Lines l = iso_lines(b, nu, nv);
+    PanelMesh mesh;
+    try {
+      mesh = clip_grid(face, l.u, l.v, clip);
+    } catch (const LimitExceeded&) {
+      return std::nullopt;
+    }
+    std::vector<std::pair<std::size_t, int>> folds;
+    double worst = 0;
+    for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+      std::vector<Vec3> x;
+      for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
+      const std::vector<Vec2> q = panel_corner_uv(mesh, p);
+      if (longest_side(x) > max_size) return std::nullopt;
+      const Verdict verdict = judge_panel(gauge, x, q, polygon_estimate(gauge, x, q));
+      if (!verdict.ok) return std::nullopt;
+      if (verdict.fold >= 0) folds.push_back({p, verdict.fold});
+      worst = std::max(worst, verdict.kept);
+    }
+    apply_folds(mesh, folds);
+    got.folds = static_cast<int>(folds.size());
+    got.max_estimate = worst;
+    return mesh;
+  };
+  std::optional<PanelMesh> found;
+  std::size_t best = fewer_than;
+  const double per_cell = std::max(share, 1e-3);
+  // Round a closed direction a cell spans under a third of the period (one
+  // or two cells would join corners across the whole face).
+  const int nu_min = face.u_periodic() ? 3 : 1, nv_min = face.v_periodic() ? 3 : 1;
+  int v = std::numeric_limits<int>::max();
+  for (int nu = nu_min;; ++nu) {
+    const double cells = (static_cast<double>(best) - 1) / per_cell;
+    const int cap = static_cast<int>(std::min<double>(v, std::floor(cells / nu)));
+    if (cap < nv_min) break;
+    if (!screen(nu, cap)) continue;
+    int w = cap;
+    while (w > nv_min && screen(nu, w - 1)) --w;
+    v = w;
+    // The frontier point, or the next count up if its clipped panels fail.
+    for (int nv = w; nv <= std::min(cap, w + 1); ++nv) {
+      std::optional<PanelMesh> mesh = bounded(nu, nv);
+      if (!mesh) continue;
+      // The same surface covered (a grid the trim cut differently, e.g. round
+      // a pole, is no fallback).
+      if (mesh->panels.size() < best && std::abs(panels_area(*mesh) - covered) <= 0.01 * covered) {
+        best = mesh->panels.size();
+        rep.folds = got.folds, rep.max_estimate = got.max_estimate;
+        rep.iso_u_count = nu, rep.iso_v_count = nv;
+        found = std::move(mesh);
+      }
+      break;
+    }
+  }
+  return found;
+}
+
 }  // namespace
 
 bool is_valid_agent_start(const std::string& start) {
@@ -349,36 +547,18 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
           e = polygon_estimate(gauge, x, q);
           known.emplace(std::move(key), e);
         }
-        if (e <= limit) {
-          worst_kept = std::max(worst_kept, e);
+        const Verdict verdict = judge_panel(gauge, x, q, e);
+        if (verdict.ok) {
+          if (verdict.fold >= 0) folds.push_back({p, verdict.fold});
+          worst_kept = std::max(worst_kept, verdict.kept);
           continue;
-        }
-        if (x.size() == 4) {
-          const double f0 = fold_deviation(gauge, x, q, 0), f1 = fold_deviation(gauge, x, q, 1);
-          const int k = f0 <= f1 ? 0 : 1;
-          if (std::min(f0, f1) <= limit) {
-            folds.push_back({p, k});
-            worst_kept = std::max(worst_kept, std::min(f0, f1));
-            continue;
-          }
         }
         added += split_panel(face, lines, q, bound);
       }
       rep.refinement_rounds = round;
       if (added == 0) {
-        std::vector<std::vector<int>> extra;
-        for (const auto& [p, k] : folds) apply_fold(mesh, p, k, extra);
-        // Folded quads keep their place; the second triangles follow all panels.
-        if (!mesh.corner_uv.empty()) {
-          for (const auto& [p, k] : folds) {
-            const std::vector<Vec2> c = mesh.corner_uv[p];
-            const int a = k, b = k + 1, d = (k + 3) % 4, e = k + 2;
-            mesh.corner_uv[p] = {c[a], c[b], c[e]};
-            mesh.corner_uv.push_back({c[a], c[e], c[d]});
-          }
-        }
-        for (auto& panel : extra) mesh.panels.push_back(std::move(panel));
-        build_rods(mesh);
+        rep.grid_cells = static_cast<double>(lines.u.size() - 1) * (lines.v.size() - 1);
+        apply_folds(mesh, folds);
         rep.folds = static_cast<int>(folds.size());
         rep.max_estimate = worst_kept;
         return mesh;
@@ -432,6 +612,13 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
     if (done && params.edge_share == 0) break;
   }
   if (!have) std::rethrow_exception(failure);
+  // Never more panels than the coarsest iso grid that holds the bound.
+  if (params.iso_fallback && best_rep.grid_cells > 0) {
+    const double share = static_cast<double>(best.panels.size()) / best_rep.grid_cells;
+    if (std::optional<PanelMesh> iso = coarsest_iso_grid(
+            face, trim, gauge, params.clip, params.sample_step, max_size, best, share, best_rep))
+      best = std::move(*iso);
+  }
   if (report) *report = best_rep;
   return best;
 }
