@@ -1,9 +1,10 @@
-// Bindings of the analysis area: panel types.
+// Bindings of the analysis area: panel types and panel families.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include "numpy_convert.h"
+#include "tessella/panel_families.h"
 #include "tessella/panel_mesh.h"
 #include "tessella/panel_types.h"
 #include "tessella/unfold.h"
@@ -51,4 +52,37 @@ void bind_analysis(py::module_& m) {
         return panel_types(mesh, unfold, p);
       },
       py::arg("mesh"), py::arg("unfold"), py::arg("params"));
+
+  // Panel families (tessella/panel_families.h): panels as (k,3) corner arrays.
+  py::class_<PanelFamilyParams>(m, "PanelFamilyParams")
+      .def(py::init<>())
+      .def_readwrite("tolerance", &PanelFamilyParams::tolerance)
+      .def_readwrite("mirror", &PanelFamilyParams::mirror);
+  py::class_<PanelFamilies>(m, "PanelFamilies")
+      .def_property_readonly("labels",
+                             [](const PanelFamilies& f) { return bindings::integers(f.labels); })
+      .def_property_readonly("templates",
+                             [](const PanelFamilies& f) { return bindings::integers(f.templates); })
+      .def_property_readonly("max_error",
+                             [](const PanelFamilies& f) { return bindings::values(f.max_error); })
+      .def_property_readonly("error",
+                             [](const PanelFamilies& f) { return bindings::values(f.error); })
+      .def_property_readonly("count", &PanelFamilies::count);
+  m.def(
+      "panel_families",
+      [](const std::vector<DoubleArray>& panels, const PanelFamilyParams& p) {
+        std::vector<std::vector<Vec3>> corners;
+        corners.reserve(panels.size());
+        for (const auto& c : panels) corners.push_back(bindings::points<3>(c, "a panel's corners"));
+        py::gil_scoped_release release;
+        return panel_families(corners, p);
+      },
+      py::arg("panels"), py::arg("params"));
+  m.def(
+      "panel_distance",
+      [](const DoubleArray& a, const DoubleArray& b, bool mirror) {
+        return panel_distance(bindings::points<3>(a, "panel a"), bindings::points<3>(b, "panel b"),
+                              mirror);
+      },
+      py::arg("a"), py::arg("b"), py::arg("mirror") = true);
 }

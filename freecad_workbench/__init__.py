@@ -17,6 +17,7 @@ __version__ = "0.1.0"
 from .api import METHODS, Cancelled, PanelizeResult, panelize, panelize_faces  # noqa: F401,E402
 from .plots import histograms  # noqa: F401,E402
 from .boundary_driven import boundary_driven_stages  # noqa: F401,E402
+from .families import PanelFamilies, panel_families  # noqa: F401,E402
 
 
 def gui_progress(title="Tessella"):

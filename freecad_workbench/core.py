@@ -8,7 +8,8 @@ sets (`guide_line_scaling_curves`, `two_guide_lines_curves` with their params
 structs), `boundary_driven_stages` (traced curves and the preliminary network),
 `iso_grid` + `measure_panels` (the coarsest-grid search of
 bench/compare_methods.py), `summarize`, `surface_evaluations`, `global_projections`, `mesh_folds`,
-`fold_angle_deg`; `panel_types` / `flat_panel_types` / `mesh_panel_types` (congruent flat panels).
+`fold_angle_deg`; `panel_types` / `flat_panel_types` / `mesh_panel_types` (congruent flat panels);
+`panel_families` / `panel_distance` (panels within a tolerance of a template).
 """
 
 try:
@@ -34,6 +35,9 @@ from ._core import (  # noqa: E402,F401
     flatten_face_set_panels,
     NestParams,
     PanelTypeParams,
+    PanelFamilyParams,
+    panel_families,
+    panel_distance,
     flat_panel_types,
     mesh_panel_types,
     panel_types,

@@ -1,0 +1,118 @@
+"""Panel families: panels that one template serves within a tolerance (console API).
+
+    import freecad_workbench as tessella
+    r = tessella.panelize(face, method="iso_grid", size=1500.0)
+    fam = tessella.panel_families(r, family_tolerance=2.0, mirror=True)
+    fam.labels        # family index of each panel (0-based, numbered by lowest panel)
+    fam.templates     # panel index of each family's template
+    fam.max_error     # per family: largest corner distance of a member to its template (mm)
+    fam.error         # per panel: its corner distance to its family's template (mm)
+    fam.counts        # panels per family
+    fam.summary()     # {"families", "largest_family", "mean_panels_per_family", ...}
+
+A panel belongs to a family when, after the best rigid alignment found onto the
+family's template (Kabsch over every corner correspondence: the corner order
+turned, and with `mirror` also reversed with a reflection allowed), no corner
+is farther than `family_tolerance` (mm) from the template's. Kabsch minimises
+the RMS distance, so the value is an upper bound of the least possible largest
+distance: the tolerance holds conservatively. Grouping is a deterministic greedy
+set cover (fewest families, approximately) in the core:
+cpp_core/include/tessella/panel_families.h.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+#: Default family tolerance (mm).
+FAMILY_TOLERANCE = 2.0
+
+
+def family_name(f):
+    """The name of family f (0-based): PF-001, PF-002, ..."""
+    return f"PF-{int(f) + 1:03d}"
+
+
+def panel_corners(result):
+    """One (k,3) array of 3D corners per panel of a result (panel order)."""
+    xyz = np.asarray(result.vertices, dtype=float).reshape(-1, 3)
+    return [xyz[list(p)] for p in result.panels]
+
+
+@dataclass
+class PanelFamilies:
+    """Families of a result's panels (see the module docstring). Arrays are numpy."""
+
+    labels: np.ndarray  # (P,) int: family of each panel
+    templates: np.ndarray  # (F,) int: panel index of each family's template
+    max_error: np.ndarray  # (F,) float mm
+    error: np.ndarray  # (P,) float mm, against the panel's template
+    tolerance: float = FAMILY_TOLERANCE
+    mirror: bool = True
+    counts: np.ndarray = field(init=False)  # (F,) int: panels per family
+
+    def __post_init__(self):
+        self.counts = np.bincount(self.labels, minlength=len(self.templates)).astype(np.int64)
+
+    @property
+    def count(self):
+        """Number of families."""
+        return len(self.templates)
+
+    def members(self, f):
+        """Panel indices of family f (increasing)."""
+        return np.flatnonzero(self.labels == f)
+
+    def names(self):
+        """Family name of each panel (PF-001, ...)."""
+        return [family_name(f) for f in self.labels]
+
+    def summary(self):
+        """{'families', 'largest_family', 'mean_panels_per_family', 'max_error',
+        'family_tolerance', 'mirror'}."""
+        n = len(self.labels)
+        return {
+            "families": self.count,
+            "largest_family": int(self.counts.max()) if self.count else 0,
+            "mean_panels_per_family": n / self.count if self.count else 0.0,
+            "max_error": float(self.max_error.max()) if self.count else 0.0,
+            "family_tolerance": float(self.tolerance),
+            "mirror": bool(self.mirror),
+        }
+
+
+def families_of_corners(corners, family_tolerance=FAMILY_TOLERANCE, mirror=True):
+    """PanelFamilies of panels given as (k,3) corner arrays (k >= 3).
+
+    ValueError (from the core) for a tolerance that is not > 0 and finite, a
+    panel with fewer than 3 corners or a non-finite coordinate."""
+    from . import core
+
+    try:
+        tol = float(family_tolerance)
+    except (TypeError, ValueError):
+        raise ValueError(f"family_tolerance must be a number of mm, got {family_tolerance!r}") from None
+    p = core.PanelFamilyParams()
+    p.tolerance = tol
+    p.mirror = bool(mirror)
+    f = core.panel_families([np.asarray(c, dtype=float).reshape(-1, 3) for c in corners], p)
+    return PanelFamilies(labels=f.labels.astype(np.int64), templates=f.templates.astype(np.int64),
+                         max_error=np.asarray(f.max_error, dtype=float),
+                         error=np.asarray(f.error, dtype=float), tolerance=tol, mirror=bool(mirror))
+
+
+def panel_families(result, family_tolerance=FAMILY_TOLERANCE, mirror=True):
+    """PanelFamilies of a PanelizeResult's panels (their 3D corners)."""
+    return families_of_corners(panel_corners(result), family_tolerance, mirror)
+
+
+def family_rows(result, fam):
+    """One dict per family: family, template (panel ID), count, max_error_mm,
+    members (panel IDs), for the family schedule and the drawings."""
+    ids = result.panel_ids
+    rows = []
+    for f, t in enumerate(fam.templates):
+        rows.append({"family": family_name(f), "template": ids[int(t)],
+                     "count": int(fam.counts[f]), "max_error_mm": float(fam.max_error[f]),
+                     "members": [ids[int(k)] for k in fam.members(f)]})
+    return rows
