@@ -162,6 +162,59 @@ def test_never_more_panels_than_the_coarsest_iso_grid(build):
     assert max(dev.values()) <= bound * (1 + 1e-6)
 
 
+def height_field(fn, nx=21, ny=17, size_x=14000.0, size_y=10000.0):
+    pts = [[FreeCAD.Vector(size_x * i / (nx - 1), size_y * j / (ny - 1),
+                           fn(size_x * i / (nx - 1), size_y * j / (ny - 1)))
+            for j in range(ny)] for i in range(nx)]
+    s = Part.BSplineSurface()
+    s.interpolate(pts)
+    return s.toShape()
+
+
+def corner_bump(x, y):
+    return 1500.0 * math.exp(-(((x - 3000) / 1200) ** 2 + ((y - 2500) / 1200) ** 2))
+
+
+def two_bumps(x, y):
+    return (1200.0 * math.exp(-(((x - 2500) / 1000) ** 2 + ((y - 2500) / 1000) ** 2))
+            + 1200.0 * math.exp(-(((x - 11500) / 1000) ** 2 + ((y - 7500) / 1000) ** 2)))
+
+
+def iso_grid_lower_bound(face, bound, dense=96):
+    """No iso grid with fewer panels than this meets the bound: a feasible
+    (u_count, v_count) has u_count >= the least u_count feasible with v_count
+    = `dense`, and likewise v (denser is not worse; the faces are untrimmed,
+    so an iso grid has u_count x v_count panels)."""
+    def least(feasible):
+        lo, hi = 1, dense
+        assert feasible(hi)
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if feasible(mid):
+                hi = mid
+            else:
+                lo = mid + 1
+        return lo
+
+    def ok(nu, nv):
+        r = tessella.panelize(face, method="iso_grid", u_count=nu, v_count=nv)
+        return r.metrics["panel_deviation"].max() <= bound
+
+    return least(lambda k: ok(k, dense)) * least(lambda k: ok(dense, k))
+
+
+@pytest.mark.parametrize("height", [corner_bump, two_bumps])
+def test_strongly_varying_surfaces_need_far_fewer_panels_than_any_iso_grid(height):
+    """Flat fields with one or two sharp bumps (not bundled): lines that one
+    bump needs must not densify the whole face. Target (issue 18): at least
+    30% fewer panels than the coarsest iso grid meeting the same bound."""
+    face = height_field(height)
+    bound = 30.0
+    r = tessella.panelize(face, method="walking_agent", max_deviation=bound)
+    assert r.metrics["panel_deviation"].max() <= bound
+    assert len(r.panels) <= 0.7 * iso_grid_lower_bound(face, bound)
+
+
 def test_folds_carry_their_angle(freeform_face):
     # The untrimmed surface under the freeform face, walked with the thesis'
     # rule at the full bound: two quads bend over the bound and fold along
