@@ -1,7 +1,7 @@
 """Analysis colours: per-panel and per-rod values mapped to colours (no GUI needed).
 
-The view providers use this to colour the Panels (by deviation, planarity, area
-or irregularity) and the Rods (by length); the legend shows the same scale.
+The view providers use this to colour the Panels (by deviation, planarity, area,
+irregularity, type or family) and the Rods (by length); the legend shows the same scale.
 """
 
 import numpy as np
@@ -25,6 +25,7 @@ PANEL_MODES = {
     "Area": ("Area", "m²"),
     "Irregular": ("Irregular", ""),
     "Type": ("PanelType", "type"),
+    "Family": ("PanelFamily", "family"),  # empty while FamilyTolerance is 0
 }
 ROD_MODES = {"Length": ("RodLengths", "mm")}
 

@@ -95,7 +95,7 @@ def families_of_corners(corners, family_tolerance=FAMILY_TOLERANCE, mirror=True)
     p = core.PanelFamilyParams()
     p.tolerance = tol
     p.mirror = bool(mirror)
-    f = core.panel_families([np.asarray(c, dtype=float).reshape(-1, 3) for c in corners], p)
+    f = core.panel_families([np.asarray(c, dtype=float) for c in corners], p)
     return PanelFamilies(labels=f.labels.astype(np.int64), templates=f.templates.astype(np.int64),
                          max_error=np.asarray(f.max_error, dtype=float),
                          error=np.asarray(f.error, dtype=float), tolerance=tol, mirror=bool(mirror))

@@ -125,6 +125,7 @@ class _Cache:
         self.shapes = shapes
         self.serial = next(self._serials)
         self._types = {}
+        self._families = {}
 
     def panel_types(self, length_tol, angle_tol=0.5):
         """(type index per panel, type count) of the unfolded panels
@@ -138,6 +139,15 @@ class _Cache:
             t = core.mesh_panel_types(self.result._mesh, core.UnfoldParams(), p)
             self._types[key] = (t.type.tolist(), int(t.count))
         return self._types[key]
+
+    def panel_families(self, tolerance, mirror=True):
+        """families.PanelFamilies of the 3D panels (families.panel_families)."""
+        key = (float(tolerance), bool(mirror))
+        if key not in self._families:
+            from .. import families
+
+            self._families[key] = families.panel_families(self.result, *key)
+        return self._families[key]
 
 
 def _check_edge_count(obj, param, edges):
@@ -485,6 +495,26 @@ class PanelizationPart(_StateMixin):
                          "Type index per panel (congruent panels share one)", attr=ro)
             add_property(obj, "App::PropertyInteger", "TypeCount", "Data",
                          "Number of different panel types", attr=ro)
+            # Panel families (freecad_workbench.families): panels one template
+            # serves within FamilyTolerance; 0 = not computed.
+            add_property(obj, "App::PropertyLength", "FamilyTolerance", "Families",
+                         "Panels whose corners lie within this of a shared template's (after "
+                         "the best rigid alignment) form one family; 0 = off", default=0.0)
+            add_property(obj, "App::PropertyBool", "Mirror", "Families",
+                         "A family's template may also serve its mirror image (turned over)",
+                         default=True)
+            add_property(obj, "App::PropertyIntegerList", "PanelFamily", "Data",
+                         "Family index per panel (empty while FamilyTolerance is 0)", attr=ro)
+            add_property(obj, "App::PropertyIntegerList", "FamilyTemplates", "Data",
+                         "Panel index of each family's template", attr=ro)
+            add_property(obj, "App::PropertyInteger", "FamilyCount", "Families",
+                         "Number of panel families (0 while FamilyTolerance is 0)", attr=ro)
+            add_property(obj, "App::PropertyInteger", "LargestFamily", "Families",
+                         "Panels in the largest family", attr=ro)
+            add_property(obj, "App::PropertyFloat", "PanelsPerFamily", "Families",
+                         "Mean number of panels per family", attr=ro)
+            add_property(obj, "App::PropertyLength", "FamilyMaxError", "Families",
+                         "Largest corner distance of a panel to its family's template", attr=ro)
         elif role == "Rods":
             add_property(obj, "App::PropertyStringList", "RodIds", "Data",
                          "Rod IDs, one per edge", attr=ro)
@@ -514,7 +544,8 @@ class PanelizationPart(_StateMixin):
         # change that left the result as it was): nothing to rebuild.
         if role == "Panels":
             tol = max(value_of(obj.TypeTolerance), 1e-6)
-            inputs = (cache.serial, res.panel_id_format, tol)
+            inputs = (cache.serial, res.panel_id_format, tol,
+                      value_of(obj.FamilyTolerance), bool(obj.Mirror))
         elif role == "Rods":
             inputs = (cache.serial, res.rod_id_format)
         else:
@@ -522,6 +553,8 @@ class PanelizationPart(_StateMixin):
         if getattr(self, "_applied", None) == inputs:
             return
         self._applied = None
+        if role == "Panels":  # before the shape, so a colouring by family sees them
+            self._apply_families(obj, cache)
         obj.Shape = cache.shapes[role]
         if role == "Panels":
             obj.PanelIds = res.panel_ids  # the parent's PanelIdFormat (checked there)
@@ -539,3 +572,33 @@ class PanelizationPart(_StateMixin):
             obj.NodeIds = list(res.node_ids)
             obj.Valence = [int(x) for x in res.metrics["node_valence"]]
         self._applied = inputs
+
+    @staticmethod
+    def _apply_families(obj, cache):
+        """PanelFamily and the family figures from FamilyTolerance / Mirror
+        (all empty / 0 while FamilyTolerance is 0)."""
+        tol = value_of(obj.FamilyTolerance)
+        if tol < 0:
+            raise ValueError(f"{obj.Label}: FamilyTolerance must be >= 0 mm (0 = off), got {tol}")
+        if tol == 0:
+            fam = None
+        else:
+            fam = cache.panel_families(tol, bool(obj.Mirror))
+        s = fam.summary() if fam is not None else {}
+        obj.PanelFamily = fam.labels.tolist() if fam is not None else []
+        obj.FamilyTemplates = fam.templates.tolist() if fam is not None else []
+        obj.FamilyCount = int(s.get("families", 0))
+        obj.LargestFamily = int(s.get("largest_family", 0))
+        obj.PanelsPerFamily = float(s.get("mean_panels_per_family", 0.0))
+        obj.FamilyMaxError = float(s.get("max_error", 0.0))
+
+    def families(self, obj):
+        """families.PanelFamilies of a Panels object at its FamilyTolerance / Mirror
+        (None while FamilyTolerance is 0): what schedules, drawings and nesting use."""
+        if obj.Role != "Panels" or "FamilyTolerance" not in obj.PropertiesList:
+            return None
+        tol = value_of(obj.FamilyTolerance)
+        if tol <= 0:
+            return None
+        parent = obj.Base
+        return parent.Proxy.result(parent).panel_families(tol, bool(obj.Mirror))
