@@ -112,6 +112,7 @@ FaceSet FaceSet::from_brep_string(const std::string& brep) {
     TopoDS_Vertex v0, v1;
     TopExp::Vertices(edge, v0, v1);
     s.closed = !v0.IsNull() && v0.IsSame(v1);
+    BRepBndLib::Add(edge, s.box, false);  // the curve, enlarged by the edge's tolerance
     impl->shared.push_back(s);
   }
   return FaceSet(std::move(impl));

@@ -3,6 +3,7 @@
 // each face.
 #pragma once
 
+#include <Bnd_Box.hxx>
 #include <Geom2d_Curve.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
@@ -23,6 +24,9 @@ struct SharedEdge {
   double first = 0, last = 0;
   // The edge's two vertices lie at its ends (a closed edge: the same point).
   bool closed = false;
+  // The edge's 3D box, grown by its tolerance: its curve on either face lies
+  // inside (a mesh vertex outside, by more than a match tolerance, is not on it).
+  Bnd_Box box;
 };
 
 struct FaceSet::Impl {

@@ -1,6 +1,7 @@
 #include "faceset/shared_edge_nodes.h"
 
 #include <BndLib_Add2dCurve.hxx>
+#include <Bnd_Box.hxx>
 #include <Bnd_Box2d.hxx>
 #include <Geom2dAPI_ProjectPointOnCurve.hxx>
 #include <Standard_Failure.hxx>
@@ -36,7 +37,8 @@ class EdgeSide {
         first_(e.first),
         last_(e.last),
         face_(face),
-        mesh_(mesh) {
+        mesh_(mesh),
+        box3d_(e.box) {
     // The curve's (u,v) box, grown by a little: most vertices are far from
     // the edge and skip the projection.
     BndLib_Add2dCurve::Add(curve_, first_, last_, 0.0, box_);
@@ -50,6 +52,16 @@ class EdgeSide {
   bool locate(int v, double tol, double& t) const {
     const Vec2& q0 = mesh_.uv[static_cast<std::size_t>(v)];
     const Vec3& x = mesh_.xyz[static_cast<std::size_t>(v)];
+    // Farther than tol from the edge's box: not on the edge, no projection
+    // (most boundary vertices in the (u,v) box of a long edge).
+    if (!box3d_.IsVoid()) {
+      double x0, y0, z0, x1, y1, z1;
+      box3d_.Get(x0, y0, z0, x1, y1, z1);
+      const Vec3 out(std::max({x0 - x.x(), 0.0, x.x() - x1}),
+                     std::max({y0 - x.y(), 0.0, x.y() - y1}),
+                     std::max({z0 - x.z(), 0.0, x.z() - z1}));
+      if (out.norm() > tol) return false;
+    }
     // On a periodic face the vertex may sit a period away from the curve.
     const double pu = face_.u_periodic() ? face_.u_period() : 0.0;
     const double pv = face_.v_periodic() ? face_.v_period() : 0.0;
@@ -106,6 +118,7 @@ class EdgeSide {
   const SurfaceFace& face_;
   PanelMesh& mesh_;
   Bnd_Box2d box_;
+  Bnd_Box box3d_;
 };
 
 // Outline edges used by one panel only: the mesh's boundary (along trims).
