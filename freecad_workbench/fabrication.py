@@ -426,6 +426,16 @@ def nest(flat, sheet_width=2500.0, sheet_height=1250.0, margin=10.0, spacing=6.0
     )
 
 
+
+def nest_families(flat, result, families, **options):
+    """Nest every panel cut to its family's template (freecad_workbench.families):
+    each template's outline as many times as its family has panels, each copy
+    with the ID of the panel it becomes. `flat`: fabrication.unfold(result);
+    `families`: tessella.panel_families(result, ...); options as nest()."""
+    from .families import family_parts
+
+    return nest(family_parts(flat, result, families), **options)
+
 @dataclass
 class FlatPatch:
     """A panel kept as its curved surface patch, flattened (LSCM, scaled to the 3D area)."""

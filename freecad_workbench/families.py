@@ -116,3 +116,58 @@ def family_rows(result, fam):
                      "count": int(fam.counts[f]), "max_error_mm": float(fam.max_error[f]),
                      "members": [ids[int(k)] for k in fam.members(f)]})
     return rows
+
+
+# ----------------------------------------------------------- drawings, nesting
+def _flat_by_id(flat, result):
+    by_id = {f.id: f for f in flat}
+    missing = [pid for pid in result.panel_ids if pid not in by_id]
+    if missing:
+        raise ValueError(f"flat panel {missing[0]!r} is missing: unfold the result whose "
+                         "families you draw (fabrication.unfold(result))")
+    return by_id
+
+
+def _check_families(result, fam):
+    if fam is None or len(fam.labels) != len(result.panels):
+        raise ValueError("the families are not of this result's panels: compute them with "
+                         "tessella.panel_families(result, ...)")
+
+
+def template_parts(flat, result, fam):
+    """One flat part per family: its template's unfolded panel, with the family
+    name (PF-001, ...) as ID (what a drawing labels and engraves)."""
+    import dataclasses
+
+    _check_families(result, fam)
+    by_id = _flat_by_id(list(flat), result)
+    ids = result.panel_ids
+    return [dataclasses.replace(by_id[ids[int(t)]], id=family_name(f))
+            for f, t in enumerate(fam.templates)]
+
+
+def family_parts(flat, result, fam):
+    """One flat part per panel (panel order): its family's template outline with
+    the panel's own ID: every panel cut to its template (nesting by family: each
+    template as many times as its family has panels)."""
+    import dataclasses
+
+    _check_families(result, fam)
+    by_id = _flat_by_id(list(flat), result)
+    ids = result.panel_ids
+    return [dataclasses.replace(by_id[ids[int(fam.templates[f])]], id=ids[k])
+            for k, f in enumerate(fam.labels)]
+
+
+def members_lines(result, fam, per_line=12):
+    """The list of members as text lines: a heading line per family
+    ("PF-001: template P-0012, 24 panels, max error 0.412 mm") followed by its
+    members' IDs, `per_line` to a line."""
+    lines = []
+    for row in family_rows(result, fam):
+        lines.append(f"{row['family']}: template {row['template']}, {row['count']} panels, "
+                     f"max error {row['max_error_mm']:.3f} mm")
+        m = row["members"]
+        for k in range(0, len(m), per_line):
+            lines.append("    " + " ".join(m[k:k + per_line]))
+    return lines

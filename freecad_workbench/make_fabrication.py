@@ -109,6 +109,31 @@ def export_unfold(unfold_obj, path, **options):
     return export_dxf(flat, path, layout=layout, kerf=kerf, **options)
 
 
+def export_families(panelization, path, fold_tolerance=0.01, **options):
+    """Write one template per panel family of a Panelization (its Panels object's
+    FamilyTolerance / Mirror) with the list of members, to DXF or SVG by the
+    extension (export.dxf.export_family_dxf / export.svg.export_family_svg;
+    `options` go to the DXF writer). ValueError while families are off."""
+    from . import fabrication
+    from .export.dxf import export_family_dxf
+    from .export.svg import export_family_svg
+    from .spreadsheets import panel_families_of
+
+    fam = panel_families_of(panelization)
+    if fam is None:
+        raise ValueError(f"{panelization.Label}: panel families are off: set the Panels "
+                         "object's FamilyTolerance (mm) above 0")
+    ext = str(path).lower().rsplit(".", 1)[-1]
+    if ext not in ("dxf", "svg"):
+        raise ValueError(f"the file must end in .dxf or .svg, got {path!r}")
+    res = panelization.Proxy.result(panelization).result
+    flat = fabrication.unfold(res, fold_tolerance=fold_tolerance)
+    if ext == "svg":
+        if options:
+            raise ValueError(f"options {sorted(options)} apply to DXF only")
+        return export_family_svg(flat, res, fam, path)
+    return export_family_dxf(flat, res, fam, path, **options)
+
 def beside(panelization, unfold):
     """A Placement that lays the flat parts of a new Unfold (still at the
     identity) next to the model: to the right of the Panels' bounding box with

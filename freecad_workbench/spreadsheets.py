@@ -2,6 +2,10 @@
 
     sheets = tessella.make_schedules(panelization_obj)   # PanelSchedule, RodSchedule, NodeSchedule
 
+With panel families on (the Panels object's FamilyTolerance > 0), the panel
+schedule gets a Family column and a FamilySchedule sheet lists each family:
+its template's panel ID, the panel count, the largest error and the members.
+
 The same columns as the CSV files of freecad_workbench.export.members
 (panel fabrication schedule, rod data, node schedule), in one transaction,
 with readable headers (SHEET_COLUMNS), lengths, angles and areas as FreeCAD
@@ -34,6 +38,8 @@ SHEET_COLUMNS = {
     "x": ("X", "mm"), "y": ("Y", "mm"), "z": ("Z", "mm"), "axis_x": ("Axis X", "number"),
     "axis_y": ("Axis Y", "number"), "axis_z": ("Axis Z", "number"),
     "valence": ("Rod count", "count"), "rods": ("Rods (azimuth, elevation)", "rods"),
+    "family": ("Family", "text"), "template": ("Template", "text"), "count": ("Panels", "count"),
+    "max_error_mm": ("Max error", "mm"), "members": ("Members", "text"),
 }
 
 #: Display unit per kind (areas of panels read in m², as quantity surveyors do).
@@ -92,8 +98,19 @@ def _fill(sheet, rows):
     for j, kind in enumerate(kinds):
         if kind in _DISPLAY_UNIT and len(rows) > 1:
             sheet.setDisplayUnit(f"{_col(j)}2:{_col(j)}{len(rows)}", _DISPLAY_UNIT[kind])
-        width = 360 if kind == "rods" else max(90, 8 * len(titles[j]))
+        width = 360 if kind == "rods" or header[j] == "members" else max(90, 8 * len(titles[j]))
         sheet.setColumnWidth(_col(j), width)
+
+
+def panel_families_of(panelization):
+    """families.PanelFamilies of a Panelization's Panels object at its
+    FamilyTolerance / Mirror, or None (families off, or no Panels child)."""
+    from .features import panelization as pfeat
+
+    for child in pfeat.children_of(panelization):
+        if child.Role == "Panels" and hasattr(child.Proxy, "families"):
+            return child.Proxy.families(child)
+    return None
 
 
 def make_schedules(panelization, doc=None, fold_tolerance=0.01):
@@ -108,11 +125,18 @@ def make_schedules(panelization, doc=None, fold_tolerance=0.01):
     doc = doc or panelization.Document
     res = panelization.Proxy.result(panelization).result
     flat = fabrication.unfold(res, fold_tolerance=fold_tolerance)
+    fam = panel_families_of(panelization)
+    writers = [("PanelSchedule", lambda p: mx.write_panel_fabrication_schedule(res, flat, p,
+                                                                               families=fam)),
+               ("RodSchedule", lambda p: mx.write_rod_data(res, p)),
+               ("NodeSchedule", lambda p: mx.write_node_schedule(res, p))]
+    if fam is not None:
+        from .export.schedule_csv import write_family_schedule
+
+        writers.append(("FamilySchedule", lambda p: write_family_schedule(res, fam, p)))
     tables = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for name, write in (("PanelSchedule", lambda p: mx.write_panel_fabrication_schedule(res, flat, p)),
-                            ("RodSchedule", lambda p: mx.write_rod_data(res, p)),
-                            ("NodeSchedule", lambda p: mx.write_node_schedule(res, p))):
+        for name, write in writers:
             path = os.path.join(tmp, name + ".csv")
             write(path)
             with open(path, newline="", encoding="utf-8") as f:

@@ -7,10 +7,12 @@ Writers take a `PanelizeResult` (see freecad_workbench.api) and need no FreeCAD 
 """
 
 from .schedule_csv import (  # noqa: F401
+    FAMILY_COLUMNS,
     NODE_COLUMNS,
     PANEL_COLUMNS,
     ROD_COLUMNS,
     panel_perimeters,
+    write_family_schedule,
     write_node_schedule,
     write_panel_schedule,
     write_rod_schedule,
@@ -18,10 +20,12 @@ from .schedule_csv import (  # noqa: F401
 )
 
 __all__ = [
+    "FAMILY_COLUMNS",
     "NODE_COLUMNS",
     "PANEL_COLUMNS",
     "ROD_COLUMNS",
     "panel_perimeters",
+    "write_family_schedule",
     "write_node_schedule",
     "write_panel_schedule",
     "write_rod_schedule",

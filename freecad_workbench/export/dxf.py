@@ -316,3 +316,40 @@ def export_dxf(flat, path, layout=None, kerf=0.0, *, per_sheet=None, blocks=Fals
     if blocks:
         summary["block_names"] = names
     return summary
+
+
+def export_family_dxf(flat, result, families, path, **options):
+    """Write one template per panel family (its unfolded template panel,
+    labelled with the family name PF-001, ...) and, below the drawing on layer
+    LABEL, the list of each family's members (freecad_workbench.families).
+
+    `flat`: the result's unfolded panels (fabrication.unfold(result));
+    `families`: tessella.panel_families(result, ...). Options as export_dxf
+    (keyword only; no layout: templates are drawn in rows; nest every panel
+    cut to its template with fabrication.nest_families). Returns export_dxf's
+    summary plus "families" and "member_lines"."""
+    import ezdxf
+
+    from ..families import members_lines, template_parts
+
+    if options.get("layout") is not None or options.get("per_sheet"):
+        raise ValueError("the family templates are drawn without a layout: nest the panels "
+                         "by family with fabrication.nest_families and export_dxf")
+    options.pop("layout", None)
+    parts = template_parts(flat, result, families)
+    summary = export_dxf(parts, path, **options)
+    lines = members_lines(result, families)
+    doc = ezdxf.readfile(str(path))
+    lo, hi = doc.header.get("$EXTMIN", (0, 0, 0)), doc.header.get("$EXTMAX", (0, 0, 0))
+    width = max(float(hi[0]) - float(lo[0]), 1.0)
+    height = min(max(0.008 * width, 20.0), 200.0)
+    y = float(lo[1]) - 2.0 * height
+    msp = doc.modelspace()
+    for line in lines:
+        msp.add_text(line, dxfattribs={"layer": "LABEL", "height": height,
+                                       "insert": (float(lo[0]), y)})
+        y -= 1.6 * height
+    doc.header["$EXTMIN"] = (float(lo[0]), y, 0.0)
+    doc.saveas(str(path))
+    summary.update(families=len(parts), member_lines=len(lines))
+    return summary

@@ -150,10 +150,13 @@ def write_abaqus_inp(result, path, profile=("pipe", 60.0, 4.0), young=210000.0, 
     return path
 
 
-def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_tol=0.5):
+def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_tol=0.5,
+                                     families=None):
     """One row per panel: type (congruent flat panels), flat size (bounding box of
     the outline as unfolded), 3D model area and flat area, perimeter, deviation,
-    planarity, fold diagonal ("a-b", corner indices) and angle. Returns the row count."""
+    planarity, fold diagonal ("a-b", corner indices) and angle; with `families`
+    (a families.PanelFamilies of the result) a last column "family" (PF-001,
+    ...). Returns the row count."""
     from .schedule_csv import panel_perimeters
 
     from ..fabrication import unique_ids
@@ -170,7 +173,12 @@ def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_t
         rows.append(index[pid])
     with _open(path) as f:
         w = csv.writer(f)
-        w.writerow(PANEL_FAB_COLUMNS)
+        names = None
+        if families is not None:
+            if len(families.labels) != len(result.panels):
+                raise ValueError("the families are not of this result's panels")
+            names = families.names()
+        w.writerow(PANEL_FAB_COLUMNS + (("family",) if names is not None else ()))
         for t, fp, k in zip(types, flat, rows):
             size = fp.outline.max(axis=0) - fp.outline.min(axis=0)
             w.writerow([fp.id, f"PT-{t + 1:03d}", len(fp.outline), repr(float(size[0])),
@@ -179,5 +187,6 @@ def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_t
                         repr(float(result.metrics["panel_deviation"][k])),
                         repr(float(result.metrics["panel_planarity"][k])),
                         f"{fp.fold[0]}-{fp.fold[1]}" if fp.fold else "",
-                        repr(float(fp.fold_angle)), int(fp.fold_valley), len(fp.folds)])
+                        repr(float(fp.fold_angle)), int(fp.fold_valley), len(fp.folds)]
+                       + ([names[k]] if names is not None else []))
     return len(flat)

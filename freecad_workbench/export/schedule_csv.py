@@ -26,6 +26,9 @@ PANEL_COLUMNS = (
     "centroid_z",
 )
 ROD_COLUMNS = ("id", "node_a", "node_b", "length_mm")
+#: The family schedule (freecad_workbench.families): one row per family; members
+#: are the panel IDs separated by spaces.
+FAMILY_COLUMNS = ("family", "template", "count", "max_error_mm", "members")
 NODE_COLUMNS = ("id", "x", "y", "z", "nx", "ny", "nz", "valence")
 
 
@@ -59,8 +62,10 @@ def _open(path):
     return open(path, "w", newline="", encoding="utf-8")
 
 
-def write_panel_schedule(result, path):
-    """Writes one row per panel (columns PANEL_COLUMNS). Returns the number of rows."""
+def write_panel_schedule(result, path, families=None):
+    """Writes one row per panel (columns PANEL_COLUMNS, then "family" when
+    `families`, a families.PanelFamilies of the result, is given). Returns the
+    number of rows."""
     n = len(result.panels)
     xyz = np.asarray(result.vertices, dtype=float)
     area = _metric(result, "panel_area", n)
@@ -73,9 +78,10 @@ def write_panel_schedule(result, path):
         raise ValueError(f"irregular has {irregular.shape[0]} flags, expected {n}")
     perimeter = panel_perimeters(result)
     ids = result.panel_ids
+    names = _family_names(families, n)
     with _open(path) as f:
         w = csv.writer(f)
-        w.writerow(PANEL_COLUMNS)
+        w.writerow(PANEL_COLUMNS + (("family",) if names is not None else ()))
         for k, panel in enumerate(result.panels):
             c = xyz[list(panel)].mean(axis=0)
             w.writerow(
@@ -93,8 +99,37 @@ def write_panel_schedule(result, path):
                     _num(c[1]),
                     _num(c[2]),
                 )
+                + ((names[k],) if names is not None else ())
             )
     return n
+
+
+def _family_names(families, count):
+    """Family name per panel (PF-001, ...), None without families."""
+    if families is None:
+        return None
+    if len(families.labels) != count:
+        raise ValueError(f"the families have {len(families.labels)} panels, the result {count}: "
+                         "compute them from the result you write")
+    return families.names()
+
+
+def write_family_schedule(result, families, path):
+    """Writes one row per family (columns FAMILY_COLUMNS): its name, its
+    template's panel ID, the number of panels, the largest corner distance of
+    a member to the template (mm) and the members' panel IDs. Returns the
+    number of rows."""
+    from ..families import family_rows
+
+    _family_names(families, len(result.panels))
+    rows = family_rows(result, families)
+    with _open(path) as f:
+        w = csv.writer(f)
+        w.writerow(FAMILY_COLUMNS)
+        for row in rows:
+            w.writerow((row["family"], row["template"], row["count"], _num(row["max_error_mm"]),
+                        " ".join(row["members"])))
+    return len(rows)
 
 
 def write_rod_schedule(result, path):
@@ -132,13 +167,18 @@ def write_node_schedule(result, path):
     return len(xyz)
 
 
-def write_schedules(result, folder, name):
-    """Writes panels_<name>.csv, rods_<name>.csv and nodes_<name>.csv into `folder`.
+def write_schedules(result, folder, name, families=None):
+    """Writes panels_<name>.csv, rods_<name>.csv and nodes_<name>.csv into `folder`
+    (and families_<name>.csv, with the panels' family column, when `families`
+    is given).
 
-    Returns {"panels": path, "rods": path, "nodes": path}.
+    Returns {"panels": path, "rods": path, "nodes": path[, "families": path]}.
     """
-    paths = {kind: os.path.join(folder, f"{kind}_{name}.csv") for kind in ("panels", "rods", "nodes")}
-    write_panel_schedule(result, paths["panels"])
+    kinds = ("panels", "rods", "nodes") + (("families",) if families is not None else ())
+    paths = {kind: os.path.join(folder, f"{kind}_{name}.csv") for kind in kinds}
+    write_panel_schedule(result, paths["panels"], families)
     write_rod_schedule(result, paths["rods"])
     write_node_schedule(result, paths["nodes"])
+    if families is not None:
+        write_family_schedule(result, families, paths["families"])
     return paths

@@ -94,3 +94,34 @@ def export_svg(flat, path, layout=None, kerf=0.0):
         fh.write("\n".join(out) + "\n")
     return {"path": str(path), "panels": len(flat), "sheets": len(sheets), "kerf": kerf,
             "width_mm": float(w), "height_mm": float(h)}
+
+
+def export_family_svg(flat, result, families, path, kerf=0.0):
+    """One template per panel family (labelled PF-001, ...) and, under the
+    drawing, the list of each family's members (see export_family_dxf).
+    Returns export_svg's summary plus "families" and "member_lines"."""
+    from ..families import members_lines, template_parts
+
+    parts = template_parts(flat, result, families)
+    summary = export_svg(parts, path, kerf=kerf)
+    lines = members_lines(result, families)
+    w, h = summary["width_mm"], summary["height_mm"]
+    size = min(max(0.008 * w, 20.0), 200.0)
+    new_h = h + (1.6 * len(lines) + 1.0) * size
+    with open(path, encoding="utf-8") as fh:
+        text = fh.read()
+    head = (f'width="{w:.3f}mm" height="{h:.3f}mm" viewBox="0 0 {w:.6f} {h:.6f}"')
+    if head not in text:  # pragma: no cover - export_svg writes exactly this
+        raise RuntimeError("unexpected SVG header")
+    text = text.replace(head, f'width="{w:.3f}mm" height="{new_h:.3f}mm" '
+                              f'viewBox="0 0 {w:.6f} {new_h:.6f}"', 1)
+    out = ['<g class="members">']
+    for i, line in enumerate(lines):
+        out.append(f'<text x="{size:.3f}" y="{h + (1.6 * i + 1.6) * size:.3f}" '
+                   f'font-size="{size:.3f}" xml:space="preserve">{escape(line)}</text>')
+    out.append("</g>")
+    text = text.replace("</svg>", "\n".join(out) + "\n</svg>")
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    summary.update(families=len(parts), member_lines=len(lines), height_mm=float(new_h))
+    return summary

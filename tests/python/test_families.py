@@ -288,3 +288,138 @@ def test_panels_family_properties_recompute_save_and_reopen(doc, tmp_path):
         assert panels2.Proxy.families(panels2) is None
     finally:
         FreeCAD.closeDocument(d2.Name)
+
+
+# ------------------------------------------------- schedules, drawings, nesting
+@pytest.fixture(scope="module")
+def zone():
+    """A sphere zone in 12 x 4 panels: 4 families (the rows) of 12."""
+    r = tessella.panelize(sphere_zone(150), method="iso_grid", u_count=12, v_count=4)
+    fam = tessella.panel_families(r, 2.0)
+    assert fam.count == 4
+    from freecad_workbench import fabrication
+
+    return r, fam, fabrication.unfold(r)
+
+
+def _read_csv(path):
+    import csv
+
+    with open(path, newline="", encoding="utf-8") as f:
+        return list(csv.reader(f))
+
+
+def test_panel_and_family_schedules(zone, tmp_path):
+    from freecad_workbench.export import members, schedule_csv
+
+    r, fam, flat = zone
+    ids = r.panel_ids
+    rows = _read_csv(tmp_path / "p.csv") if schedule_csv.write_panel_schedule(
+        r, tmp_path / "p.csv", fam) else None
+    assert rows[0][-1] == "family" and len(rows) == len(r.panels) + 1
+    by_row = rows_by_height(r)
+    assert same_partition([row[-1] for row in rows[1:]], by_row)
+    # Without families the schedule is as before (no family column).
+    schedule_csv.write_panel_schedule(r, tmp_path / "q.csv")
+    assert "family" not in _read_csv(tmp_path / "q.csv")[0]
+
+    assert schedule_csv.write_family_schedule(r, fam, tmp_path / "f.csv") == 4
+    frows = _read_csv(tmp_path / "f.csv")
+    assert tuple(frows[0]) == schedule_csv.FAMILY_COLUMNS
+    seen = []
+    for name, template, count, err, mem in frows[1:]:
+        mem = mem.split()
+        assert int(count) == len(mem) == 12 and template in mem and float(err) < 1e-6
+        assert len({by_row[ids.index(m)] for m in mem}) == 1  # one row
+        seen += mem
+    assert sorted(seen) == sorted(ids)
+
+    members.write_panel_fabrication_schedule(r, flat, tmp_path / "pf.csv", families=fam)
+    prow = _read_csv(tmp_path / "pf.csv")
+    assert prow[0][-1] == "family"
+    assert [row[-1] for row in prow[1:]] == [rows[k + 1][-1] for k in range(len(ids))]
+    with pytest.raises(ValueError, match="families"):
+        schedule_csv.write_family_schedule(r, families.families_of_corners(
+            families.panel_corners(r)[:5], 2.0), tmp_path / "bad.csv")
+
+
+def test_dxf_and_svg_draw_one_template_per_family_with_its_members(zone, tmp_path):
+    import xml.etree.ElementTree as ET
+
+    import ezdxf
+
+    from freecad_workbench.export import dxf, svg
+
+    r, fam, flat = zone
+    s = dxf.export_family_dxf(flat, r, fam, str(tmp_path / "t.dxf"))
+    assert s["families"] == 4
+    doc = ezdxf.readfile(str(tmp_path / "t.dxf"))
+    cuts = doc.modelspace().query('LWPOLYLINE[layer=="CUT"]')
+    assert len(cuts) == 4
+    assert sorted(dxf.id_from_xdata(c.get_xdata(dxf.APPID))[1] for c in cuts) == \
+        [families.family_name(f) for f in range(4)]
+    texts = " ".join(t.dxf.text for t in doc.modelspace().query("TEXT"))
+    for pid in r.panel_ids:
+        assert pid in texts
+    for f, t in enumerate(fam.templates):
+        assert f"{families.family_name(f)}: template {r.panel_ids[t]}, 12 panels" in texts
+    # The template outline is the template panel's unfolded outline.
+    by_id = {f.id: f for f in flat}
+    cut0 = [c for c in cuts if dxf.id_from_xdata(c.get_xdata(dxf.APPID))[1] == "PF-001"][0]
+    assert len(cut0) == len(by_id[r.panel_ids[fam.templates[0]]].outline)
+
+    svg.export_family_svg(flat, r, fam, str(tmp_path / "t.svg"))
+    root = ET.parse(tmp_path / "t.svg").getroot()
+    ns = "{http://www.w3.org/2000/svg}"
+    groups = [g for g in root.iter(ns + "g") if g.get("data-id")]
+    assert sorted(g.get("data-id") for g in groups) == ["PF-001", "PF-002", "PF-003", "PF-004"]
+    text = " ".join(t.text or "" for t in root.iter(ns + "text"))
+    assert all(pid in text for pid in r.panel_ids)
+    h = float(root.get("viewBox").split()[3])
+    assert all(float(t.get("y")) <= h for t in root.iter(ns + "text"))
+
+
+def test_nesting_by_family_cuts_every_panel_to_its_template(zone):
+    from freecad_workbench import fabrication
+
+    r, fam, flat = zone
+    parts = families.family_parts(flat, r, fam)
+    assert [p.id for p in parts] == r.panel_ids
+    by_id = {f.id: f for f in flat}
+    for k, p in enumerate(parts):
+        tpl = by_id[r.panel_ids[fam.templates[fam.labels[k]]]]
+        assert np.array_equal(p.outline, tpl.outline)
+    layout = fabrication.nest_families(flat, r, fam, sheet_width=6000, sheet_height=3000)
+    assert layout.sheet_count >= 1
+    assert list(layout.ids) == r.panel_ids and len(layout.placements) == len(r.panels)
+    # What is nested is the template outline of each panel's family.
+    for k, outline in enumerate(layout.panel_outlines or []):
+        assert np.allclose(outline, parts[k].outline)
+
+
+def test_spreadsheets_and_document_exports_with_families(doc, tmp_path):
+    from freecad_workbench import make_fabrication
+
+    src = doc.addObject("Part::Feature", "Zone")
+    src.Shape = sphere_zone(150)
+    doc.recompute()
+    p = tessella.make_panelization((src, "Face1"), method="iso_grid", u_count=12, v_count=4)
+    doc.recompute()
+    panels = _panels_of(p)
+    sheets = tessella.make_schedules(p)
+    assert [s.Name for s in sheets] == ["PanelSchedule", "RodSchedule", "NodeSchedule"]
+    with pytest.raises(ValueError, match="FamilyTolerance"):
+        make_fabrication.export_families(p, str(tmp_path / "t.dxf"))
+    panels.FamilyTolerance = 2.0
+    doc.recompute()
+    sheets = tessella.make_schedules(p)
+    fs = [s for s in sheets if s.Name.startswith("FamilySchedule")]
+    assert len(fs) == 1
+    assert fs[0].get("A1") == "Family" and fs[0].get("C1") == "Panels"
+    assert [fs[0].get(f"C{i}") for i in range(2, 6)] == [12, 12, 12, 12]
+    ps = [s for s in sheets if s.Name.startswith("PanelSchedule")][-1]
+    last = "O"  # the column after the 14 fabrication columns
+    assert ps.get(f"{last}1") == "Family"
+    assert {ps.get(f"{last}{i}") for i in range(2, 50)} == {"PF-001", "PF-002", "PF-003", "PF-004"}
+    s = make_fabrication.export_families(p, str(tmp_path / "t.svg"))
+    assert s["families"] == 4
