@@ -57,7 +57,8 @@ void bind_analysis(py::module_& m) {
   py::class_<PanelFamilyParams>(m, "PanelFamilyParams")
       .def(py::init<>())
       .def_readwrite("tolerance", &PanelFamilyParams::tolerance)
-      .def_readwrite("mirror", &PanelFamilyParams::mirror);
+      .def_readwrite("mirror", &PanelFamilyParams::mirror)
+      .def_readwrite("max_pairs", &PanelFamilyParams::max_pairs);
   py::class_<PanelFamilies>(m, "PanelFamilies")
       .def_property_readonly("labels",
                              [](const PanelFamilies& f) { return bindings::integers(f.labels); })
@@ -67,6 +68,7 @@ void bind_analysis(py::module_& m) {
                              [](const PanelFamilies& f) { return bindings::values(f.max_error); })
       .def_property_readonly("error",
                              [](const PanelFamilies& f) { return bindings::values(f.error); })
+      .def_readonly("twin_radius", &PanelFamilies::twin_radius)
       .def_property_readonly("count", &PanelFamilies::count);
   m.def(
       "panel_families",

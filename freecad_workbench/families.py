@@ -49,6 +49,9 @@ class PanelFamilies:
     error: np.ndarray  # (P,) float mm, against the panel's template
     tolerance: float = FAMILY_TOLERANCE
     mirror: bool = True
+    #: panels this close to a lower-indexed one were grouped with it first:
+    #: 1e-3 x tolerance, or tolerance / 32 ... / 4 in the coarse grouping (see the core's header)
+    twin_radius: float = 0.0
     counts: np.ndarray = field(init=False)  # (F,) int: panels per family
 
     def __post_init__(self):
@@ -69,7 +72,7 @@ class PanelFamilies:
 
     def summary(self):
         """{'families', 'largest_family', 'mean_panels_per_family', 'max_error',
-        'family_tolerance', 'mirror'}."""
+        'family_tolerance', 'mirror', 'coarse'} (coarse: the coarse grouping ran)."""
         n = len(self.labels)
         return {
             "families": self.count,
@@ -78,12 +81,15 @@ class PanelFamilies:
             "max_error": float(self.max_error.max()) if self.count else 0.0,
             "family_tolerance": float(self.tolerance),
             "mirror": bool(self.mirror),
+            "coarse": bool(self.twin_radius > 0.01 * self.tolerance),
         }
 
 
-def families_of_corners(corners, family_tolerance=FAMILY_TOLERANCE, mirror=True):
+def families_of_corners(corners, family_tolerance=FAMILY_TOLERANCE, mirror=True, max_pairs=0):
     """PanelFamilies of panels given as (k,3) corner arrays (k >= 3).
 
+    max_pairs: candidate pairs measured before the coarse grouping takes over
+    (0 = automatic, max(400000, 64 x panels); see the core's header).
     ValueError (from the core) for a tolerance that is not > 0 and finite, a
     panel with fewer than 3 corners or a non-finite coordinate."""
     from . import core
@@ -95,15 +101,17 @@ def families_of_corners(corners, family_tolerance=FAMILY_TOLERANCE, mirror=True)
     p = core.PanelFamilyParams()
     p.tolerance = tol
     p.mirror = bool(mirror)
+    p.max_pairs = int(max_pairs)
     f = core.panel_families([np.asarray(c, dtype=float) for c in corners], p)
     return PanelFamilies(labels=f.labels.astype(np.int64), templates=f.templates.astype(np.int64),
                          max_error=np.asarray(f.max_error, dtype=float),
-                         error=np.asarray(f.error, dtype=float), tolerance=tol, mirror=bool(mirror))
+                         error=np.asarray(f.error, dtype=float), tolerance=tol, mirror=bool(mirror),
+                         twin_radius=float(f.twin_radius))
 
 
-def panel_families(result, family_tolerance=FAMILY_TOLERANCE, mirror=True):
+def panel_families(result, family_tolerance=FAMILY_TOLERANCE, mirror=True, max_pairs=0):
     """PanelFamilies of a PanelizeResult's panels (their 3D corners)."""
-    return families_of_corners(panel_corners(result), family_tolerance, mirror)
+    return families_of_corners(panel_corners(result), family_tolerance, mirror, max_pairs)
 
 
 def family_rows(result, fam):

@@ -249,9 +249,12 @@ def freegrid_planarity(result):
     return 1.0 + float(np.mean(vals)) if vals else 1.0
 
 
-def buildability(result, flat=None, layout=None, length_tol=1.0, angle_tol=0.5):
+def buildability(result, flat=None, layout=None, length_tol=1.0, angle_tol=0.5,
+                 family_tolerance=None, mirror=True):
     """Summary for the whole panelization (dict). `flat` (from unfold) adds the
-    panel types and fold figures, `layout` (from nest) the sheet figures."""
+    panel types and fold figures, `layout` (from nest) the sheet figures,
+    `family_tolerance` (mm) the panel families (freecad_workbench.families):
+    panel_families, largest_family, panels_per_family, family_max_error."""
     rd = rod_data(result)
     lengths = rd["length"]
     _, ntypes = node_types(result, angle_tol)
@@ -272,6 +275,14 @@ def buildability(result, flat=None, layout=None, length_tol=1.0, angle_tol=0.5):
         s["folded_panels"] = sum(1 for f in flat if f.folds)
         s["self_intersecting_outlines"] = sum(1 for f in flat if getattr(f, "self_intersecting", False))
         s["max_fold_angle"] = float(max((f.fold_angle for f in flat), default=0.0))
+    if family_tolerance is not None:
+        from .families import panel_families
+
+        fs = panel_families(result, family_tolerance, mirror).summary()
+        s["panel_families"] = fs["families"]
+        s["largest_family"] = fs["largest_family"]
+        s["panels_per_family"] = fs["mean_panels_per_family"]
+        s["family_max_error"] = fs["max_error"]
     if layout is not None:
         s["sheets"] = layout.sheet_count
         s["sheet_area"] = float(sum(w * h for w, h in (

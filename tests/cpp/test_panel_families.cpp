@@ -207,6 +207,34 @@ TEST(PanelFamilies, Deterministic) {
   for (std::size_t p = 0; p < panels.size(); ++p) EXPECT_LE(a.error[p], 5.0);
 }
 
+TEST(PanelFamilies, CoarseGroupingKeepsTheToleranceAndRoughlyTheCount) {
+  // Slightly different squares (side 1500 +- 4 mm, noise 0.5 mm): at 5 mm
+  // nearly every pair is within reach. A tiny pair budget forces the coarse
+  // grouping (a larger twin radius); every panel stays within the tolerance.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> side(-4, 4), noise(-0.5, 0.5);
+  std::vector<Panel> panels;
+  for (int i = 0; i < 400; ++i) {
+    const double s = 1500 + side(rng);
+    Panel p = {{0, 0, 0}, {s, 0, 0}, {s, s + side(rng), 0}, {0, s, 0}};
+    for (Vec3& x : p) x += Vec3(noise(rng), noise(rng), noise(rng));
+    panels.push_back(moved(p, rotation(0.3 * i, 0.1, 0.7 * i), Vec3(5.0 * i, 0, 0)));
+  }
+  PanelFamilyParams full{5.0, true};
+  PanelFamilyParams coarse{5.0, true, 10};
+  const PanelFamilies a = panel_families(panels, full);
+  const PanelFamilies b = panel_families(panels, coarse);
+  EXPECT_DOUBLE_EQ(a.twin_radius, 5e-3);
+  EXPECT_GT(b.twin_radius, 5e-3);
+  EXPECT_LE(a.count(), b.count());
+  EXPECT_LE(b.count(), 3 * a.count());
+  for (const PanelFamilies* f : {&a, &b})
+    for (std::size_t p = 0; p < panels.size(); ++p) {
+      EXPECT_LE(f->error[p], 5.0);
+      EXPECT_GE(f->error[p] + 1e-9, lower_bound(panels[f->templates[f->labels[p]]], panels[p]));
+    }
+}
+
 TEST(PanelFamilies, EmptyInputGivesNoFamilies) {
   const PanelFamilies f = panel_families({}, {});
   EXPECT_EQ(f.count(), 0);
@@ -223,6 +251,7 @@ TEST(PanelFamilies, RejectsBadParametersAndPanels) {
       EXPECT_NE(std::string(e.what()).find("family_tolerance"), std::string::npos) << e.what();
     }
   }
+  EXPECT_THROW(panel_families(ok, {2.0, true, -1}), InvalidParameter);
   EXPECT_THROW(panel_families({square(1), {{0, 0, 0}, {1, 0, 0}}}, {}), InvalidGeometry);
   EXPECT_THROW(panel_families({{{0, 0, 0}, {1, 0, 0}, {0, std::nan(""), 0}}}, {}), InvalidGeometry);
 }

@@ -423,3 +423,20 @@ def test_spreadsheets_and_document_exports_with_families(doc, tmp_path):
     assert {ps.get(f"{last}{i}") for i in range(2, 50)} == {"PF-001", "PF-002", "PF-003", "PF-004"}
     s = make_fabrication.export_families(p, str(tmp_path / "t.svg"))
     assert s["families"] == 4
+
+
+def test_buildability_summary_has_the_family_figures(zone):
+    r, fam, _flat = zone
+    s = tessella.buildability(r, family_tolerance=2.0)
+    assert (s["panel_families"], s["largest_family"], s["panels_per_family"]) == (4, 12, 12.0)
+    assert s["family_max_error"] < 1e-6
+    assert "panel_families" not in tessella.buildability(r)
+
+
+def test_coarse_grouping_keeps_the_tolerance():
+    r = tessella.panelize(bspline_face(), method="iso_grid", size=700.0)
+    full = tessella.panel_families(r, 20.0)
+    coarse = tessella.panel_families(r, 20.0, max_pairs=5)
+    assert not full.summary()["coarse"] and coarse.summary()["coarse"]
+    assert coarse.count >= full.count
+    check_tolerance(families.panel_corners(r), coarse, 20.0)

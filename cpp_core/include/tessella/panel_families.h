@@ -16,6 +16,13 @@
 // the tolerance is within it (conservatively). The distance is symmetric.
 //
 // Grouping, deterministic (same input, same output, bit for bit):
+//   0. twins: a panel within 1e-3 x tolerance of a lower-indexed panel is
+//      handled with it (repeated panels cost n, not n^2, comparisons); when
+//      more than `max_pairs` candidate pairs remain (a tolerance far above the
+//      panels' differences), the twin radius grows to tolerance / 32, / 16,
+//      / 8 or / 4, the first that leaves at most max_pairs (coarse grouping:
+//      near-linear cost, a cover at tolerance - radius among the groups, so
+//      possibly more families than the full cover);
 //   1. candidate pairs are pruned by necessary conditions (same corner count,
 //      diameters and sorted corner-distance lists within 2 x tolerance);
 //   2. greedy set cover: the panel that covers the most panels not yet covered
@@ -42,6 +49,9 @@ namespace tessella {
 struct PanelFamilyParams {
   double tolerance = 2.0;  // mm, largest corner distance to the template; > 0
   bool mirror = true;      // a template may serve its mirror image (turned over)
+  // Candidate pairs (of similar panels) measured before the coarse grouping
+  // takes over (see panel_families); 0 = automatic, max(400000, 64 n).
+  long long max_pairs = 0;
 };
 
 struct PanelFamilies {
@@ -49,6 +59,9 @@ struct PanelFamilies {
   std::vector<int> templates;     // per family: the panel index of its template
   std::vector<double> max_error;  // per family: the largest error of its members
   std::vector<double> error;      // per panel: its distance to its family's template
+  // Panels within this of a lower-indexed one were grouped with it first:
+  // 1e-3 x tolerance, or tolerance / 32 ... / 4 in the coarse grouping.
+  double twin_radius = 0.0;
   int count() const { return static_cast<int>(templates.size()); }
 };
 

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <queue>
 #include <sstream>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -168,6 +169,9 @@ PanelFamilies panel_families(const std::vector<std::vector<Vec3>>& panels,
     msg << "family_tolerance (mm) must be > 0 and at most 1e9, got " << tol;
     throw InvalidParameter(msg.str());
   }
+  if (params.max_pairs < 0)
+    throw InvalidParameter("max_pairs must be >= 0 (0 = automatic), got " +
+                           std::to_string(params.max_pairs));
   check_panels(panels);
   const bool mirror = params.mirror;
   const int n = static_cast<int>(panels.size());
@@ -191,8 +195,8 @@ PanelFamilies panel_families(const std::vector<std::vector<Vec3>>& panels,
   // template through its leader (the composed alignment is a rigid motion).
   // eps is 1e-3 x tol; when that leaves more candidate pairs among leaders
   // than `budget` (a tolerance far above the panels' differences: nearly all
-  // pairs are within reach), eps becomes tol / 4, which keeps the cost near
-  // linear at the price of a cover at 3/4 of the tolerance among leaders.
+  // pairs are within reach), eps grows (tol / 32 ... tol / 4), which keeps the
+  // cost near linear at the price of a cover at tol - eps among leaders.
   std::vector<int> pos(n);
   for (int r = 0; r < n; ++r) pos[order[r]] = r;
   std::vector<int> leader(n, -1);
@@ -238,16 +242,16 @@ PanelFamilies panel_families(const std::vector<std::vector<Vec3>>& panels,
       }
     }
   };
-  double eps = 1e-3 * tol;
-  group_twins(eps);
-  {
-    const long long budget = std::max(200000LL, 32LL * n);
+  // The twin radius: the smallest of these that leaves at most `budget`
+  // candidate pairs among the leaders (counting stops at the budget).
+  const long long budget = params.max_pairs > 0 ? params.max_pairs : std::max(400000LL, 64LL * n);
+  double eps = 0.0;
+  for (double fraction : {1e-3, 1.0 / 32, 1.0 / 16, 1.0 / 8, 1.0 / 4}) {
+    eps = fraction * tol;
+    group_twins(eps);
     long long pairs = 0;
     candidate_pairs(tol - eps, [&](int, int) { return ++pairs <= budget; });
-    if (pairs > budget) {
-      eps = 0.25 * tol;
-      group_twins(eps);
-    }
+    if (pairs <= budget) break;
   }
   const double tol_eff = tol - eps;
   std::vector<int> leaders;  // increasing index
@@ -370,6 +374,7 @@ PanelFamilies panel_families(const std::vector<std::vector<Vec3>>& panels,
   for (int p = 0; p < n; ++p)
     if (number[family_of_panel[p]] < 0) number[family_of_panel[p]] = next++;
   PanelFamilies out;
+  out.twin_radius = eps;
   out.labels.resize(n);
   out.error.resize(n);
   out.templates.assign(f_count, -1);
