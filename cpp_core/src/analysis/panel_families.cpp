@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <queue>
 #include <sstream>
@@ -197,34 +198,27 @@ PanelFamilies panel_families(const std::vector<std::vector<Vec3>>& panels,
   // than `budget` (a tolerance far above the panels' differences: nearly all
   // pairs are within reach), eps grows (tol / 32 ... tol / 4), which keeps the
   // cost near linear at the price of a cover at tol - eps among leaders.
-  std::vector<int> pos(n);
-  for (int r = 0; r < n; ++r) pos[order[r]] = r;
   std::vector<int> leader(n, -1);
   std::vector<double> twin_dist(n, 0.0);  // distance to its leader
   auto group_twins = [&](double eps) {
-    std::vector<char> is_leader(n, 0);
+    // Leaders so far by (corner count, diameter): a panel looks only at those
+    // whose diameter is within 2 eps of its own (with room for rounding).
+    std::multimap<std::pair<std::size_t, double>, int> seen;
     for (int p = 0; p < n; ++p) {  // index order: a leader is its group's lowest index
       const Prepared& a = prep[p];
+      const double w = 2.0 * eps + 3e-9 * (a.diameter + eps) + 1e-12;
       int found = -1;
       double found_d = 0.0;
-      auto visit = [&](int q) {
-        if (!is_leader[q] || (found >= 0 && q > found) || !may_match(prep[q], a, eps)) return;
+      const auto end = seen.upper_bound({a.k(), a.diameter + w});
+      for (auto it = seen.lower_bound({a.k(), a.diameter - w}); it != end; ++it) {
+        const int q = it->second;
+        if ((found >= 0 && q > found) || !may_match(prep[q], a, eps)) continue;
         const double dq = distance(prep[q], a, mirror, eps, true);
         if (dq <= eps) found = q, found_d = dq;
-      };
-      for (int r = pos[p] - 1; r >= 0; --r) {
-        const Prepared& b = prep[order[r]];
-        if (b.k() != a.k() || a.diameter - b.diameter > 2.0 * eps + slack(a, b)) break;
-        visit(order[r]);
-      }
-      for (int r = pos[p] + 1; r < n; ++r) {
-        const Prepared& b = prep[order[r]];
-        if (b.k() != a.k() || b.diameter - a.diameter > 2.0 * eps + slack(a, b)) break;
-        visit(order[r]);
       }
       leader[p] = found < 0 ? p : found;
       twin_dist[p] = found < 0 ? 0.0 : found_d;
-      is_leader[p] = found < 0;
+      if (found < 0) seen.emplace(std::make_pair(a.k(), a.diameter), p);
     }
   };
   // Calls f(a, b) for each pair of leaders (in `order`) passing the cheap
