@@ -8,7 +8,9 @@
 #include "numpy_convert.h"
 #include "progress_bridge.h"
 #include "tessella/boundary_driven.h"
+#include "tessella/errors.h"
 #include "tessella/face_set.h"
+#include "tessella/family_regularization.h"
 #include "tessella/methods.h"
 #include "tessella/panelize.h"
 #include "tessella/surface_face.h"
@@ -151,6 +153,35 @@ void bind_pipeline(py::module_& m) {
       },
       py::arg("face"), py::arg("method"), py::arg("values"), py::arg("progress") = py::none(),
       "The whole pipeline (method, metrics, folds, summary) on one face");
+
+  py::class_<FamilyRegularizationParams>(m, "FamilyRegularizationParams")
+      .def(py::init<>())
+      .def_readwrite("family_tolerance", &FamilyRegularizationParams::family_tolerance)
+      .def_readwrite("tolerance", &FamilyRegularizationParams::tolerance)
+      .def_readwrite("max_deviation", &FamilyRegularizationParams::max_deviation)
+      .def_readwrite("mirror", &FamilyRegularizationParams::mirror)
+      .def_readwrite("max_iterations", &FamilyRegularizationParams::max_iterations);
+  py::class_<FamilyRegularizationReport>(m, "FamilyRegularizationReport")
+      .def_readonly("families", &FamilyRegularizationReport::families)
+      .def_readonly("families_before", &FamilyRegularizationReport::families_before)
+      .def_readonly("families_after", &FamilyRegularizationReport::families_after)
+      .def_readonly("max_error_before", &FamilyRegularizationReport::max_error_before)
+      .def_readonly("max_error_after", &FamilyRegularizationReport::max_error_after)
+      .def_readonly("max_move", &FamilyRegularizationReport::max_move)
+      .def_readonly("max_node_deviation", &FamilyRegularizationReport::max_node_deviation)
+      .def_readonly("moved_nodes", &FamilyRegularizationReport::moved_nodes)
+      .def_readonly("iterations", &FamilyRegularizationReport::iterations);
+  m.def(
+      "regularize_families",
+      [](const PanelizeResult& r, const FamilyRegularizationParams& p, int samples) {
+        if (!r.face) throw InvalidParameter("regularize_families: give one face's result");
+        FamilyRegularizationReport rep;
+        PanelizeResult out =
+            remeasured_result(r, regularize_families(*r.face, r.mesh, p, &rep), samples);
+        return py::make_tuple(std::move(out), rep);
+      },
+      py::arg("result"), py::arg("params"), py::arg("samples") = 8,
+      "(result with the nodes moved, report): family regularization, metrics measured again");
 
   py::class_<FaceSet, std::shared_ptr<FaceSet>>(m, "FaceSet")
       .def_static(

@@ -77,4 +77,11 @@ struct PanelizeResult {
 PanelizeResult panelize(std::shared_ptr<const SurfaceFace> face, const std::string& method,
                         const ParamValues& values = {});
 
+// The result with its nodes moved (`mesh`: the same vertices and panels,
+// new positions; family regularization, planarization): metrics (`samples`
+// per edge), irregular panels, node normals, fold angles and the summary's
+// figures measured again; its counts, coverage and timings kept. Throws
+// InvalidParameter for a face set's combined result or a mesh of other panels.
+PanelizeResult remeasured_result(const PanelizeResult& r, PanelMesh mesh, int samples = 8);
+
 }  // namespace tessella

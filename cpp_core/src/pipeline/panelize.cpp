@@ -355,4 +355,42 @@ PanelizeResult finish_result(std::shared_ptr<const SurfaceFace> face, const Meth
   return r;
 }
 
+PanelizeResult remeasured_result(const PanelizeResult& r, PanelMesh mesh, int samples) {
+  if (!r.face)
+    throw InvalidParameter("the result has no face (a face set): give one face's result");
+  if (mesh.vertex_count() != r.mesh.vertex_count() || mesh.panels != r.mesh.panels)
+    throw InvalidParameter(
+        "remeasured_result: the mesh must keep the result's vertices and panels");
+  const MethodDeclaration& decl = method_declaration(r.method);
+  const SurfaceFace& face = *r.face;
+  const SurfaceFace::FastEvaluation fast(face);
+  PanelizeResult out;
+  out.face = r.face;
+  out.method = r.method;
+  out.mesh = std::move(mesh);
+  MetricsParams mp;
+  mp.samples = samples;
+  out.metrics = measure_panels(face, out.mesh, mp);
+  IrregularParams ip;
+  ip.min_angle_deg = value_or<double>({}, decl, "min_angle");
+  ip.min_area_fraction = value_or<double>({}, decl, "sliver_fraction");
+  out.irregular = irregular_panels(out.mesh, out.metrics, ip);
+  out.nodes = node_data(face, out.mesh);
+  out.fold_angle = fold_angles(out.mesh);
+  PanelizeSummary& s = out.summary;
+  s = r.summary;
+  s.irregular_count = 0;
+  for (bool b : out.irregular) s.irregular_count += b ? 1 : 0;
+  s.deviation = summarize(out.metrics.deviation);
+  s.unreliable_deviation = 0;
+  for (char u : out.metrics.deviation_unreliable) s.unreliable_deviation += u ? 1 : 0;
+  s.planarity = summarize(out.metrics.planarity);
+  s.area = summarize(out.metrics.area);
+  s.rod_length = summarize(out.metrics.rod_length);
+  s.short_rods = 0;
+  for (double length : out.metrics.rod_length) s.short_rods += length < s.min_rod_length ? 1 : 0;
+  s.shortest_rod = s.rod_length.count > 0 ? s.rod_length.min : 0.0;
+  return out;
+}
+
 }  // namespace tessella
