@@ -314,6 +314,31 @@ PanelFamilies panel_families(const std::vector<std::vector<Vec3>>& panels,
         if (!covered[nb.first]) covered[nb.first] = 1, --left;
     }
   }
+  // Redundant templates: one whose every covered leader (itself included) is
+  // also covered by another template goes, the last chosen first (they
+  // covered the fewest new panels). Templates chosen later can make earlier
+  // ones redundant; this never uncovers a leader.
+  {
+    std::vector<int> cover_count(m, 0);
+    auto each_covered = [&](int t, auto&& f) {
+      f(t);
+      for (const Neighbour& nb : adj[t]) f(nb.first);
+    };
+    for (int t : chosen) each_covered(t, [&](int i) { ++cover_count[i]; });
+    std::vector<int> kept;
+    std::vector<char> drop(chosen.size(), 0);
+    for (std::size_t c = chosen.size(); c-- > 0;) {
+      bool redundant = true;
+      each_covered(chosen[c], [&](int i) { redundant = redundant && cover_count[i] >= 2; });
+      if (redundant) {
+        drop[c] = 1;
+        each_covered(chosen[c], [&](int i) { --cover_count[i]; });
+      }
+    }
+    for (std::size_t c = 0; c < chosen.size(); ++c)
+      if (!drop[c]) kept.push_back(chosen[c]);
+    chosen.swap(kept);
+  }
 
   // 4. Each leader joins its nearest template; each family's template becomes
   // the member leader whose worst distance to the family (twins counted with
