@@ -29,6 +29,7 @@ struct Prepared {
   std::vector<double> d;      // k x k corner distances
   std::vector<double> dsort;  // the k(k-1)/2 distances i < j, increasing
   double diameter = 0.0;
+  double spread = 0.0;  // sum of the squared distances of the corners to the centroid
   std::size_t k() const { return p.size(); }
 };
 
@@ -39,7 +40,10 @@ Prepared prepare(const std::vector<Vec3>& corners) {
   for (const Vec3& q : corners) c += q;
   c /= static_cast<double>(k);
   out.p.reserve(k);
-  for (const Vec3& q : corners) out.p.push_back(q - c);
+  for (const Vec3& q : corners) {
+    out.p.push_back(q - c);
+    out.spread += out.p.back().squaredNorm();
+  }
   out.d.assign(k * k, 0.0);
   for (std::size_t i = 0; i < k; ++i)
     for (std::size_t j = i + 1; j < k; ++j) {
@@ -70,16 +74,62 @@ bool may_match(const Prepared& a, const Prepared& b, double limit) {
   return true;
 }
 
+// The largest eigenvalue of Horn's 4x4 key matrix of the correlation matrix
+// h: the largest sum sigma1 + sigma2 + det-sign * sigma3 a rotation reaches
+// (Theobald's QCP: Newton on the characteristic polynomial from `start`, an
+// upper bound of it). Newton from above approaches the root from above, so the
+// value returned is >= the eigenvalue up to rounding.
+double largest_key_eigenvalue(const Eigen::Matrix3d& h, double start) {
+  const double sxx = h(0, 0), sxy = h(0, 1), sxz = h(0, 2);
+  const double syx = h(1, 0), syy = h(1, 1), syz = h(1, 2);
+  const double szx = h(2, 0), szy = h(2, 1), szz = h(2, 2);
+  Eigen::Matrix4d n;
+  n << sxx + syy + szz, syz - szy, szx - sxz, sxy - syx,  //
+      syz - szy, sxx - syy - szz, sxy + syx, szx + sxz,   //
+      szx - sxz, sxy + syx, -sxx + syy - szz, syz + szy,  //
+      sxy - syx, szx + sxz, syz + szy, -sxx - syy + szz;
+  const Eigen::Matrix4d n2 = n * n;
+  const double c2 = -0.5 * n2.trace(), c1 = -n2.cwiseProduct(n).sum() / 3.0;
+  const double c0 = n.determinant();
+  double x = start;
+  for (int it = 0; it < 60; ++it) {
+    const double x2 = x * x;
+    const double f = (x2 + c2) * x2 + c1 * x + c0;
+    const double df = (4.0 * x2 + 2.0 * c2) * x + c1;
+    if (!(df > 0.0)) break;
+    const double step = f / df;
+    x -= step;
+    if (std::abs(step) <= 1e-12 * start) break;
+  }
+  return x;
+}
+
 // Largest corner distance after the Kabsch alignment of b (corner sigma[i]
 // onto a's corner i) onto a: the rotation (or, with `reflect`, any orthogonal
 // map) that minimises the RMS corner distance about the centroids. This is an
 // upper bound of the minimax distance over rigid motions (Kabsch minimises the
 // RMS, not the largest distance), which keeps the tolerance guaranteed.
+//
+// `cap`: when even the RMS distance of the best alignment exceeds it (so the
+// largest distance does too), +infinity is returned without the SVD. The
+// RMS comes from the key matrix's largest eigenvalue (cheap); a margin covers
+// its rounding, so an alignment within `cap` is never missed.
 double kabsch_max(const Prepared& a, const Prepared& b, const std::vector<std::size_t>& sigma,
-                  bool reflect) {
+                  bool reflect, double cap = kInf) {
   const std::size_t k = a.k();
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
   for (std::size_t i = 0; i < k; ++i) h += b.p[sigma[i]] * a.p[i].transpose();
+  if (std::isfinite(cap)) {
+    const double g = a.spread + b.spread;
+    double lambda = largest_key_eigenvalue(h, 0.5 * g);
+    if (reflect) {  // b mirrored: its z row negated
+      Eigen::Matrix3d m = h;
+      m.row(2) = -m.row(2);
+      lambda = std::max(lambda, largest_key_eigenvalue(m, 0.5 * g));
+    }
+    const double rms2 = (g - 2.0 * lambda) / static_cast<double>(k);
+    if (rms2 > cap * cap + 1e-7 * g / static_cast<double>(k)) return kInf;
+  }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d v = svd.matrixV();
   const Eigen::Matrix3d& u = svd.matrixU();
@@ -128,7 +178,7 @@ double distance(const Prepared& a, const Prepared& b, bool mirror, double limit,
   for (const auto& [mismatch, c] : tries) {
     if (mismatch > 2.0 * best + room) break;
     for (std::size_t i = 0; i < k; ++i) sigma[i] = corner(c, i);
-    best = std::min(best, kabsch_max(a, b, sigma, mirror));
+    best = std::min(best, kabsch_max(a, b, sigma, mirror, std::min(limit, best)));
     if (first_within && best <= limit) break;
   }
   return best;
