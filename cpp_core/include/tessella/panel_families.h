@@ -28,7 +28,9 @@
 //   2. greedy set cover: the panel that covers the most panels not yet covered
 //      (within the tolerance of it) becomes a template, ties by lowest index,
 //      until every panel is covered (a ln(n) approximation of the fewest
-//      families); templates made redundant by later ones are dropped;
+//      families); templates made redundant by later ones are dropped, and
+//      two templates whose exclusive panels one panel covers are replaced by
+//      it (2-for-1 swaps, within a work bound);
 //   3. each panel joins the template nearest to it; then in each family the
 //      template becomes the member whose largest distance to the other members
 //      is least (only members that cover the whole family), and 3 repeats

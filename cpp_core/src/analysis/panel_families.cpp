@@ -388,6 +388,64 @@ PanelFamilies panel_families(const std::vector<std::vector<Vec3>>& panels,
     for (std::size_t c = 0; c < chosen.size(); ++c)
       if (!drop[c]) kept.push_back(chosen[c]);
     chosen.swap(kept);
+
+    // 2-for-1 swaps: two templates whose exclusive panels (covered by no
+    // other template) one panel covers all of are replaced by that panel
+    // (the lowest index), templates in increasing order, until none applies
+    // or the work bound is spent (the same for the same input).
+    std::vector<char> is_t(m, 0);
+    for (int t : chosen) is_t[t] = 1;
+    auto covers = [&](int c, int i) { return c == i || dist(c, i) <= tol_eff; };
+    long long work = 0;
+    const long long work_bound = 40LL * budget;
+    std::vector<int> partners, exclusive;
+    for (bool improved = true; improved && work < work_bound;) {
+      improved = false;
+      for (int t1 = 0; t1 < m && work < work_bound; ++t1) {
+        if (!is_t[t1]) continue;
+        partners.clear();
+        each_covered(t1, [&](int i) {
+          each_covered(i, [&](int t2) {
+            if (is_t[t2] && t2 != t1) partners.push_back(t2);
+          });
+        });
+        work += static_cast<long long>(partners.size());
+        std::sort(partners.begin(), partners.end());
+        partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+        for (int t2 : partners) {
+          exclusive.clear();
+          each_covered(t1, [&](int i) {
+            if (cover_count[i] == 1 + (covers(t2, i) ? 1 : 0)) exclusive.push_back(i);
+          });
+          each_covered(t2, [&](int i) {
+            if (cover_count[i] == 1 && !covers(t1, i)) exclusive.push_back(i);
+          });
+          work += static_cast<long long>(adj[t1].size() + adj[t2].size());
+          if (exclusive.empty()) continue;
+          int found = -1;
+          each_covered(exclusive[0], [&](int c) {
+            if (c == t1 || c == t2 || (found >= 0 && c > found)) return;
+            work += static_cast<long long>(exclusive.size());
+            for (int u : exclusive)
+              if (!covers(c, u)) return;
+            found = c;
+          });
+          if (found < 0) continue;
+          is_t[t1] = is_t[t2] = 0;
+          each_covered(t1, [&](int i) { --cover_count[i]; });
+          each_covered(t2, [&](int i) { --cover_count[i]; });
+          if (!is_t[found]) {
+            is_t[found] = 1;
+            each_covered(found, [&](int i) { ++cover_count[i]; });
+          }
+          improved = true;
+          break;
+        }
+      }
+    }
+    chosen.clear();
+    for (int i = 0; i < m; ++i)
+      if (is_t[i]) chosen.push_back(i);
   }
 
   // 4. Each leader joins its nearest template; each family's template becomes
