@@ -314,8 +314,8 @@ def test_panel_and_family_schedules(zone, tmp_path):
 
     r, fam, flat = zone
     ids = r.panel_ids
-    rows = _read_csv(tmp_path / "p.csv") if schedule_csv.write_panel_schedule(
-        r, tmp_path / "p.csv", fam) else None
+    assert schedule_csv.write_panel_schedule(r, tmp_path / "p.csv", fam) == len(r.panels)
+    rows = _read_csv(tmp_path / "p.csv")
     assert rows[0][-1] == "family" and len(rows) == len(r.panels) + 1
     by_row = rows_by_height(r)
     assert same_partition([row[-1] for row in rows[1:]], by_row)
