@@ -13,6 +13,7 @@
 #include "tessella/family_regularization.h"
 #include "tessella/methods.h"
 #include "tessella/panelize.h"
+#include "tessella/planarize.h"
 #include "tessella/surface_face.h"
 
 namespace py = pybind11;
@@ -182,6 +183,38 @@ void bind_pipeline(py::module_& m) {
       },
       py::arg("result"), py::arg("params"), py::arg("samples") = 8,
       "(result with the nodes moved, report): family regularization, metrics measured again");
+
+  py::class_<PlanarizeParams>(m, "PlanarizeParams")
+      .def(py::init<>())
+      .def_readwrite("planarity_tolerance", &PlanarizeParams::planarity_tolerance)
+      .def_readwrite("max_deviation", &PlanarizeParams::max_deviation)
+      .def_readwrite("closeness", &PlanarizeParams::closeness)
+      .def_readwrite("fairness", &PlanarizeParams::fairness)
+      .def_readwrite("max_iterations", &PlanarizeParams::max_iterations);
+  py::class_<PlanarizeReport>(m, "PlanarizeReport")
+      .def_readonly("quads", &PlanarizeReport::quads)
+      .def_readonly("planar_before", &PlanarizeReport::planar_before)
+      .def_readonly("planar_after", &PlanarizeReport::planar_after)
+      .def_readonly("max_planarity_before", &PlanarizeReport::max_planarity_before)
+      .def_readonly("max_planarity_after", &PlanarizeReport::max_planarity_after)
+      .def_readonly("max_node_deviation_before", &PlanarizeReport::max_node_deviation_before)
+      .def_readonly("max_node_deviation_after", &PlanarizeReport::max_node_deviation_after)
+      .def_readonly("max_move", &PlanarizeReport::max_move)
+      .def_readonly("iterations", &PlanarizeReport::iterations)
+      .def_readonly("converged", &PlanarizeReport::converged);
+  m.def(
+      "planarize",
+      [](const PanelizeResult& r, const PlanarizeParams& p, int samples, py::object progress) {
+        if (!r.face) throw InvalidParameter("planarize: give one face's result");
+        return bindings::with_progress(progress, [&] {
+          PlanarizeReport rep;
+          PanelizeResult out = remeasured_result(r, planarize(*r.face, r.mesh, p, &rep), samples);
+          return std::make_pair(std::move(out), rep);
+        });
+      },
+      py::arg("result"), py::arg("params"), py::arg("samples") = 8,
+      py::arg("progress") = py::none(),
+      "(result with planar quads, report): the planarization solver, metrics measured again");
 
   py::class_<FaceSet, std::shared_ptr<FaceSet>>(m, "FaceSet")
       .def_static(

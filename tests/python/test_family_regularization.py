@@ -13,7 +13,7 @@ import Part
 import pytest
 
 import freecad_workbench as tessella
-from freecad_workbench.family_regularization import regularize_families
+from freecad_workbench import regularize_families
 
 V = FreeCAD.Vector
 

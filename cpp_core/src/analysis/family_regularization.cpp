@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "analysis/rigid_fit.h"
+#include "mesh/fixed_vertices.h"
 #include "tessella/errors.h"
 #include "tessella/panel_families.h"
 
@@ -25,32 +26,6 @@ std::vector<std::vector<Vec3>> corner_points(const PanelMesh& mesh,
     out.push_back(std::move(x));
   }
   return out;
-}
-
-// Nodes that may not move: on the mesh's boundary (a side of one panel), or
-// corners of a panel with trim points (a boundary piece modelled on its trim).
-std::vector<char> fixed_nodes(const PanelMesh& mesh) {
-  std::vector<char> fixed(mesh.vertex_count(), 0);
-  std::vector<std::array<int, 2>> sides;
-  for (const auto& p : mesh.panels) {
-    bool piece = false;
-    for (int v : p) piece = piece || !is_node(mesh, v);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const int a = p[i], b = p[(i + 1) % p.size()];
-      sides.push_back({std::min(a, b), std::max(a, b)});
-      if (piece) fixed[static_cast<std::size_t>(a)] = 1;
-    }
-  }
-  std::sort(sides.begin(), sides.end());
-  for (std::size_t i = 0; i < sides.size();) {
-    std::size_t j = i;
-    while (j < sides.size() && sides[j] == sides[i]) ++j;
-    if (j - i == 1)
-      fixed[static_cast<std::size_t>(sides[i][0])] = fixed[static_cast<std::size_t>(sides[i][1])] =
-          1;
-    i = j;
-  }
-  return fixed;
 }
 
 // Largest distance of a member to its family's template.
@@ -87,7 +62,7 @@ PanelMesh regularize_families(const SurfaceFace& face, const PanelMesh& mesh,
   std::vector<std::vector<int>> members(static_cast<std::size_t>(families.count()));
   for (std::size_t p = 0; p < corners.size(); ++p)
     members[static_cast<std::size_t>(families.labels[p])].push_back(static_cast<int>(p));
-  const std::vector<char> fixed = fixed_nodes(mesh);
+  const std::vector<char> fixed = fixed_vertices(mesh);
   const double tiny = 1e-6 * face.model_size();
   std::vector<Vec3> sum(out.vertex_count());
   std::vector<int> count(out.vertex_count());

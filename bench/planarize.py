@@ -1,0 +1,78 @@
+"""Planarization (tessella.planarize) side by side: planarity reached against
+distance from the surface, with the closeness goal on (a 20 mm band, hard) and
+off (what libigl's planarize_quad_mesh does), on iso grids and boundary-driven
+meshes of a surface of revolution and the bundled doubly curved examples.
+
+    PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/planarize.py [--size 1500]
+
+Prints one row per face, layout and mode: quads, planar within 1 mm before /
+after, largest diagonal distance before / after (mm), largest node distance
+from the surface after (mm), rounds, core seconds.
+"""
+
+import argparse
+import math
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, ROOT)
+
+import FreeCAD  # noqa: E402,F401  (before Part)
+import Part  # noqa: E402
+from FreeCAD import Vector as V  # noqa: E402
+
+import freecad_workbench as tessella  # noqa: E402
+from freecad_workbench import planarize  # noqa: E402
+
+
+def funnel():
+    pts = []
+    for i in range(9):
+        r = 800.0 + 4200.0 * (i / 8) ** 2.5
+        pts.append([V(r * math.cos(math.pi * j / 12), r * math.sin(math.pi * j / 12), 750.0 * i)
+                    for j in range(13)])
+    s = Part.BSplineSurface()
+    s.interpolate(pts)
+    return s.toShape()
+
+
+def example(name):
+    s = Part.Shape()
+    s.read(os.path.join(ROOT, "examples", name + ".brep"))
+    return s.Faces[0]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--size", type=float, default=1500.0)
+    args = ap.parse_args()
+    faces = [("funnel (revolution)", funnel()),
+             ("british_museum_roof", example("british_museum_roof")),
+             ("chen_shan_dome", example("chen_shan_dome")),
+             ("notched_shell", example("notched_shell"))]
+    print(f"{'face':22s} {'layout':16s} {'closeness':9s} {'quads':>5s} {'planar 1mm':>13s} "
+          f"{'max diag (mm)':>17s} {'node dev':>9s} {'rounds':>6s} {'s':>6s}")
+    for name, face in faces:
+        for layout in ("iso_grid", "boundary_driven"):
+            try:
+                r = tessella.panelize(face, method=layout, size=args.size)
+            except (ValueError, RuntimeError) as exc:
+                print(f"{name:22s} {layout:16s} refused: {exc}")
+                continue
+            for closeness in (0.1, 0.0):
+                t = time.perf_counter()
+                _r2, rep = planarize(r, planarity_tolerance=1.0, max_deviation=20.0,
+                                     closeness=closeness)
+                dt = time.perf_counter() - t
+                print(f"{name:22s} {layout:16s} {'on' if closeness else 'off':9s} "
+                      f"{rep['quads']:5d} {rep['planar_before']:5d} -> {rep['planar_after']:5d} "
+                      f"{rep['max_planarity_before']:7.1f} -> {rep['max_planarity_after']:6.1f} "
+                      f"{rep['max_node_deviation_after']:9.1f} {rep['iterations']:6d} {dt:6.2f}",
+                      flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,15 @@
+// The vertices a step that moves nodes after the fact (family regularization,
+// planarization) keeps where they are: those on the mesh's boundary (a side
+// of one panel: on a trim) and every vertex of a boundary piece (a panel with
+// trim points, modelled on its trim).
+#pragma once
+
+#include <vector>
+
+#include "tessella/panel_mesh.h"
+
+namespace tessella {
+
+std::vector<char> fixed_vertices(const PanelMesh& mesh);
+
+}  // namespace tessella

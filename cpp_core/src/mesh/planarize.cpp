@@ -1,0 +1,224 @@
+#include "tessella/planarize.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "mesh/fixed_vertices.h"
+#include "tessella/errors.h"
+#include "tessella/progress.h"
+
+namespace tessella {
+
+double diagonal_distance(const std::vector<Vec3>& p) {
+  if (p.size() != 4) return 0.0;
+  const Vec3 d1 = p[2] - p[0], d2 = p[3] - p[1];
+  const Vec3 n = d1.cross(d2);
+  if (!(n.norm() > 1e-300)) return 0.0;
+  return std::abs((p[1] - p[0]).dot(n)) / n.norm();
+}
+
+namespace {
+
+// Levenberg-style damping of every Gauss-Newton step (per mm^2 of move):
+// keeps the system positive definite with closeness and fairness off, and the
+// steps short where the linearised diagonal distances mislead.
+constexpr double kDamping = 1e-3;
+// Rounds without a better one before the solver stops.
+constexpr int kPatience = 20;
+
+}  // namespace
+
+PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const PlanarizeParams& params,
+                    PlanarizeReport* report) {
+  require_in_range("planarity_tolerance (mm)", params.planarity_tolerance, 1e-12, 1e9);
+  require_in_range("max_deviation (mm)", params.max_deviation, 1e-12, 1e9);
+  require_in_range("closeness", params.closeness, 0.0, 1e6);
+  require_in_range("fairness", params.fairness, 0.0, 1e6);
+  require_in_range("max_iterations", params.max_iterations, 0, 100000);
+  PlanarizeReport rep;
+  PanelMesh out = mesh;
+  const std::size_t nv = mesh.vertex_count();
+  // Quads: panels of four nodes.
+  std::vector<std::array<int, 4>> quads;
+  for (const auto& p : mesh.panels) {
+    if (p.size() != 4) continue;
+    bool nodes = true;
+    for (int v : p) nodes = nodes && is_node(mesh, v);
+    if (nodes) quads.push_back({p[0], p[1], p[2], p[3]});
+  }
+  rep.quads = static_cast<int>(quads.size());
+  // Free nodes: nodes of a quad or a triangle of nodes, not fixed.
+  const std::vector<char> fixed = fixed_vertices(mesh);
+  std::vector<int> index(nv, -1);
+  std::vector<int> free;
+  for (const auto& q : quads)
+    for (int v : q)
+      if (!fixed[static_cast<std::size_t>(v)] && index[static_cast<std::size_t>(v)] < 0) {
+        index[static_cast<std::size_t>(v)] = static_cast<int>(free.size());
+        free.push_back(v);
+      }
+  auto quad_points = [&](const std::array<int, 4>& q) {
+    return std::array<Vec3, 4>{
+        out.xyz[static_cast<std::size_t>(q[0])], out.xyz[static_cast<std::size_t>(q[1])],
+        out.xyz[static_cast<std::size_t>(q[2])], out.xyz[static_cast<std::size_t>(q[3])]};
+  };
+  auto planarity = [&](const std::array<int, 4>& q) {
+    const auto x = quad_points(q);
+    return diagonal_distance({x[0], x[1], x[2], x[3]});
+  };
+  // Each free node's foot on the surface (its uv carried from round to round).
+  std::vector<Projection> foot(free.size());
+  auto measure = [&](int& planar, double& worst, double& off) {
+    planar = 0, worst = 0, off = 0;
+    for (const auto& q : quads) {
+      const double d = planarity(q);
+      planar += d <= params.planarity_tolerance ? 1 : 0;
+      worst = std::max(worst, d);
+    }
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      const std::size_t v = static_cast<std::size_t>(free[k]);
+      foot[k] = face.project(out.xyz[v], out.uv[v]);
+      off = std::max(off, foot[k].distance);
+    }
+  };
+  measure(rep.planar_before, rep.max_planarity_before, rep.max_node_deviation_before);
+  const std::size_t n = free.size();
+  // Planar and close already: nothing to move (a solve would round the nodes).
+  const bool done =
+      rep.planar_before == rep.quads && rep.max_node_deviation_before <= params.max_deviation;
+  if (n > 0 && params.max_iterations > 0 && !done) {
+    using Sparse = Eigen::SparseMatrix<double>;
+    using Triplet = Eigen::Triplet<double>;
+    const Eigen::Index dim = static_cast<Eigen::Index>(3 * n);
+    // Fairness: the umbrella Laplacian of the free nodes over rods, as a
+    // 3n x 3n operator on the free coordinates (fixed neighbours constant).
+    std::vector<std::set<int>> nb(nv);
+    for (const auto& p : mesh.panels) {
+      std::vector<int> c;
+      for (int v : p)
+        if (is_node(mesh, v)) c.push_back(v);
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        const int a = c[i], b = c[(i + 1) % c.size()];
+        nb[static_cast<std::size_t>(a)].insert(b);
+        nb[static_cast<std::size_t>(b)].insert(a);
+      }
+    }
+    std::vector<Triplet> lt;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t v = static_cast<std::size_t>(free[k]);
+      const double w = nb[v].empty() ? 0.0 : 1.0 / static_cast<double>(nb[v].size());
+      for (int c = 0; c < 3; ++c) {
+        const int row = static_cast<int>(3 * k) + c;
+        lt.emplace_back(row, row, 1.0);
+        for (int u : nb[v]) {
+          const int j = index[static_cast<std::size_t>(u)];
+          if (j >= 0) lt.emplace_back(row, 3 * j + c, -w);
+        }
+      }
+    }
+    Sparse l(dim, dim);
+    l.setFromTriplets(lt.begin(), lt.end());
+    const Sparse ltl = Sparse(l.transpose() * l);
+    Eigen::VectorXd x0(dim);
+    for (std::size_t k = 0; k < n; ++k)
+      x0.segment<3>(static_cast<Eigen::Index>(3 * k)) = mesh.xyz[static_cast<std::size_t>(free[k])];
+    Eigen::SimplicialLDLT<Sparse> solver;
+    bool analysed = false;
+    PanelMesh best = out;
+    int best_planar = rep.planar_before, since_best = 0;
+    double best_worst = rep.max_planarity_before;
+    for (int round = 0; round < params.max_iterations; ++round) {
+      report_stage(static_cast<double>(round) / params.max_iterations, "planarizing");
+      rep.iterations = round + 1;
+      // Gauss-Newton on the quads' signed diagonal distances c_q (their scale
+      // |d1 x d2| held for the step), the band and fairness as least squares:
+      //   (J^T J + (closeness + damping) I + fairness L^T L) dx
+      //     = -(J^T c + closeness (x - band) + fairness L^T L (x - x0)).
+      std::vector<Triplet> jt;
+      Eigen::VectorXd c(static_cast<Eigen::Index>(quads.size()));
+      for (std::size_t qi = 0; qi < quads.size(); ++qi) {
+        const auto& q = quads[qi];
+        const auto p = quad_points(q);
+        const Vec3 a = p[1] - p[0], d1 = p[2] - p[0], d2 = p[3] - p[1];
+        const Vec3 nrm = d1.cross(d2);
+        const double scale = nrm.norm();
+        if (!(scale > 1e-300)) {
+          c(static_cast<Eigen::Index>(qi)) = 0;
+          continue;
+        }
+        c(static_cast<Eigen::Index>(qi)) = a.dot(nrm) / scale;
+        const std::array<Vec3, 4> grad{(-nrm - d2.cross(a)) / scale, (nrm - a.cross(d1)) / scale,
+                                       d2.cross(a) / scale, a.cross(d1) / scale};
+        for (int i = 0; i < 4; ++i) {
+          const int k = index[static_cast<std::size_t>(q[i])];
+          if (k < 0) continue;
+          for (int d = 0; d < 3; ++d)
+            jt.emplace_back(static_cast<int>(qi), 3 * k + d, grad[static_cast<std::size_t>(i)][d]);
+        }
+      }
+      Sparse j(static_cast<Eigen::Index>(quads.size()), dim);
+      j.setFromTriplets(jt.begin(), jt.end());
+      Eigen::VectorXd x(dim), band(dim);
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t v = static_cast<std::size_t>(free[k]);
+        x.segment<3>(static_cast<Eigen::Index>(3 * k)) = out.xyz[v];
+        Vec3 b = out.xyz[v];
+        const Vec3 off = b - foot[k].point;
+        if (off.norm() > params.max_deviation)
+          b = foot[k].point + off * (params.max_deviation / off.norm());
+        band.segment<3>(static_cast<Eigen::Index>(3 * k)) = b;
+      }
+      Sparse m = Sparse(j.transpose() * j) + params.fairness * ltl;
+      for (Eigen::Index i = 0; i < dim; ++i) m.coeffRef(i, i) += params.closeness + kDamping;
+      m.makeCompressed();
+      const Eigen::VectorXd rhs =
+          -(j.transpose() * c + params.closeness * (x - band) + params.fairness * (ltl * (x - x0)));
+      if (!analysed) solver.analyzePattern(m), analysed = true;
+      solver.factorize(m);
+      if (solver.info() != Eigen::Success)
+        throw GeometryFailure("planarize: the system could not be factored");
+      const Eigen::VectorXd dx = solver.solve(rhs);
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t v = static_cast<std::size_t>(free[k]);
+        out.xyz[v] += dx.segment<3>(static_cast<Eigen::Index>(3 * k));
+        if (params.closeness > 0) {
+          // The band is a hard target: back onto its edge along the line to
+          // the node's closest surface point.
+          const Projection at = face.project(out.xyz[v], foot[k].uv);
+          const Vec3 off = out.xyz[v] - at.point;
+          if (off.norm() > params.max_deviation)
+            out.xyz[v] = at.point + off * (params.max_deviation / off.norm());
+        }
+      }
+      int planar = 0;
+      double worst = 0, far = 0;
+      measure(planar, worst, far);
+      for (std::size_t k = 0; k < n; ++k) out.uv[static_cast<std::size_t>(free[k])] = foot[k].uv;
+      if (planar == rep.quads && far <= params.max_deviation) {
+        best = out;
+        break;
+      }
+      // The best round so far: most quads planar, then the smallest worst one
+      // (the band's hard projection can undo a step's gains).
+      if (planar > best_planar || (planar == best_planar && worst < best_worst)) {
+        best = out, best_planar = planar, best_worst = worst, since_best = 0;
+      } else if (++since_best >= kPatience) {
+        break;
+      }
+    }
+    out = std::move(best);
+  }
+  measure(rep.planar_after, rep.max_planarity_after, rep.max_node_deviation_after);
+  for (std::size_t v = 0; v < nv; ++v)
+    rep.max_move = std::max(rep.max_move, (out.xyz[v] - mesh.xyz[v]).norm());
+  rep.converged =
+      rep.planar_after == rep.quads && rep.max_node_deviation_after <= params.max_deviation;
+  if (report) *report = rep;
+  return out;
+}
+
+}  // namespace tessella
