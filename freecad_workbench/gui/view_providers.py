@@ -154,6 +154,12 @@ class ViewProviderPanelizationPart(_VPState):
                              "Colour each panel / rod by a measured value (with a legend)")
             vobj.ColorBy = self._modes()
             vobj.ColorBy = "Shape"
+        elif list(vobj.getEnumerationsOfProperty("ColorBy")) != self._modes():
+            # A document saved before a mode was added (Family): the new list,
+            # the chosen mode kept when it still exists.
+            chosen = vobj.ColorBy
+            vobj.ColorBy = self._modes()
+            vobj.ColorBy = chosen if chosen in self._modes() else "Shape"
         if "ShowIds" not in vobj.PropertiesList:  # documents saved before it get it on open
             vobj.addProperty("App::PropertyBool", "ShowIds", "Labels",
                              "Show each panel / rod / node ID as text in the 3D view")
@@ -168,7 +174,7 @@ class ViewProviderPanelizationPart(_VPState):
         if vobj is None:
             return
         if prop in ("Shape", "Deviation", "Planarity", "Area", "Irregular", "PanelType",
-                    "RodLengths"):
+                    "PanelFamily", "RodLengths"):
             if getattr(vobj, "ColorBy", "Shape") != "Shape":
                 self.apply_colors(vobj)
         if prop in ("Shape", "PanelIds", "RodIds", "NodeIds") and getattr(vobj, "ShowIds", False):

@@ -655,7 +655,7 @@ def test_analysis_colors():
         check("colours: Panels has a ColorBy view property",
               "ColorBy" in vp.PropertiesList, str(vp.PropertiesList))
         check("colours: modes offered", set(vp.getEnumerationsOfProperty("ColorBy"))
-              == {"Shape", "Deviation", "Planarity", "Area", "Irregular", "Type"},
+              == {"Shape", "Deviation", "Planarity", "Area", "Irregular", "Type", "Family"},
               str(vp.getEnumerationsOfProperty("ColorBy")))
         vp.ColorBy = "Deviation"
         process_events()
