@@ -22,8 +22,8 @@
 namespace tessella {
 namespace {
 
-// A bicubic Bezier-like patch cut at u = 0.4 into two faces, sewn.
-std::string split_patch() {
+// A bicubic Bezier-like patch.
+Handle(Geom_BSplineSurface) patch() {
   TColgp_Array2OfPnt poles(1, 4, 1, 4);
   for (int i = 1; i <= 4; ++i)
     for (int j = 1; j <= 4; ++j)
@@ -32,7 +32,12 @@ std::string split_patch() {
   knots(1) = 0, knots(2) = 1;
   TColStd_Array1OfInteger mults(1, 2);
   mults(1) = mults(2) = 4;
-  Handle(Geom_BSplineSurface) s = new Geom_BSplineSurface(poles, knots, knots, mults, mults, 3, 3);
+  return new Geom_BSplineSurface(poles, knots, knots, mults, mults, 3, 3);
+}
+
+// The patch cut at u = 0.4 into two faces, sewn.
+std::string split_patch() {
+  const Handle(Geom_BSplineSurface) s = patch();
   BRepBuilderAPI_Sewing sewing;
   sewing.Add(BRepBuilderAPI_MakeFace(s, 0.0, 0.4, 0.0, 1.0, 1e-7).Face());
   sewing.Add(BRepBuilderAPI_MakeFace(s, 0.4, 1.0, 0.0, 1.0, 1e-7).Face());
@@ -43,15 +48,7 @@ std::string split_patch() {
 // The same two faces built apart (a compound: the cut is two edges), the
 // second lifted by `lift` mm.
 std::string unsewn_patch(double lift) {
-  TColgp_Array2OfPnt poles(1, 4, 1, 4);
-  for (int i = 1; i <= 4; ++i)
-    for (int j = 1; j <= 4; ++j)
-      poles(i, j) = gp_Pnt(3000.0 * i, 2500.0 * j, 700.0 * std::sin(1.3 * i) * std::cos(0.9 * j));
-  TColStd_Array1OfReal knots(1, 2);
-  knots(1) = 0, knots(2) = 1;
-  TColStd_Array1OfInteger mults(1, 2);
-  mults(1) = mults(2) = 4;
-  Handle(Geom_BSplineSurface) s = new Geom_BSplineSurface(poles, knots, knots, mults, mults, 3, 3);
+  const Handle(Geom_BSplineSurface) s = patch();
   Handle(Geom_BSplineSurface) t = Handle(Geom_BSplineSurface)::DownCast(s->Copy());
   t->Translate(gp_Vec(0, 0, lift));
   TopoDS_Compound c;
