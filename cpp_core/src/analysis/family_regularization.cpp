@@ -51,6 +51,8 @@ PanelMesh regularize_families(const SurfaceFace& face, const PanelMesh& mesh,
   require_in_range("max_iterations", params.max_iterations, 0, 10000);
   FamilyRegularizationReport rep;
   PanelMesh out = mesh;
+  // Thousands of projections close together: the span-cached evaluation.
+  const SurfaceFace::FastEvaluation fast(face);
   const std::vector<std::vector<int>> corners = panel_corners(mesh);
   std::vector<std::vector<Vec3>> x = corner_points(out, corners);
   const PanelFamilies families =

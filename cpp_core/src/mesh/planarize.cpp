@@ -41,6 +41,8 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
   require_in_range("max_iterations", params.max_iterations, 0, 100000);
   PlanarizeReport rep;
   PanelMesh out = mesh;
+  // Thousands of projections close together: the span-cached evaluation.
+  const SurfaceFace::FastEvaluation fast(face);
   const std::size_t nv = mesh.vertex_count();
   // Quads: panels of four nodes.
   std::vector<std::array<int, 4>> quads;
