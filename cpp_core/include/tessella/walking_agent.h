@@ -55,8 +55,8 @@ struct WalkingAgentParams {
   // Rounds of the hard-bound refinement before giving up with an error.
   int max_refinements = 40;
   // Keep the coarsest iso grid (u_count x v_count over the face's bounds,
-  // quads folded where that holds the bound) that holds the bound with fewer
-  // panels than the agents' layout, if there is one.
+  // quads folded where that holds the bound, no panel cut by a trim) that
+  // holds the bound with fewer panels than the agents' layout, if any.
   bool iso_fallback = true;
   GridClipParams clip;
 };

@@ -421,6 +421,11 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
     std::vector<std::pair<std::size_t, int>> folds;
     double worst = 0;
     for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+      // No panel cut by a trim: a coarse grid's big boundary pieces are held
+      // to the bound by the pipeline with folds up to 83 degrees (a notched
+      // face at 60 mm); the agents' smaller panels along the trims are not.
+      for (int v : mesh.panels[p])
+        if (!is_node(mesh, v)) return std::nullopt;
       std::vector<Vec3> x;
       for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
       const std::vector<Vec2> q = panel_corner_uv(mesh, p);
