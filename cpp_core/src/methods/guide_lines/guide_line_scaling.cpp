@@ -344,23 +344,26 @@ bool advance_curve_by(const Context& cx, const SurfaceCurve& c, double side, dou
   // along the boundary): covered.
   {
     // Median over the curve: one point stuck (e.g. over a hole) does not stop it.
-    // A point's progress is its move across the curve (the part square to
-    // the curve's tangent: the chord a rod between the rows spans), signed by
-    // the side it went to. Its share along N x tangent alone fell to a tenth
-    // where the face is steep across the curve (a roof built from Williams'
-    // formula on a finer grid: its slope grows towards the court's edges), and
-    // a guide on such an edge never advanced ("no panels").
-    std::vector<double> progress;
+    // The step's scale follows each point's move along N x tangent (rows kept
+    // L apart on the surface); whether the curve moved at all is judged by
+    // the move square to the curve's tangent, signed by the side it went to:
+    // where the face is steep across the curve the first fell to a tenth (a
+    // roof built from Williams' formula on a finer grid, 120 x 160 samples,
+    // steep towards the court's edges), and a guide on such an edge never
+    // advanced ("no panels").
+    std::vector<double> progress, moved;
     for (std::size_t k = 1; k < last; ++k) {
       const Vec3 tau = (c.xyz[k + 1] - c.xyz[k - 1]).normalized();
       const Vec3 across = side * face.normal(c.uv[k][0], c.uv[k][1]).cross(tau);
       const Vec3 move = next.xyz[k] - c.xyz[k];
+      progress.push_back(move.dot(across));
       const Vec3 square = move - move.dot(tau) * tau;
-      progress.push_back(move.dot(across) < 0 ? -square.norm() : square.norm());
+      moved.push_back(move.dot(across) < 0 ? -square.norm() : square.norm());
     }
     std::nth_element(progress.begin(), progress.begin() + progress.size() / 2, progress.end());
     median_progress = progress[progress.size() / 2];
-    if (median_progress < 0.2 * cx.advance) return false;
+    std::nth_element(moved.begin(), moved.begin() + moved.size() / 2, moved.end());
+    if (moved[moved.size() / 2] < 0.2 * cx.advance) return false;
   }
   // Enough of it on the face.
   return length_inside(cx, next) >= 0.5 * cx.l1;
