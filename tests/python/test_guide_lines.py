@@ -353,3 +353,26 @@ def test_closed_cylinder_is_swept_half_way_round_from_each_side():
     res = tessella.panelize(face, method="guide_line_scaling", guides=[seam],
                             rod_length=face.BoundBox.DiagonalLength / 25)
     assert 0.95 * face.Area < _panel_area(res) < 1.005 * face.Area
+
+
+def test_gsm_on_a_roof_sampled_finer_advances_from_its_edges():
+    """The roof built from Williams' formula on 120 x 160 samples (not the
+    bundled 74 x 98): steep across the court's edges, where a guide on the
+    south or west edge never advanced ('no panels': the stall test measured
+    the move along N x tangent only). South edge: the paper's targets (mean
+    within 3% of rod_length, variance under the paper's 120,136 mm^2)."""
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "examples"))
+    import make_british_museum as bm
+
+    face = bm.build_face(120, 160)
+    bb = face.BoundBox
+    south = [e for e in face.Edges
+             if abs(e.BoundBox.YMin - bb.YMin) < 1 and e.BoundBox.YLength < 1][0]
+    west = [e for e in face.Edges
+            if abs(e.BoundBox.XMin - bb.XMin) < 1 and e.BoundBox.XLength < 1][0]
+    r = tessella.panelize(face, method="guide_line_scaling", guides=[south], rod_length=2000.0)
+    lengths = r.metrics["rod_length"]
+    assert abs(lengths.mean() / 2000.0 - 1) < 0.03
+    assert lengths.var() < 120136
+    r = tessella.panelize(face, method="guide_line_scaling", guides=[west], rod_length=2000.0)
+    assert len(r.panels) > 1000
