@@ -377,6 +377,11 @@ def panelize_brep(brep, method="iso_grid", progress=None, **params):
 def panelize_surface(surface, method, values, params=None, progress=None):
     """The core pipeline on an already parsed core.SurfaceFace (one core call)."""
     r = core.panelize(surface, method, values, progress)
+    return single_face_result(r, method, values, params)
+
+
+def single_face_result(r, method, values, params):
+    """The Python result of one face's core PanelizeResult (every item on face 0)."""
     result = _result(r, method, values, params)
     result.panel_face = np.zeros(len(result.panels), dtype=np.int64)
     result.vertex_face = np.zeros(len(result.vertices), dtype=np.int64)

@@ -18,8 +18,6 @@ boundary nodes stay on their trims). The round with the fewest families at
 face's result (not a face set). Core: cpp_core/include/tessella/family_regularization.h.
 """
 
-import numpy as np
-
 from . import _core
 
 
@@ -37,10 +35,7 @@ def regularize_families(result, family_tolerance=2.0, tolerance=0.5, max_deviati
     p.mirror = bool(mirror)
     p.max_iterations = int(max_iterations)
     moved, rep = _core.regularize_families(result._core, p, int(samples))
-    out = api._result(moved, result.method, None, result.params)
-    out.panel_face = np.zeros(len(out.panels), dtype=np.int64)
-    out.vertex_face = np.zeros(len(out.vertices), dtype=np.int64)
-    out.rod_face = np.zeros(len(out.rods), dtype=np.int64)
+    out = api.single_face_result(moved, result.method, None, result.params)
     report = {name: getattr(rep, name) for name in (
         "families", "families_before", "families_after", "max_error_before", "max_error_after",
         "max_move", "max_node_deviation", "moved_nodes", "iterations")}

@@ -19,8 +19,6 @@ on a freeform face) cannot be made planar inside a narrow band; the report
 says how far it got. One face's result (not a face set).
 """
 
-import numpy as np
-
 from . import _core
 
 REPORT_FIELDS = ("quads", "planar_before", "planar_after", "max_planarity_before",
@@ -42,10 +40,7 @@ def planarize(result, planarity_tolerance=1.0, max_deviation=20.0, closeness=0.1
     p.fairness = float(fairness)
     p.max_iterations = int(max_iterations)
     moved, rep = _core.planarize(result._core, p, int(samples), progress)
-    out = api._result(moved, result.method, None, result.params)
-    out.panel_face = np.zeros(len(out.panels), dtype=np.int64)
-    out.vertex_face = np.zeros(len(out.vertices), dtype=np.int64)
-    out.rod_face = np.zeros(len(out.rods), dtype=np.int64)
+    out = api.single_face_result(moved, result.method, None, result.params)
     report = {name: getattr(rep, name) for name in REPORT_FIELDS}
     out.summary["planarize"] = report
     return out, report
