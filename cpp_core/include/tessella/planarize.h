@@ -2,8 +2,8 @@
 // quad-dominant mesh planar within a tolerance while the nodes stay close to
 // the surface and the mesh stays fair.
 //
-// A damped Gauss-Newton solver (Eigen's sparse Cholesky; the pattern analysed
-// once) on the quads' signed diagonal distances, with two more least-squares
+// A damped Gauss-Newton solver (each step solved by Eigen's conjugate
+// gradients) on the quads' signed diagonal distances, with two more least-squares
 // goals: closeness (each free node towards the band of max_deviation around
 // the surface: its own place when inside) and fairness (the umbrella
 // Laplacian of the moves over rods). With closeness on, a node a step puts
