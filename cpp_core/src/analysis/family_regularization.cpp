@@ -12,10 +12,6 @@ namespace tessella {
 
 namespace {
 
-// The corners of every panel: its outline's vertices in order (trim points
-// too, as panel_families compares outlines: a boundary piece's cut shape).
-std::vector<std::vector<int>> panel_corners(const PanelMesh& mesh) { return mesh.panels; }
-
 std::vector<std::vector<Vec3>> corner_points(const PanelMesh& mesh,
                                              const std::vector<std::vector<int>>& corners) {
   std::vector<std::vector<Vec3>> out;
@@ -53,7 +49,9 @@ PanelMesh regularize_families(const SurfaceFace& face, const PanelMesh& mesh,
   PanelMesh out = mesh;
   // Thousands of projections close together: the span-cached evaluation.
   const SurfaceFace::FastEvaluation fast(face);
-  const std::vector<std::vector<int>> corners = panel_corners(mesh);
+  // A panel's corners: its outline's vertices in order (trim points too, as
+  // panel_families compares outlines: a boundary piece's cut shape).
+  const std::vector<std::vector<int>>& corners = mesh.panels;
   std::vector<std::vector<Vec3>> x = corner_points(out, corners);
   const PanelFamilies families =
       panel_families(x, PanelFamilyParams{params.family_tolerance, params.mirror});
@@ -131,7 +129,6 @@ PanelMesh regularize_families(const SurfaceFace& face, const PanelMesh& mesh,
     if (moved < tiny) break;
   }
   out = std::move(best);
-  x = corner_points(out, corners);
   rep.max_error_after = best_error;
   rep.families_after = best_tight;
   for (std::size_t v = 0; v < out.vertex_count(); ++v) {
