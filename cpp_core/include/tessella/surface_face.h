@@ -42,6 +42,10 @@ struct ProjectionParams {
   // Where Newton fails, try again from the nearest of a local sample around
   // the start before the costly global search (the metrics use it).
   bool local_search = false;
+  // Where Newton (and the local search) fail: OCCT's global search (true), or
+  // a result with an infinite distance, for a caller that holds an upper
+  // bound of its own (100 ms a call on a 312 x 323-pole surface).
+  bool global_search = true;
 };
 
 struct Projection {

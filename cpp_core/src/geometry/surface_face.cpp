@@ -14,6 +14,7 @@
 #include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Surface.hxx>
+#include <Geom_BSplineSurface.hxx>
 #include <Geom_Surface.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
@@ -29,10 +30,10 @@
 #include <optional>
 
 #include "geometry/brep_string.h"
-#include "geometry/global_projection.h"
 #include "geometry/pcurve_projection.h"
 #include "geometry/span_adaptors.h"
 #include "geometry/span_polynomials.h"
+#include "geometry/surface_sample_grid.h"
 #include "tessella/errors.h"
 
 namespace tessella {
@@ -41,13 +42,11 @@ namespace {
 
 // What a FastEvaluation scope evaluates with: the surface (for a worker
 // thread its own copy: nothing mutable shared with other threads), our span
-// polynomials (B-spline / Bezier) or else OCCT's adaptors caching them, and
-// its own global search (built on first use).
+// polynomials (B-spline / Bezier) or else OCCT's adaptors caching them.
 struct Objects {
   Handle(Geom_Surface) surface;
   std::unique_ptr<SpanPolynomials> poly;  // null: the surface is not one it handles
   SpanAdaptors adaptor;
-  std::unique_ptr<GlobalProjection> global;
   // Evaluations counted here and added to the face's counter when the scope
   // ends, so the threads do not contend for one atomic on every evaluation.
   std::uint64_t evaluations = 0;
@@ -95,10 +94,11 @@ struct SurfaceFace::Impl {
   std::unique_ptr<BRepTopAdaptor_FClass2d> classifier;
   mutable std::atomic<std::uint64_t> evaluations{0};
   mutable std::atomic<std::uint64_t> global_projections{0};
-  // The global search of callers outside a FastEvaluation scope, shared by
-  // them under the mutex (a scope has its own).
-  mutable std::mutex global_mutex;
-  mutable std::unique_ptr<GlobalProjection> global;
+  // The global search's sample grid, built on first use from the surface
+  // itself (not a scope's evaluator, so every thread gets the same samples
+  // bit for bit) and then shared read-only.
+  mutable std::once_flag sample_grid_once;
+  mutable std::unique_ptr<SurfaceSampleGrid> sample_grid;
   // snap_to_trim's projections, per wire (explorer order) and edge, built
   // on first use and shared under the mutex.
   mutable std::mutex trim_mutex;
@@ -519,53 +519,98 @@ Projection SurfaceFace::project(const Vec3& p, const Vec2& start,
     result.distance = (result.point - p).norm();
     return result;
   }
+  if (!params.global_search) {
+    result.uv = {u, v};
+    result.point = point(u, v);
+    result.distance = std::numeric_limits<double>::infinity();
+    result.used_fallback = true;
+    return result;
+  }
   result = project(p);
   result.used_fallback = true;
   return result;
 }
 
+namespace {
+
+// Samples per direction of the global search's grid: 4 per knot span of a
+// B-spline inside the search range (a foot point's basin is at least a
+// fraction of a span wide), between 32 and 512; 64 for other surfaces.
+std::pair<int, int> sample_counts(const Handle(Geom_Surface) & surface, const UvBounds& range) {
+  int nu = 64, nv = 64;
+  if (auto b = Handle(Geom_BSplineSurface)::DownCast(surface)) {
+    auto spans = [](const TColStd_Array1OfReal& knots, double lo, double hi) {
+      int n = 0;
+      for (int k = knots.Lower(); k < knots.Upper(); ++k)
+        if (knots(k + 1) > lo && knots(k) < hi) ++n;
+      return std::max(1, n);
+    };
+    nu = std::clamp(4 * spans(b->UKnots(), range.u_min, range.u_max), 32, 512);
+    nv = std::clamp(4 * spans(b->VKnots(), range.v_min, range.v_max), 32, 512);
+  }
+  return {nu, nv};
+}
+
+}  // namespace
+
 Projection SurfaceFace::project(const Vec3& p) const {
   const Impl& s = *impl_;
   s.global_projections.fetch_add(1, std::memory_order_relaxed);
+  std::call_once(s.sample_grid_once, [&s] {
+    const auto [nu, nv] = sample_counts(s.surface, s.search);
+    s.sample_grid = std::make_unique<SurfaceSampleGrid>(
+        s.search, nu, nv, [&s](double u, double v) { return to_vec(s.surface->Value(u, v)); });
+  });
+  const SurfaceSampleGrid& grid = *s.sample_grid;
+  // From each candidate sample: Newton to the foot point of its basin, kept
+  // if no farther than the sample; where it fails (the closest point lies on
+  // the border of the search range, or at a pole) and from every sample on
+  // the border, a pattern search in (u,v), clamped to
+  // the range, halving its step until it is below 1e-12 of the range. The
+  // nearest of these answers.
+  const double stop_u = 1e-12 * (s.search.u_max - s.search.u_min);
+  const double stop_v = 1e-12 * (s.search.v_max - s.search.v_min);
   Projection result;
-  Vec2 uv;
-  bool found = false;
-  try {
-    if (Objects* o = s.scope()) {
-      if (!o->global) o->global = std::make_unique<GlobalProjection>(o->surface, s.search);
-      found = o->global->nearest(p, uv);
-    } else {
-      const std::lock_guard<std::mutex> lock(s.global_mutex);
-      if (!s.global) s.global = std::make_unique<GlobalProjection>(s.surface, s.search);
-      found = s.global->nearest(p, uv);
-    }
-  } catch (const Standard_Failure&) {
-    found = false;  // fall through to sampling
-  }
-  if (found) {
-    result.uv = uv;
-    result.point = point(uv.x(), uv.y());
-    result.distance = (result.point - p).norm();
-    return result;
-  }
-  // No orthogonal foot point (e.g. the closest point is on the boundary of the
-  // search range): best of a dense sample.
-  double best = std::numeric_limits<double>::infinity();
-  const int n = 64;
-  for (int i = 0; i <= n; ++i) {
-    for (int j = 0; j <= n; ++j) {
-      const double u = s.search.u_min + (s.search.u_max - s.search.u_min) * i / n;
-      const double v = s.search.v_min + (s.search.v_max - s.search.v_min) * j / n;
-      const Vec3 q = point(u, v);
+  result.distance = std::numeric_limits<double>::infinity();
+  for (const SurfaceSampleGrid::Sample& start : grid.candidates(p, 8)) {
+    double u = start.uv.x(), v = start.uv.y();
+    std::optional<Vec3> at;
+    bool found = false;
+    if (newton_foot(s, p, u, v, ProjectionParams{}, &at)) {
+      const Vec3 q = at ? *at : point(u, v);
       const double d = (q - p).norm();
-      if (d < best) {
-        best = d;
-        result.uv = {u, v};
-        result.point = q;
-        result.distance = d;
+      found = d <= start.distance;
+      if (found && d < result.distance) result.uv = {u, v}, result.point = q, result.distance = d;
+    }
+    // A sample on the border of the range also stands for the border's own
+    // closest point, which has no orthogonal foot.
+    const bool border = (!s.surface->IsUPeriodic() &&
+                         (start.uv.x() == s.search.u_min || start.uv.x() == s.search.u_max)) ||
+                        (!s.surface->IsVPeriodic() &&
+                         (start.uv.y() == s.search.v_min || start.uv.y() == s.search.v_max));
+    if (found && !border) continue;
+    u = start.uv.x(), v = start.uv.y();
+    double best = start.distance;
+    double hu = grid.step_u(), hv = grid.step_v();
+    for (int round = 0; round < 1000 && (hu > stop_u || hv > stop_v); ++round) {
+      double bu = u, bv = v;
+      for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j) {
+          if (i == 0 && j == 0) continue;
+          const double cu = s.wrap_u(u + i * hu), cv = s.wrap_v(v + j * hv);
+          const double d = (point(cu, cv) - p).norm();
+          if (d < best) best = d, bu = cu, bv = cv;
+        }
+      if (bu == u && bv == v) {
+        hu *= 0.5, hv *= 0.5;
+      } else {
+        u = bu, v = bv;
       }
     }
+    if (best < result.distance)
+      result.uv = {u, v}, result.point = point(u, v), result.distance = best;
   }
+  result.distance = (result.point - p).norm();
   return result;
 }
 

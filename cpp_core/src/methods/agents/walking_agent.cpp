@@ -148,13 +148,19 @@ int diagonal_walkers(const SurfaceFace& face, const UvTrimClassifier& trim, Line
 // distance to the closest surface point (Newton projection from uv) - the
 // smaller of the two, both being upper bounds of the true distance. Samples
 // under the limit cannot change the decision, so they are not projected.
+// Where Newton and its local retry fail, the first bound stands: a global
+// search (0.05-0.1 s a call on OCCT's 312 x 323-pole terrain, thousands of
+// calls) would only ever lower it, so it is skipped.
 struct Gauge {
   const SurfaceFace& face;
   double limit;
   double operator()(const Vec3& x, const Vec2& uv) const {
     const double d = (face.point(uv.x(), uv.y()) - x).norm();
     if (d <= limit) return d;
-    return std::min(d, face.project(x, uv).distance);
+    ProjectionParams local;
+    local.local_search = true;
+    local.global_search = false;
+    return std::min(d, face.project(x, uv, local).distance);
   }
 };
 

@@ -1,0 +1,144 @@
+// The global closest-point search (SurfaceFace::project(p) and its sample
+// grid) against independent answers: brute force over the same samples,
+// OCCT's own Extrema search for interior foot points, and a fine sampling of
+// the border for points whose closest point lies on it.
+#include <gtest/gtest.h>
+
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "geometry/surface_sample_grid.h"
+#include "test_faces.h"
+
+namespace tessella {
+namespace {
+
+// A bicubic B-spline height field with 40 x 40 poles over 10 x 10 m and
+// bumps of +-600 mm: many local minima of the distance for a point above it.
+Handle(Geom_BSplineSurface) wavy_surface() {
+  const int n = 40, degree = 3;
+  TColgp_Array2OfPnt poles(1, n, 1, n);
+  for (int i = 1; i <= n; ++i)
+    for (int j = 1; j <= n; ++j)
+      poles(i, j) = gp_Pnt(250.0 * i, 250.0 * j, 600.0 * std::sin(0.9 * i) * std::cos(0.7 * j));
+  const int knots = n - degree + 1;
+  TColStd_Array1OfReal k(1, knots);
+  TColStd_Array1OfInteger m(1, knots);
+  for (int i = 1; i <= knots; ++i) k(i) = i - 1, m(i) = 1;
+  m(1) = m(knots) = degree + 1;
+  return new Geom_BSplineSurface(poles, k, k, m, m, degree, degree);
+}
+
+SurfaceFace wavy_face(const Handle(Geom_BSplineSurface) & s) {
+  return SurfaceFace::from_brep_string(test::brep(BRepBuilderAPI_MakeFace(s, 1e-7).Face()));
+}
+
+TEST(SurfaceSampleGrid, NearestSampleIsTheBruteForceOne) {
+  const Handle(Geom_BSplineSurface) s = wavy_surface();
+  UvBounds r{0, 37, 0, 37};
+  auto eval = [&](double u, double v) {
+    const gp_Pnt p = s->Value(u, v);
+    return Vec3(p.X(), p.Y(), p.Z());
+  };
+  const SurfaceSampleGrid grid(r, 75, 61, eval);  // not multiples of the block size
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> xy(-2000.0, 12000.0), z(-3000.0, 3000.0);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 p(xy(rng), xy(rng), z(rng));
+    double best = std::numeric_limits<double>::infinity();
+    for (int j = 0; j <= 61; ++j)
+      for (int i = 0; i <= 75; ++i) {
+        const double u = i == 75 ? 37.0 : 37.0 * i / 75, v = j == 61 ? 37.0 : 37.0 * j / 61;
+        best = std::min(best, (eval(u, v) - p).norm());
+      }
+    EXPECT_NEAR(grid.nearest(p).distance, best, 1e-9 * best) << k;
+  }
+}
+
+TEST(GlobalProjection, InteriorFootPointsMatchOcctExtrema) {
+  const Handle(Geom_BSplineSurface) s = wavy_surface();
+  const SurfaceFace face = wavy_face(s);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uv(3.0, 34.0), h(-1500.0, 1500.0);
+  int compared = 0;
+  for (int k = 0; k < 60; ++k) {
+    const double u = uv(rng), v = uv(rng);
+    const SurfacePoint d = face.derivatives(u, v);
+    const Vec3 n = d.du.cross(d.dv).normalized();
+    const Vec3 p = d.point + h(rng) * n;
+    const Projection mine = face.project(p);
+    GeomAPI_ProjectPointOnSurf occt(gp_Pnt(p.x(), p.y(), p.z()), s);
+    if (occt.NbPoints() == 0) continue;
+    ++compared;
+    // A true surface point (so never nearer than the true minimum), never
+    // farther than OCCT's nearest foot point (which at times is only a local
+    // one) nor than the nearest of a 300 x 300 sample of the face.
+    EXPECT_NEAR((face.point(mine.uv.x(), mine.uv.y()) - mine.point).norm(), 0.0, 1e-9);
+    EXPECT_LE(mine.distance, occt.LowerDistance() + 1e-6) << k;
+    double sampled = std::numeric_limits<double>::infinity();
+    const UvBounds b = face.bounds();
+    for (int i = 0; i <= 300; ++i)
+      for (int j = 0; j <= 300; ++j)
+        sampled = std::min(sampled, (face.point(b.u_min + (b.u_max - b.u_min) * i / 300,
+                                                b.v_min + (b.v_max - b.v_min) * j / 300) -
+                                     p)
+                                        .norm());
+    EXPECT_LE(mine.distance, sampled + 1e-6) << k;
+  }
+  EXPECT_GT(compared, 40);
+}
+
+TEST(GlobalProjection, PointsBeyondTheBorderFindTheBorder) {
+  const Handle(Geom_BSplineSurface) s = wavy_surface();
+  const SurfaceFace face = wavy_face(s);
+  const UvBounds b = face.bounds();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> along(0.0, 1.0), out(200.0, 3000.0), h(-800.0, 800.0);
+  for (int k = 0; k < 40; ++k) {
+    // Beyond the edge v = v_max, whose closest point is on that border.
+    const double t = along(rng);
+    const double u = b.u_min + t * (b.u_max - b.u_min);
+    const Vec3 p = face.point(u, b.v_max) + Vec3(0, out(rng), h(rng));
+    const Projection mine = face.project(p);
+    // Independent: the whole face sampled 400 x 400, the best sample refined
+    // along its iso-lines by a fine sampling (no Newton, no grid of ours).
+    double best = std::numeric_limits<double>::infinity(), bu = 0, bv = 0;
+    for (int i = 0; i <= 400; ++i)
+      for (int j = 0; j <= 400; ++j) {
+        const double a = b.u_min + (b.u_max - b.u_min) * i / 400;
+        const double c = b.v_min + (b.v_max - b.v_min) * j / 400;
+        const double d = (face.point(a, c) - p).norm();
+        if (d < best) best = d, bu = a, bv = c;
+      }
+    double span = (b.u_max - b.u_min) / 400;
+    for (int round = 0; round < 40; ++round, span *= 0.5)
+      for (int i = -4; i <= 4; ++i)
+        for (int j = -4; j <= 4; ++j) {
+          const double a = std::clamp(bu + span * i / 4, b.u_min, b.u_max);
+          const double c = std::clamp(bv + span * j / 4, b.v_min, b.v_max);
+          const double d = (face.point(a, c) - p).norm();
+          if (d < best) best = d, bu = a, bv = c;
+        }
+    EXPECT_NEAR(mine.distance, best, 1e-7 * face.model_size()) << k;
+    EXPECT_NEAR(mine.uv.y(), b.v_max, 1e-6) << k;
+  }
+}
+
+TEST(GlobalProjection, SameAnswerInsideAndOutsideAFastScope) {
+  const SurfaceFace face = wavy_face(wavy_surface());
+  const Vec3 p(4000.0, 12000.0, 900.0);
+  const Projection plain = face.project(p);
+  const SurfaceFace::FastEvaluation fast(face);
+  const Projection scoped = face.project(p);
+  EXPECT_NEAR((plain.point - scoped.point).norm(), 0.0, 1e-7 * face.model_size());
+}
+
+}  // namespace
+}  // namespace tessella
