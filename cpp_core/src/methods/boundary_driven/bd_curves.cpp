@@ -44,6 +44,19 @@ class Tracer {
       }
     }
     max_steps_ = static_cast<int>(std::min(1e6, 20.0 * face.model_size() / h_ + 100));
+    // Poles: trim stretches collapsed to one point in 3D (a sphere's apex).
+    for (const BdPolyline& line : boundary) {
+      const double tiny = 1e-12 * line.length();
+      for (int i = 0; i < line.segment_count(); ++i) {
+        const Vec2 duv = line.seg_end_uv(i) - line.uv[i];
+        if ((line.xyz[(i + 1) % line.xyz.size()] - line.xyz[i]).norm() > tiny || duv.norm() == 0)
+          continue;
+        bool known = false;
+        for (const Pole& pole : poles_) known = known || (pole.xyz - line.xyz[i]).norm() <= tiny;
+        if (!known)
+          poles_.push_back({line.xyz[i], line.uv[i], std::abs(duv.x()) > std::abs(duv.y())});
+      }
+    }
   }
 
   // The field direction closest to `ref` (3D) at uv.
@@ -96,6 +109,22 @@ class Tracer {
     return hit;
   }
 
+  // The (u,v) to aim at to join the hashed point hp from p. At a pole (an
+  // iso-line collapsed to one point: a sphere's apex) hp's (u,v) is one of
+  // the many that give that point, so aim straight across the collapsed line,
+  // keeping p's parameter along it; aiming at hp's own (u,v) would cross the
+  // whole parameter range and end the curve on the far side of the face.
+  Vec2 join_aim(const Vec2& p, const bd::HashedPoint& hp) const {
+    const SurfacePoint d = face_.derivatives(hp.uv.x(), hp.uv.y());
+    const double du = d.du.norm(), dv = d.dv.norm();
+    Vec2 aim = hp.uv;
+    if (du <= 1e-9 * dv)
+      aim.x() = p.x();
+    else if (dv <= 1e-9 * du)
+      aim.y() = p.y();
+    return aim;
+  }
+
   // Traces from uv along `dir` (3D). Appends points (excluding the start) to pts.
   // Returns how it ended.
   enum class End { Boundary, Outside, Near, Closed, Steps };
@@ -115,6 +144,15 @@ class Tracer {
       if (first_crossing(p, q, step == 0 && start_on_boundary, pts, end)) return End::Boundary;
       if (!inside_.contains(q)) return End::Outside;
       const Vec3 q3 = face_.point(q.x(), q.y());
+      // Near a pole the field turns round the point and a step of h crosses
+      // much of the parameter range: the curve ends at the pole, reached
+      // straight across the collapsed iso-line from p.
+      for (const Pole& pole : poles_) {
+        if ((q3 - pole.xyz).norm() >= p_.stop_fraction * p_.spacing) continue;
+        const Vec2 aim = pole.along_u ? Vec2(p.x(), pole.uv.y()) : Vec2(pole.uv.x(), p.y());
+        if (first_crossing(p, p + 1.05 * (aim - p), false, pts, end)) return End::Boundary;
+        return End::Near;
+      }
       arc += h_ * arc_sign;
       // parallel lines nearby (other lines; this one only far back along it)
       const bd::HashedPoint* nearest = nullptr;
@@ -131,7 +169,7 @@ class Tracer {
       if (nearest != nullptr) {
         // Join the parallel line: a last step just across it (the network
         // stage finds the crossing), or onto the trim if it is the trim.
-        const Vec2 target = p + 1.05 * (nearest->uv - p);
+        const Vec2 target = p + 1.05 * (join_aim(p, *nearest) - p);
         if (nearest->line < 0) {
           if (first_crossing(p, target, false, pts, end)) return End::Boundary;
           return End::Near;
@@ -317,7 +355,13 @@ class Tracer {
     return bd::SegmentGrid(Vec2(b.u_min, b.v_min), Vec2(b.u_max, b.v_max), cells);
   }
 
+  struct Pole {
+    Vec3 xyz;
+    Vec2 uv;       // one (u,v) of it
+    bool along_u;  // the collapsed iso-line runs along u (v is the pole's)
+  };
   const SurfaceFace& face_;
+  std::vector<Pole> poles_;
   const std::vector<BdPolyline>& boundary_;
   BdCurveParams p_;
   double h_;

@@ -10,9 +10,20 @@ namespace tessella {
 void finish_polyline(BdPolyline& line) {
   const std::size_t n = line.xyz.size();
   const std::size_t segs = line.closed ? n : (n > 0 ? n - 1 : 0);
+  double length = 0;
+  for (std::size_t i = 0; i < segs; ++i) length += (line.xyz[(i + 1) % n] - line.xyz[i]).norm();
+  // A pole (a trim edge collapsed to one point in 3D but running along (u,v))
+  // gets a tiny arc length in proportion to its (u,v) length, so that nodes
+  // along it keep their order and stay apart (merged into one, the (u,v)
+  // network would have an edge across the whole parameter range).
+  const double degenerate = 1e-12 * length;
   line.arc.assign(1, 0.0);
-  for (std::size_t i = 0; i < segs; ++i)
-    line.arc.push_back(line.arc.back() + (line.xyz[(i + 1) % n] - line.xyz[i]).norm());
+  for (std::size_t i = 0; i < segs; ++i) {
+    double l = (line.xyz[(i + 1) % n] - line.xyz[i]).norm();
+    if (l <= degenerate)
+      l = std::max(l, 1e-9 * length * (line.uv[(i + 1) % n] - line.uv[i]).norm());
+    line.arc.push_back(line.arc.back() + l);
+  }
 }
 
 int BdPolyline::segment_at(double& s) const {
@@ -101,6 +112,11 @@ std::vector<double> bd_corners(const BdPolyline& line, double angle_deg) {
   }
   for (int i = 0; i < n; ++i) {
     if (!line.closed && (i == 0 || i == n - 1)) continue;
+    // Inside a pole's stretch (both chords collapsed): not a corner; its two
+    // ends are.
+    if ((line.xyz[i] - line.xyz[(i + n - 1) % n]).norm() <= tiny &&
+        (line.xyz[(i + 1) % n] - line.xyz[i]).norm() <= tiny)
+      continue;
     // previous and next non-degenerate chords
     Vec3 a = Vec3::Zero(), b = Vec3::Zero();
     for (int k = 1; k < n && a.norm() <= tiny; ++k)
@@ -119,8 +135,10 @@ void bd_tangent_at(const BdPolyline& line, double s, Vec3& tangent3, Vec2& tange
   const int segs = line.segment_count();
   // skip zero-length segments (forward, then backward)
   int k = i;
-  for (int step = 0; step < segs && line.arc[k + 1] - line.arc[k] <= 0; ++step) k = (k + 1) % segs;
-  if (line.arc[k + 1] - line.arc[k] <= 0) k = i;
+  const double tiny = 1e-12 * line.length();
+  auto collapsed = [&](int j) { return (line.xyz[(j + 1) % n] - line.xyz[j]).norm() <= tiny; };
+  for (int step = 0; step < segs && collapsed(k); ++step) k = (k + 1) % segs;
+  if (collapsed(k)) k = i;
   tangent3 = (line.xyz[(k + 1) % n] - line.xyz[k]).normalized();
   tangent_uv = line.seg_end_uv(k) - line.uv[k];
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <string>
@@ -30,10 +31,13 @@ namespace {
 // edges along curved trims, which follow_trims replaces by the trim; the
 // pipeline's coverage check (analysis/coverage.h) then measures gaps and
 // overlaps exactly.
+// The end of check_mesh's messages; boundary_driven_stages replaces it by
+// the size that works, once it has found one.
+const std::string kCoarseTail = ": use a smaller size)";
+
 void check_mesh(const std::vector<BdPolyline>& boundary, const BdNetwork& net, double size) {
-  const std::string hint =
-      " (size " + std::to_string(size) +
-      " mm is too coarse for this face's openings and notches: use a smaller size)";
+  const std::string hint = " (size " + std::to_string(size) +
+                           " mm is too coarse for this face's openings and notches" + kCoarseTail;
   std::vector<char> reached(boundary.size(), 0);
   double area = 0;
   for (const auto& p : net.panels) {
@@ -126,7 +130,12 @@ void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdN
           straight = false;
       }
       if (straight) continue;
+      const double tiny = 1e-9 * len;
       for (std::size_t idx : between) {
+        // Points of a pole's stretch add no outline in 3D: one is enough.
+        const Vec3& last = m.xyz[static_cast<std::size_t>(out.back())];
+        if ((line.xyz[idx] - last).norm() <= tiny || (line.xyz[idx] - m.xyz[b]).norm() <= tiny)
+          continue;
         out.push_back(static_cast<int>(m.uv.size()));
         m.uv.push_back(line.uv[idx]);
         m.xyz.push_back(line.xyz[idx]);
@@ -139,8 +148,10 @@ void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdN
 
 }  // namespace
 
-BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
-                                            const BoundaryDrivenParams& params) {
+namespace {
+
+BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
+                                           const BoundaryDrivenParams& params) {
   const double ms = face.model_size();
   require_in_range("size (mm)", params.size, 1e-4 * ms, ms);
   require_in_range("rho", params.rho, 0.5, 8.0);
@@ -203,6 +214,9 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
   for (const BdNode& n : net.nodes) m.uv.push_back(n.uv), m.xyz.push_back(n.xyz);
   m.panels = net.panels;
   follow_trims(r.boundary, net.nodes, m);
+  // The nodes a pole's stretch holds (one per (u,v) position along it, so the
+  // network stayed planar in (u,v)) are one point in 3D: one vertex.
+  weld_coincident_vertices(m, 1e-9 * ms);
   // A face closed round its period (a full cylinder) has its seam traced
   // from both sides: joined as two faces along a shared edge.
   join_seam_sides(face, m);
@@ -214,6 +228,42 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
   build_rods(m);
   m.nominal_area = params.size * params.size;
   return r;
+}
+
+}  // namespace
+
+BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
+                                            const BoundaryDrivenParams& params) {
+  try {
+    return build_boundary_driven(face, params);
+  } catch (const GeometryFailure& e) {
+    std::string message = e.what();
+    const std::size_t tail = message.rfind(kCoarseTail);
+    if (tail == std::string::npos || tail + kCoarseTail.size() != message.size()) throw;
+    // "Use a smaller size" is no help on a face without openings: find the
+    // size that works (a quarter smaller each try, down to a quarter, within
+    // max_panels) and say it. Only a failing call pays for the search.
+    message.erase(tail);
+    for (double factor : {0.75, 0.56, 0.42, 0.32, 0.25}) {
+      BoundaryDrivenParams smaller = params;
+      smaller.size = params.size * factor;
+      if (face.area() / (smaller.size * smaller.size) > params.max_panels ||
+          smaller.size < 1e-4 * face.model_size())
+        break;
+      bool works = false;
+      try {
+        build_boundary_driven(face, smaller);
+        works = true;
+      } catch (const GeometryFailure&) {
+      }
+      if (works) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.6g", smaller.size);
+        throw GeometryFailure(message + ": size " + buf + " mm works)");
+      }
+    }
+    throw GeometryFailure(message + ": no size down to a quarter of it works either)");
+  }
 }
 
 PanelMesh boundary_driven(const SurfaceFace& face, const BoundaryDrivenParams& params) {
