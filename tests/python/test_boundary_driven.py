@@ -295,8 +295,16 @@ def test_cylinder_side_face_with_seam_does_not_crash():
 
 def test_too_coarse_a_size_is_a_clear_error_not_a_wrong_mesh():
     face = _load("vault_openings")
-    with pytest.raises(RuntimeError, match="too coarse"):
+    with pytest.raises(RuntimeError, match="too coarse") as err:
         tessella.panelize(face, method="boundary_driven", size=math.sqrt(face.Area / 30))
+    # The message names a size that works, and it does.
+    import re
+    works = re.search(r"size ([0-9.e+-]+) mm works", str(err.value))
+    assert works, str(err.value)
+    size = float(works.group(1))
+    assert size < math.sqrt(face.Area / 30)
+    r = tessella.panelize(face, method="boundary_driven", size=size)
+    assert len(r.panels) > 0
 
 
 def test_panelization_document_object_with_boundary_driven(freeform):

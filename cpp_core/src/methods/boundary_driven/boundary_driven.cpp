@@ -7,6 +7,7 @@
 #include <map>
 #include <string>
 
+#include "analysis/coverage.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_curves.h"
@@ -227,6 +228,15 @@ BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
   if (face.reversed()) reverse_panels(m);
   build_rods(m);
   m.nominal_area = params.size * params.size;
+  // The method checks its own tiling both ways before it returns (the
+  // pipeline checks again after its later stages), so that a size that
+  // leaves a gap or an overlap is refused here and the search for a size
+  // that works (boundary_driven_stages) sees it.
+  const std::string problem =
+      coverage_message(measure_coverage(face, m, {}), "boundary-driven mesh");
+  if (!problem.empty())
+    throw GeometryFailure(problem + " (size " + std::to_string(params.size) +
+                          " mm is too coarse for this face's openings and notches" + kCoarseTail);
   return r;
 }
 
