@@ -67,6 +67,19 @@ void check_mesh(const std::vector<BdPolyline>& boundary, const BdNetwork& net, d
                           std::to_string(area / region) + " of the face's (u,v) region" + hint);
 }
 
+// Whether a trim loop has a pole: a stretch that is one point in 3D but runs
+// along (u,v) (a sphere's apex).
+bool has_pole(const std::vector<BdPolyline>& boundary) {
+  for (const BdPolyline& line : boundary) {
+    const double tiny = 1e-12 * line.length();
+    for (int i = 0; i < line.segment_count(); ++i)
+      if ((line.xyz[(i + 1) % line.xyz.size()] - line.xyz[i]).norm() <= tiny &&
+          line.seg_end_uv(i) != line.uv[i])
+        return true;
+  }
+  return false;
+}
+
 // Arc length along closed `line` of its point closest in (u,v) to `uv`.
 double arc_at(const BdPolyline& line, const Vec2& uv) {
   const std::size_t n = line.uv.size();
@@ -91,6 +104,7 @@ double arc_at(const BdPolyline& line, const Vec2& uv) {
 // forward along the loop.
 void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdNode>& nodes,
                   PanelMesh& m) {
+  const bool pole = has_pole(boundary);
   std::map<std::pair<int, int>, int> uses;
   for (const auto& p : m.panels)
     for (std::size_t i = 0; i < p.size(); ++i)
@@ -135,7 +149,8 @@ void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdN
       for (std::size_t idx : between) {
         // Points of a pole's stretch add no outline in 3D: one is enough.
         const Vec3& last = m.xyz[static_cast<std::size_t>(out.back())];
-        if ((line.xyz[idx] - last).norm() <= tiny || (line.xyz[idx] - m.xyz[b]).norm() <= tiny)
+        if (pole &&
+            ((line.xyz[idx] - last).norm() <= tiny || (line.xyz[idx] - m.xyz[b]).norm() <= tiny))
           continue;
         out.push_back(static_cast<int>(m.uv.size()));
         m.uv.push_back(line.uv[idx]);
@@ -217,7 +232,7 @@ BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
   follow_trims(r.boundary, net.nodes, m);
   // The nodes a pole's stretch holds (one per (u,v) position along it, so the
   // network stayed planar in (u,v)) are one point in 3D: one vertex.
-  weld_coincident_vertices(m, 1e-9 * ms);
+  if (has_pole(r.boundary)) weld_coincident_vertices(m, 1e-9 * ms);
   // A face closed round its period (a full cylinder) has its seam traced
   // from both sides: joined as two faces along a shared edge.
   join_seam_sides(face, m);
