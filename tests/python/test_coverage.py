@@ -176,3 +176,60 @@ def test_a_square_opening_in_the_middle_cell_of_a_plate():
     assert abs(r.metrics["panel_area"].sum() - face.Area) < 1e-6 * face.Area
     gap, extra = independent_coverage(face, r, samples=6000)
     assert gap < 1e-3 and extra < 1e-3, (gap, extra)
+
+
+def _normal_line_coverage(face, r, reach, samples=1200, seed=3):
+    """(gap, overlap): shares of area-weighted random points of the face whose
+    normal line meets no panel / more than one within `reach` (panels
+    fan-triangulated in 3D); independent of the core's (u,v) scan."""
+    rng = np.random.default_rng(seed)
+    u0, u1, v0, v1 = face.ParameterRange
+    surf = face.Surface
+    pts, nrm, w = [], [], []
+    while len(pts) < samples:
+        u, v = rng.uniform(u0, u1), rng.uniform(v0, v1)
+        if not face.isPartOfDomain(u, v):
+            continue
+        n = np.cross(np.array(surf.getDN(u, v, 1, 0)), np.array(surf.getDN(u, v, 0, 1)))
+        if np.linalg.norm(n) == 0:
+            continue
+        pts.append(np.array(surf.value(u, v)))
+        nrm.append(n / np.linalg.norm(n))
+        w.append(np.linalg.norm(n))
+    x, nrm, w = np.array(pts), np.array(nrm), np.array(w)
+    v = np.asarray(r.vertices)
+    tris = [(p[0], p[k], p[k + 1]) for p in r.panels for k in range(1, len(p) - 1)]
+    owner = np.repeat(np.arange(len(r.panels)), [len(p) - 2 for p in r.panels])
+    a, b, c = (v[[t[i] for t in tris]] for i in range(3))
+    e1, e2 = b - a, c - a
+    count = np.zeros(len(x), int)
+    for k in range(len(x)):  # Moller-Trumbore along the normal
+        pvec = np.cross(nrm[k], e2)
+        det = np.einsum("ij,ij->i", e1, pvec)
+        ok = np.abs(det) > 1e-12
+        inv = 1.0 / np.where(ok, det, 1.0)
+        tvec = x[k] - a
+        b1 = np.einsum("ij,ij->i", tvec, pvec) * inv
+        qvec = np.cross(tvec, e1)
+        b2 = (qvec @ nrm[k]) * inv
+        t = np.einsum("ij,ij->i", e2, qvec) * inv
+        hit = ok & (b1 >= -1e-9) & (b2 >= -1e-9) & (b1 + b2 <= 1 + 1e-9) & (np.abs(t) <= reach)
+        count[k] = len(set(owner[hit]))
+    return (w * (count == 0)).sum() / w.sum(), (w * (count > 1)).sum() / w.sum()
+
+
+@pytest.mark.parametrize("method", ["iso_grid", "equal_size_grid"])
+@pytest.mark.parametrize("size", [700.0, 1500.0, 3000.0])
+def test_grids_tile_a_hemisphere_up_to_its_apex(method, size):
+    """A hemisphere (a pole on its seam): iso_grid at 1500 mm was refused with
+    "the panels leave 0.11% of the face uncovered (the widest hole, 3043.8 mm
+    across ...)" - the pole row's short rods were merged, a fan panel then had
+    corners on both sides of the seam and the coverage scan read it the long
+    way round. Outlines are now unwrapped across the seam before they are
+    scanned. Checked independently in 3D: normal lines of random surface points
+    meet the panels once."""
+    face = Part.makeSphere(10000.0, FreeCAD.Vector(), FreeCAD.Vector(0, 0, 1), 0, 90, 360).Faces[0]
+    r = tessella.panelize(face, method=method, size=size)
+    gap, overlap = _normal_line_coverage(face, r, reach=0.2 * size)
+    assert gap < 2e-3 and overlap < 2e-3
+    assert 0.95 < r.metrics["panel_area"].sum() / face.Area <= 1.0

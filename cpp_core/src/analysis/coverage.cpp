@@ -206,6 +206,70 @@ std::vector<Vec2> region_outline(const SurfaceFace& face, const std::vector<Vec2
   return out;
 }
 
+// Along a direction the face spans a whole period of (a full cylinder, a
+// dome), a panel beside the seam may have corners on both sides of it (a
+// merge moved a seam node off the seam, or a vertex on the seam has one (u,v)
+// for both sides): its corners are unwrapped into one run (consecutive ones
+// less than half a period apart) before the pole substitution, and the
+// region is then cut into the period's strip with its shifted copies.
+void unwrap(std::vector<Vec2>& q, int axis, double period) {
+  for (std::size_t k = 1; k < q.size(); ++k) {
+    double& c = q[k][axis];
+    const double prev = q[k - 1][axis];
+    c += period * std::round((prev - c) / period);
+  }
+}
+
+// The part of polygon q with lo <= coordinate `axis` <= hi (Sutherland-Hodgman).
+std::vector<Vec2> clip_to_strip(const std::vector<Vec2>& q, int axis, double lo, double hi) {
+  auto clip = [axis](const std::vector<Vec2>& in, double bound, double sign) {
+    std::vector<Vec2> out;
+    for (std::size_t k = 0; k < in.size(); ++k) {
+      const Vec2& a = in[k];
+      const Vec2& b = in[(k + 1) % in.size()];
+      const double da = sign * (a[axis] - bound), db = sign * (b[axis] - bound);
+      if (da >= 0) out.push_back(a);
+      if ((da >= 0) != (db >= 0)) out.push_back(a + (da / (da - db)) * (b - a));
+    }
+    return out;
+  };
+  return clip(clip(q, lo, 1.0), hi, -1.0);
+}
+
+std::vector<std::vector<Vec2>> panel_regions(const SurfaceFace& face, std::vector<Vec2> q) {
+  const UvBounds b = face.bounds();
+  const bool wrap[2] = {
+      face.u_periodic() && face.u_period() > 0 && b.u_max - b.u_min >= face.u_period() * (1 - 1e-9),
+      face.v_periodic() && face.v_period() > 0 &&
+          b.v_max - b.v_min >= face.v_period() * (1 - 1e-9)};
+  const double period[2] = {face.u_period(), face.v_period()};
+  const double lo[2] = {b.u_min, b.v_min}, hi[2] = {b.u_max, b.v_max};
+  for (int axis = 0; axis < 2; ++axis)
+    if (wrap[axis]) unwrap(q, axis, period[axis]);
+  std::vector<std::vector<Vec2>> regions{region_outline(face, q)};
+  for (int axis = 0; axis < 2; ++axis) {
+    if (!wrap[axis]) continue;
+    std::vector<std::vector<Vec2>> cut;
+    for (const auto& r : regions) {
+      double a = r[0][axis], z = a;
+      for (const Vec2& x : r) a = std::min(a, x[axis]), z = std::max(z, x[axis]);
+      const double eps = 1e-12 * period[axis];
+      if (a >= lo[axis] - eps && z <= hi[axis] + eps) {
+        cut.push_back(r);
+        continue;
+      }
+      for (int shift = -1; shift <= 1; ++shift) {
+        std::vector<Vec2> moved = r;
+        for (Vec2& x : moved) x[axis] += shift * period[axis];
+        std::vector<Vec2> piece = clip_to_strip(moved, axis, lo[axis], hi[axis]);
+        if (piece.size() >= 3) cut.push_back(std::move(piece));
+      }
+    }
+    regions = std::move(cut);
+  }
+  return regions;
+}
+
 }  // namespace
 
 Coverage measure_coverage(const SurfaceFace& face, const PanelMesh& mesh,
@@ -213,7 +277,8 @@ Coverage measure_coverage(const SurfaceFace& face, const PanelMesh& mesh,
   std::vector<std::vector<Vec2>> panels;
   panels.reserve(mesh.panels.size());
   for (std::size_t p = 0; p < mesh.panels.size(); ++p)
-    panels.push_back(region_outline(face, panel_corner_uv(mesh, p)));
+    for (auto& region : panel_regions(face, panel_corner_uv(mesh, p)))
+      panels.push_back(std::move(region));
   const std::vector<TrimLoop> loops =
       face.trim_loops(trim_deflection(face, params.trim_deflection));
   int count = params.rows;
