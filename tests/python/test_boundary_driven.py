@@ -472,3 +472,40 @@ def test_dome_with_an_apex_is_panelized_with_one_apex_node(name, size):
     assert lengths.min() > 0.1 * size
     # The flat panels add up to the dome's area less their sag.
     assert 0.97 < r.metrics["panel_area"].sum() / face.Area < 1.005
+
+
+def _corner_angles(r):
+    """Every corner angle of every panel (deg), from the vertices in 3D."""
+    v = np.asarray(r.vertices)
+    out = []
+    for p in r.panels:
+        q = v[list(p)]
+        for k in range(len(q)):
+            a, b = q[k - 1] - q[k], q[(k + 1) % len(q)] - q[k]
+            c = np.dot(a, b) / (np.linalg.norm(a) * np.linalg.norm(b))
+            out.append(math.degrees(math.acos(max(-1.0, min(1.0, c)))))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("name, size, longest, sharpest", [
+    ("cylinder", 700.0, 1.1, 80.0),
+    ("cylinder", 1500.0, 1.1, 80.0),
+    ("hemisphere", 700.0, 2.0, 15.0),
+    ("hemisphere", 1500.0, 2.0, 15.0),
+    ("revolved", 1500.0, 2.0, 15.0)])
+def test_no_long_thin_panels_beside_the_seam(name, size, longest, sharpest):
+    """On a face closed round its period the seam is no edge of the surface.
+    It was a source of the direction field (the rows beside it bent along it)
+    and curves stopped half a spacing short of it, near their own start
+    across it in 3D: the strip beside the seam had rods up to 15 x the size
+    (a 10.5 m rod on a hemisphere at 700 mm) and corners of 2-5 deg. Now a
+    cylinder is a regular grid and a dome has rings and meridians."""
+    faces = dict(_dome_faces())
+    faces["cylinder"] = Part.makeCylinder(5000.0, 12000.0).Faces[0]
+    face = faces[name]
+    r = tessella.panelize(face, method="boundary_driven", size=size)
+    v = np.asarray(r.vertices)
+    rods = np.asarray(r.rods)
+    lengths = np.linalg.norm(v[rods[:, 0]] - v[rods[:, 1]], axis=1)
+    assert lengths.max() <= longest * size
+    assert _corner_angles(r).min() >= sharpest

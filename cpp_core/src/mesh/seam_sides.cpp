@@ -82,6 +82,20 @@ bool closed_round_a_seam(const SurfaceFace& face) {
          spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period());
 }
 
+bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b) {
+  const UvBounds bounds = face.bounds();
+  auto along = [](bool spans, double period, double lo, double hi, double x, double y) {
+    if (!spans) return false;
+    const double eps = 1e-9 * period;
+    return (std::abs(x - lo) <= eps && std::abs(y - lo) <= eps) ||
+           (std::abs(x - hi) <= eps && std::abs(y - hi) <= eps);
+  };
+  return along(spans_period(face.u_periodic(), bounds.u_min, bounds.u_max, face.u_period()),
+               face.u_period(), bounds.u_min, bounds.u_max, a.x(), b.x()) ||
+         along(spans_period(face.v_periodic(), bounds.v_min, bounds.v_max, face.v_period()),
+               face.v_period(), bounds.v_min, bounds.v_max, a.y(), b.y());
+}
+
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
   if (!closed_round_a_seam(face)) return;
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());

@@ -16,6 +16,10 @@ class SurfaceFace;
 // seam lies inside it).
 bool closed_round_a_seam(const SurfaceFace& face);
 
+// Whether the (u,v) segment a-b runs along the seam of a face closed round its
+// period (either copy of it): a trim there is no edge of the surface.
+bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b);
+
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
 // (u,v)) and inserts into each panel side along the seam the seam vertices
 // strictly between its ends. Nothing for a face not closed round a seam.

@@ -44,6 +44,11 @@ class Tracer {
       }
     }
     max_steps_ = static_cast<int>(std::min(1e6, 20.0 * face.model_size() / h_ + 100));
+    const UvBounds b = face.bounds();
+    wrap_u_ = face.u_periodic() && face.u_period() > 0 &&
+              b.u_max - b.u_min >= face.u_period() * (1 - 1e-9);
+    wrap_v_ = face.v_periodic() && face.v_period() > 0 &&
+              b.v_max - b.v_min >= face.v_period() * (1 - 1e-9);
     // Poles: trim stretches collapsed to one point in 3D (a sphere's apex).
     for (const BdPolyline& line : boundary) {
       const double tiny = 1e-12 * line.length();
@@ -109,6 +114,17 @@ class Tracer {
     return hit;
   }
 
+  // Whether a and b lie on the two sides of the seam of a face closed round
+  // its period (near in 3D, half a period or more apart in (u,v)). A curve
+  // coming up to the seam must end on it, as on a trim, not stop short of
+  // it because its own start, or a curve on the other side, is near in 3D:
+  // that left a strip as wide as the stop distance without a node beside
+  // the seam, meshed with rods five times the size long.
+  bool across_seam(const Vec2& a, const Vec2& b) const {
+    return (wrap_u_ && std::abs(a.x() - b.x()) > 0.5 * face_.u_period()) ||
+           (wrap_v_ && std::abs(a.y() - b.y()) > 0.5 * face_.v_period());
+  }
+
   // The (u,v) to aim at to join the hashed point hp from p. At a pole (an
   // iso-line collapsed to one point: a sphere's apex) hp's (u,v) is one of
   // the many that give that point, so aim straight across the collapsed line,
@@ -159,6 +175,7 @@ class Tracer {
       double nearest_d = p_.stop_fraction * p_.spacing;
       hash_.near(q3, [&](const bd::HashedPoint& hp) {
         if (std::abs(hp.dir.dot(ref)) <= kSameFamily) return;
+        if (across_seam(q, hp.uv)) return;
         if (hp.line == id && std::abs(arc - hp.arc) <= 4 * p_.spacing) return;
         const double d = (hp.p - q3).norm();
         if (d < nearest_d) nearest_d = d, nearest = &hp;
@@ -362,6 +379,7 @@ class Tracer {
   };
   const SurfaceFace& face_;
   std::vector<Pole> poles_;
+  bool wrap_u_ = false, wrap_v_ = false;  // closed round a seam along u / v
   const std::vector<BdPolyline>& boundary_;
   BdCurveParams p_;
   double h_;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "mesh/seam_sides.h"
 #include "tessella/errors.h"
 
 namespace tessella {
@@ -35,6 +36,10 @@ BdTensor build_bd_tensor(const SurfaceFace& face, const std::vector<BdPolyline>&
       const Vec3 n3 = face.normal(uv.x(), uv.y());
       Vec3 tan = chord - chord.dot(n3) * n3;
       if (tan.norm() <= 1e-12 * ms) continue;  // a pole or a degenerate edge
+      // The seam of a face closed round its period is no edge of the
+      // surface: as a source it would turn the field along it (the rows
+      // beside it bent into long thin quads).
+      if (runs_along_seam(face, line.uv[i], line.seg_end_uv(i))) continue;
       BdTensorSample smp;
       smp.uv = uv;
       smp.point = face.point(uv.x(), uv.y());
@@ -42,7 +47,11 @@ BdTensor build_bd_tensor(const SurfaceFace& face, const std::vector<BdPolyline>&
       t.samples.push_back(smp);
     }
   }
-  if (t.samples.empty()) throw InvalidGeometry("the source curves have no usable length");
+  if (t.samples.empty())
+    throw InvalidGeometry(
+        "the source curves have no usable length (a face whose only trims are its seam and "
+        "poles, a whole sphere or torus, has no edge to follow: use iso_grid or "
+        "equal_size_grid)");
   return t;
 }
 
