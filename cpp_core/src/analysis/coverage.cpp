@@ -209,14 +209,20 @@ std::vector<Vec2> region_outline(const SurfaceFace& face, const std::vector<Vec2
 // Along a direction the face spans a whole period of (a full cylinder, a
 // dome), a panel beside the seam may have corners on both sides of it (a
 // merge moved a seam node off the seam, or a vertex on the seam has one (u,v)
-// for both sides): its corners are unwrapped into one run (consecutive ones
-// less than half a period apart) before the pole substitution, and the
-// region is then cut into the period's strip with its shifted copies.
+// for both sides): its corners are unwrapped into one run before the pole
+// substitution, and the region is then cut into the period's strip with its
+// shifted copies. A corner moves by a period only where it is more than
+// three quarters of one from the previous: a panel across the seam has a
+// jump of nearly a period, while a coarse panel may span half of one
+// exactly (a cylinder cut in two; rounding there collapsed it).
 void unwrap(std::vector<Vec2>& q, int axis, double period) {
   for (std::size_t k = 1; k < q.size(); ++k) {
     double& c = q[k][axis];
-    const double prev = q[k - 1][axis];
-    c += period * std::round((prev - c) / period);
+    const double jump = c - q[k - 1][axis];
+    if (jump > 0.75 * period)
+      c -= period;
+    else if (jump < -0.75 * period)
+      c += period;
   }
 }
 

@@ -283,6 +283,11 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
   return merged_total;
 }
 
+// A chord's middle (or a panel's centre) farther from the surface than this
+// share of its length is bent round so much of the surface (half a thin
+// cylinder) that its projection is no longer a well-defined point.
+constexpr double kFarFromSurface = 0.25;
+
 void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
                    BdNetwork& net) {
   std::map<std::pair<int, int>, int> uses;
@@ -312,6 +317,13 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     } else {
       const Projection pr = face.project(0.5 * (na.xyz + nb.xyz), 0.5 * (na.uv + nb.uv));
       m.uv = pr.uv, m.xyz = pr.point;
+      // An edge bent round much of a thin cylinder has its chord's middle
+      // near the axis, where every surface point is about as near: the
+      // middle in (u,v) instead.
+      if (!(pr.distance <= kFarFromSurface * (na.xyz - nb.xyz).norm())) {
+        m.uv = 0.5 * (na.uv + nb.uv);
+        m.xyz = face.point(m.uv.x(), m.uv.y());
+      }
       // an edge between two trim nodes may chord across an opening: move its
       // midpoint toward the panel's centre until it is on the face
       for (int k = 1; k <= 4 && !is_in(m.uv); ++k) {
@@ -425,7 +437,12 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     BdNode c;
     const Projection pr = face.project(c3, c2);
     c.uv = pr.uv, c.xyz = pr.point;
-    if (!is_in(c.uv)) c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
+    double span = 0;  // the panel's largest corner-to-corner distance
+    for (int a : p)
+      for (int b : p) span = std::max(span, (net.nodes[a].xyz - net.nodes[b].xyz).norm());
+    // (As for the midpoints: a centre near a thin cylinder's axis.)
+    if (!is_in(c.uv) || !(pr.distance <= kFarFromSurface * span))
+      c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
     const int ci = add(c);
     std::vector<int> m(n);
     for (std::size_t i = 0; i < n; ++i) m[i] = midpoint(p[i], p[(i + 1) % n], c.uv);
