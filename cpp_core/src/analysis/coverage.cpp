@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geometry/trim_deflection.h"
+#include "mesh/seam_sides.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
 
@@ -244,10 +245,7 @@ std::vector<Vec2> clip_to_strip(const std::vector<Vec2>& q, int axis, double lo,
 
 std::vector<std::vector<Vec2>> panel_regions(const SurfaceFace& face, std::vector<Vec2> q) {
   const UvBounds b = face.bounds();
-  const bool wrap[2] = {
-      face.u_periodic() && face.u_period() > 0 && b.u_max - b.u_min >= face.u_period() * (1 - 1e-9),
-      face.v_periodic() && face.v_period() > 0 &&
-          b.v_max - b.v_min >= face.v_period() * (1 - 1e-9)};
+  const bool wrap[2] = {closed_along(face, 0), closed_along(face, 1)};
   const double period[2] = {face.u_period(), face.v_period()};
   const double lo[2] = {b.u_min, b.v_min}, hi[2] = {b.u_max, b.v_max};
   for (int axis = 0; axis < 2; ++axis)

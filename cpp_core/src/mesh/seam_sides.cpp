@@ -82,6 +82,12 @@ bool closed_round_a_seam(const SurfaceFace& face) {
          spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period());
 }
 
+bool closed_along(const SurfaceFace& face, int axis) {
+  const UvBounds b = face.bounds();
+  return axis == 0 ? spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period())
+                   : spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period());
+}
+
 bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b) {
   const UvBounds bounds = face.bounds();
   auto along = [](bool spans, double period, double lo, double hi, double x, double y) {

@@ -16,6 +16,9 @@ class SurfaceFace;
 // seam lies inside it).
 bool closed_round_a_seam(const SurfaceFace& face);
 
+// Whether the face's domain spans a whole period along u (axis 0) or v (1).
+bool closed_along(const SurfaceFace& face, int axis);
+
 // Whether the (u,v) segment a-b runs along the seam of a face closed round its
 // period (either copy of it): a trim there is no edge of the surface.
 bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <deque>
 
+#include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_geometry.h"
 #include "tessella/errors.h"
 
@@ -44,11 +45,8 @@ class Tracer {
       }
     }
     max_steps_ = static_cast<int>(std::min(1e6, 20.0 * face.model_size() / h_ + 100));
-    const UvBounds b = face.bounds();
-    wrap_u_ = face.u_periodic() && face.u_period() > 0 &&
-              b.u_max - b.u_min >= face.u_period() * (1 - 1e-9);
-    wrap_v_ = face.v_periodic() && face.v_period() > 0 &&
-              b.v_max - b.v_min >= face.v_period() * (1 - 1e-9);
+    wrap_u_ = closed_along(face, 0);
+    wrap_v_ = closed_along(face, 1);
     // Poles: trim stretches collapsed to one point in 3D (a sphere's apex).
     for (const BdPolyline& line : boundary) {
       const double tiny = 1e-12 * line.length();
