@@ -21,7 +21,9 @@ namespace tessella {
 struct BdPolyline {
   std::vector<Vec2> uv;
   std::vector<Vec3> xyz;
-  std::vector<double> arc;  // cumulative 3D length at each vertex (+ closing one)
+  // Cumulative 3D length at each vertex (+ closing one); a collapsed segment
+  // along (u,v) (a pole) gets a tiny length so that arc stays increasing.
+  std::vector<double> arc;
   bool closed = false;
   int loop = -1;  // index of the trim loop it came from, -1 for an extra curve
   bool outer = false;
@@ -30,6 +32,11 @@ struct BdPolyline {
   int segment_count() const { return static_cast<int>(arc.size()) - 1; }
   // Segment i runs from vertex i to vertex (i + 1) % n.
   const Vec2& seg_end_uv(int i) const { return uv[(i + 1) % uv.size()]; }
+  // Whether segment i has no length in 3D (within 1e-12 of the polyline's):
+  // a repeated point, or a stretch of a pole.
+  bool collapsed(int i) const {
+    return (xyz[(i + 1) % xyz.size()] - xyz[i]).norm() <= 1e-12 * length();
+  }
   // (u,v) at arc length s (wrapped when closed, clamped otherwise).
   Vec2 uv_at(double s) const;
   // Arc length of the point at fraction t of segment i.

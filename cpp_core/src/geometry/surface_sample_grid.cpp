@@ -62,7 +62,11 @@ std::vector<std::pair<double, std::size_t>> SurfaceSampleGrid::blocks_by_distanc
 }
 
 SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p) const {
-  const auto order = blocks_by_distance(p);
+  return nearest_in(blocks_by_distance(p), p);
+}
+
+SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest_in(
+    const std::vector<std::pair<double, std::size_t>>& order, const Vec3& p) const {
   double best = std::numeric_limits<double>::infinity();
   std::size_t best_index = 0;
   for (const auto& [bound, b] : order) {
@@ -84,14 +88,15 @@ SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p) const {
 
 std::vector<SurfaceSampleGrid::Sample> SurfaceSampleGrid::candidates(const Vec3& p,
                                                                      int count) const {
-  const Sample first = nearest(p);
+  const auto order = blocks_by_distance(p);  // sorted once, for both passes
+  const Sample first = nearest_in(order, p);
   const double limit = first.distance + 2.0 * reach_;
   const double limit_sq = limit * limit;
   auto dist_sq = [&](int i, int j) {
     return (points_[static_cast<std::size_t>(j) * (nu_ + 1) + i] - p).squaredNorm();
   };
   std::vector<std::pair<double, std::size_t>> found;  // (squared distance, sample index)
-  for (const auto& [bound, b] : blocks_by_distance(p)) {
+  for (const auto& [bound, b] : order) {
     if (bound > limit_sq) break;
     const int bi = static_cast<int>(b % bu_), bj = static_cast<int>(b / bu_);
     for (int j = bj * kBlock; j < std::min(nv_ + 1, bj * kBlock + kBlock); ++j)

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "tessella/surface_face.h"
@@ -47,6 +48,8 @@ class SurfaceSampleGrid {
   Vec2 uv_of(int i, int j) const;
   // Blocks sorted by the squared distance from p to their box.
   std::vector<std::pair<double, std::size_t>> blocks_by_distance(const Vec3& p) const;
+  // The nearest sample, visiting the blocks in that order.
+  Sample nearest_in(const std::vector<std::pair<double, std::size_t>>& order, const Vec3& p) const;
 };
 
 }  // namespace tessella

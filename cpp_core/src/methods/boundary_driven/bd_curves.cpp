@@ -52,8 +52,7 @@ class Tracer {
       const double tiny = 1e-12 * line.length();
       for (int i = 0; i < line.segment_count(); ++i) {
         const Vec2 duv = line.seg_end_uv(i) - line.uv[i];
-        if ((line.xyz[(i + 1) % line.xyz.size()] - line.xyz[i]).norm() > tiny || duv.norm() == 0)
-          continue;
+        if (!line.collapsed(i) || duv.norm() == 0) continue;
         bool known = false;
         for (const Pole& pole : poles_) known = known || (pole.xyz - line.xyz[i]).norm() <= tiny;
         if (!known)

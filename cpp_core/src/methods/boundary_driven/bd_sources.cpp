@@ -114,9 +114,7 @@ std::vector<double> bd_corners(const BdPolyline& line, double angle_deg) {
     if (!line.closed && (i == 0 || i == n - 1)) continue;
     // Inside a pole's stretch (both chords collapsed): not a corner; its two
     // ends are.
-    if ((line.xyz[i] - line.xyz[(i + n - 1) % n]).norm() <= tiny &&
-        (line.xyz[(i + 1) % n] - line.xyz[i]).norm() <= tiny)
-      continue;
+    if (line.collapsed((i + n - 1) % n) && line.collapsed(i)) continue;
     // previous and next non-degenerate chords
     Vec3 a = Vec3::Zero(), b = Vec3::Zero();
     for (int k = 1; k < n && a.norm() <= tiny; ++k)
@@ -135,10 +133,8 @@ void bd_tangent_at(const BdPolyline& line, double s, Vec3& tangent3, Vec2& tange
   const int segs = line.segment_count();
   // skip zero-length segments (forward, then backward)
   int k = i;
-  const double tiny = 1e-12 * line.length();
-  auto collapsed = [&](int j) { return (line.xyz[(j + 1) % n] - line.xyz[j]).norm() <= tiny; };
-  for (int step = 0; step < segs && collapsed(k); ++step) k = (k + 1) % segs;
-  if (collapsed(k)) k = i;
+  for (int step = 0; step < segs && line.collapsed(k); ++step) k = (k + 1) % segs;
+  if (line.collapsed(k)) k = i;
   tangent3 = (line.xyz[(k + 1) % n] - line.xyz[k]).normalized();
   tangent_uv = line.seg_end_uv(k) - line.uv[k];
 }

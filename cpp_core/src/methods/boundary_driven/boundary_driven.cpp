@@ -70,13 +70,9 @@ void check_mesh(const std::vector<BdPolyline>& boundary, const BdNetwork& net, d
 // Whether a trim loop has a pole: a stretch that is one point in 3D but runs
 // along (u,v) (a sphere's apex).
 bool has_pole(const std::vector<BdPolyline>& boundary) {
-  for (const BdPolyline& line : boundary) {
-    const double tiny = 1e-12 * line.length();
+  for (const BdPolyline& line : boundary)
     for (int i = 0; i < line.segment_count(); ++i)
-      if ((line.xyz[(i + 1) % line.xyz.size()] - line.xyz[i]).norm() <= tiny &&
-          line.seg_end_uv(i) != line.uv[i])
-        return true;
-  }
+      if (line.collapsed(i) && line.seg_end_uv(i) != line.uv[i]) return true;
   return false;
 }
 
