@@ -35,6 +35,7 @@ void bind_guide_lines(py::module_& m) {
       .def_readwrite("guide_tolerance", &GuideLineScalingParams::guide_tolerance)
       .def_readwrite("max_curves", &GuideLineScalingParams::max_curves)
       .def_readwrite("finish_sweep", &GuideLineScalingParams::finish_sweep)
+      .def_readwrite("ends_by_distance", &GuideLineScalingParams::ends_by_distance)
       .def_readwrite("stagger", &GuideLineScalingParams::stagger)
       .def_readwrite("trim_deflection", &GuideLineScalingParams::trim_deflection)
       .def_readwrite("max_panels", &GuideLineScalingParams::max_panels);

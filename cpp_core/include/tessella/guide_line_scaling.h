@@ -36,6 +36,11 @@ struct GuideLineScalingParams {
   // curve point by point until it has left the face (covers the strip the
   // paper's sweep leaves open); false = the paper's sweep only.
   bool finish_sweep = true;
+  // A new curve's ends: the boundary points `advance` (3D distance) from the
+  // curve; false = seed 004's rule, the boundary point nearest the line
+  // through D' parallel to the curve (ill-conditioned where the face is steep
+  // across its edge).
+  bool ends_by_distance = true;
   // Nodes of each curve at the feet of the midpoints of the neighbouring
   // curve's rods (staggered rows, near-equal rods between the curves); false =
   // the paper's equal chords on every curve.

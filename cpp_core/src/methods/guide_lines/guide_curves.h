@@ -29,6 +29,9 @@ struct Context {
   // The trim polylines' classifier, cross-checked against OCCT (set from
   // face.trim_loops after construction; OCCT's exact test is face.is_inside).
   UvTrimClassifier inside;
+  // GSM: a new curve's ends lie `step` from the curve along the boundary
+  // (else seed 004's line through D'); set from the params.
+  bool ends_by_distance = true;
 };
 
 double polyline_length(const std::vector<Vec3>& pts);
@@ -37,8 +40,7 @@ SurfaceCurve resample(const SurfaceFace& face, const SurfaceCurve& c, int count)
 // The pieces of the curve inside the trimmed face, cut at the trim (exact:
 // on the true trim, with OCCT's classifier; else on the trim polylines, ~10x
 // faster, for callers that snap the ends themselves).
-std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c,
-                                      bool exact = true);
+std::vector<SurfaceCurve> inside_runs(const Context& cx, const SurfaceCurve& c, bool exact = true);
 Projection project_near(const SurfaceFace& face, const Vec3& p, const Vec2& start);
 // The guide projected onto the face (cx.tol = largest allowed distance), cut to
 // its longest piece on the face and extended to the boundary; throws

@@ -190,6 +190,98 @@ bool nearest_boundary_point(const Boundary& bd, const Vec3& d, const Vec3& t, do
   return std::isfinite(best);
 }
 
+// Distance from x to the polyline.
+double distance_to_polyline(const std::vector<Vec3>& pts, const Vec3& x) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    const Vec3 ab = pts[i + 1] - pts[i];
+    const double l2 = ab.squaredNorm();
+    const double t = l2 > 0.0 ? std::clamp((x - pts[i]).dot(ab) / l2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (pts[i] + t * ab - x).norm());
+  }
+  return best;
+}
+
+// The new end of a curve by distance (beyond seed 004): from the old end
+// `from`, along the outer boundary in the direction that goes towards `d`
+// (the side being advanced), the first boundary point `step` away from the
+// curve c. Seed 004's rule (the boundary point nearest the line through D'
+// parallel to the curve) is ill-conditioned where the face is steep across
+// its edge: the line in 3D runs nearly along the slope and passes the flat
+// edge at a glancing angle, so a small tilt of the curve's end tangent moves
+// its closest point on the edge by several rod lengths; the tilt then grows
+// from curve to curve (a roof from Williams' formula on a 120 x 160 grid:
+// the south ends advanced 1.9, 2.2, 2.8, 3.9, 6.2, 11.5 m for L = 1.73 m,
+// and a third of the roof was left uncovered). The distance from the curve
+// is what the rows are to keep, and it is measured directly. False when no
+// boundary point within 8 steps of walking gets that far (a boundary that
+// turns back towards the curve): the caller then uses the paper's rule.
+bool end_at_distance(const Boundary& bd, const std::vector<Vec3>& curve, bool at_start,
+                     const Vec3& outward, const Vec3& d, double step, Vec3& out, Vec2& out_uv) {
+  const std::size_t n = bd.xyz.size();
+  if (n < 3) return false;
+  const Vec3 from = at_start ? curve.front() : curve.back();
+  // The curve carried on straight beyond this end (along its end tangent):
+  // a boundary point's nearest point on the curve itself would often be the
+  // end, where it is the offset of the curve's continuation that meets the
+  // boundary (on a plate with an oblique guide the end that leans forward
+  // then advanced step instead of step / cos(angle), and the curve turned).
+  std::vector<Vec3> c;
+  c.reserve(curve.size() + 1);
+  if (at_start) c.push_back(from + 8.0 * step * outward);
+  c.insert(c.end(), curve.begin(), curve.end());
+  if (!at_start) c.push_back(from + 8.0 * step * outward);
+  // Where `from` lies on the loop.
+  std::size_t seg = 0;
+  double at = 0.0, best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 a = bd.xyz[i], ab = bd.xyz[(i + 1) % n] - a;
+    const double l2 = ab.squaredNorm();
+    const double t = l2 > 0.0 ? std::clamp((from - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+    const double dist = (a + t * ab - from).norm();
+    if (dist < best) best = dist, seg = i, at = t;
+  }
+  // The walk as a sequence of points: `from`'s foot, then loop vertices.
+  auto vertex = [&](std::size_t k) { return bd.xyz[k % n]; };
+  const Vec3 foot = bd.xyz[seg] + at * (vertex(seg + 1) - bd.xyz[seg]);
+  const Vec2 foot_uv = bd.uv[seg] + at * (bd.uv[(seg + 1) % n] - bd.uv[seg]);
+  const Vec3 forward = vertex(seg + 1) - foot, backward = bd.xyz[seg] - foot;
+  // Direction: the one whose first stretch goes towards d (a foot on a
+  // vertex looks one segment further).
+  const Vec3 fwd = forward.norm() > 1e-12 * step ? forward : vertex(seg + 2) - foot;
+  const Vec3 bwd = backward.norm() > 1e-12 * step ? backward : vertex(seg + n - 1) - foot;
+  const double df = fwd.normalized().dot(d), db = bwd.normalized().dot(d);
+  if (std::max(df, db) <= 0.0) return false;
+  const bool ahead = df >= db;
+  Vec3 prev = foot;
+  Vec2 prev_uv = foot_uv;
+  double prev_dist = distance_to_polyline(c, prev), walked = 0.0;
+  for (std::size_t k = 1; k <= n && walked < 8.0 * step; ++k) {
+    const std::size_t idx = ahead ? (seg + k) % n : (seg + 1 + n - k) % n;
+    const Vec3 x = bd.xyz[idx];
+    const Vec2 xuv = bd.uv[idx];
+    const double dist = distance_to_polyline(c, x);
+    if (dist >= step) {
+      // Bisection on the stretch prev -> x (distance grows along it).
+      double lo = 0.0, hi = 1.0;
+      for (int it = 0; it < 40; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (distance_to_polyline(c, prev + mid * (x - prev)) >= step)
+          hi = mid;
+        else
+          lo = mid;
+      }
+      out = prev + hi * (x - prev);
+      out_uv = prev_uv + hi * (xuv - prev_uv);
+      return true;
+    }
+    walked += (x - prev).norm();
+    prev = x, prev_uv = xuv, prev_dist = dist;
+  }
+  (void)prev_dist;
+  return false;
+}
+
 // Newton projection (seed 004 section 4) from the matching point of the
 // previous curve (OCCT's global search only when Newton fails).
 Projection project_near(const SurfaceFace& face, const Vec3& p, const Vec2& start) {
@@ -326,6 +418,9 @@ bool advance_curve_by(const Context& cx, const SurfaceCurve& c, double side, dou
     // corners. The line then goes through D itself (on the surface's
     // continuation), which is where the offset curve meets the border.
     const Vec3 anchor = dp.distance > 0.1 * step ? target : dp.point;
+    if (cx.ends_by_distance && end_at_distance(cx.boundary, c.xyz, e == 0, e == 0 ? -tau : tau, d,
+                                               step, new_end[e], new_uv[e]))
+      continue;
     if (!nearest_boundary_point(cx.boundary, anchor, t, 0.05, new_end[e], new_uv[e])) return false;
   }
   const Vec3 p0 = c.xyz.front(), pn = c.xyz.back();
@@ -715,6 +810,7 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
              0,
              {}};
   require_in_range("advance (mm)", cx.advance, 1e-3, 1e9);
+  cx.ends_by_distance = params.ends_by_distance;
   if (size / cx.advance > params.max_curves)
     throw LimitExceeded(
         "guide_line_scaling: the face needs more than max_curves curves at this advance");
@@ -849,8 +945,29 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
           const int n = gap > 1.5 * cx.l1 ? static_cast<int>(std::round(gap / cx.l1)) : 1;
           for (int q = 1; q <= n; ++q) split.push_back(kept[i - 1] + gap * q / n);
         }
-        // Pull the chords towards L1 (the feet stay the targets): Gauss-Seidel
-        // on sum (x_i - foot_i)^2 + sum (x_{i+1} - x_i - L1)^2, ends fixed.
+        // As many chords as the paper's division lays (len / L1, rounded):
+        // the feet follow the previous row's spacing, which drifts where the
+        // rows converge or part (a foot under 0.8 L1 from the last is
+        // dropped, but the gap it leaves is split in two again), and the
+        // rods along the curves averaged 0.93 L1 on the roof. Extra nodes go
+        // where the two chords beside them are shortest; missing ones split
+        // the longest chord.
+        const std::size_t count = static_cast<std::size_t>(std::max(1L, std::lround(len / cx.l1)));
+        while (split.size() - 1 > count && split.size() > 2) {
+          std::size_t drop = 1;
+          for (std::size_t i = 2; i + 1 < split.size(); ++i)
+            if (split[i + 1] - split[i - 1] < split[drop + 1] - split[drop - 1]) drop = i;
+          split.erase(split.begin() + static_cast<std::ptrdiff_t>(drop));
+        }
+        while (split.size() - 1 < count) {
+          std::size_t longest = 0;
+          for (std::size_t i = 1; i + 1 < split.size(); ++i)
+            if (split[i + 1] - split[i] > split[longest + 1] - split[longest]) longest = i;
+          split.insert(split.begin() + static_cast<std::ptrdiff_t>(longest) + 1,
+                       0.5 * (split[longest] + split[longest + 1]));
+        }
+        // Even out the chords, the feet staying the targets: Gauss-Seidel on
+        // sum (x_i - foot_i)^2 + 2 sum (x_{i+1} - x_i)^2, ends fixed.
         const std::vector<double> foot = split;
         for (int it = 0; it < 50; ++it)
           for (std::size_t i = 1; i + 1 < split.size(); ++i)
