@@ -242,7 +242,8 @@ def _plan_coverage(pts, res):
     a height field)."""
     covered = np.zeros(len(pts), dtype=bool)
     v = res.vertices
-    for a, b, c in (v[list(t)][:, :2] for t in res.panels):
+    fans = [(p[0], p[k], p[k + 1]) for p in res.panels for k in range(1, len(p) - 1)]
+    for a, b, c in (v[list(t)][:, :2] for t in fans):
         d = (b[1] - c[1]) * (a[0] - c[0]) + (c[0] - b[0]) * (a[1] - c[1])
         if abs(d) < 1e-9:
             continue
@@ -355,6 +356,24 @@ def test_closed_cylinder_is_swept_half_way_round_from_each_side():
     res = tessella.panelize(face, method="guide_line_scaling", guides=[seam],
                             rod_length=face.BoundBox.DiagonalLength / 25)
     assert 0.95 * face.Area < _panel_area(res) < 1.005 * face.Area
+
+
+def test_the_strips_along_the_far_edge_are_filled():
+    """West edge as guide on the roof sampled on 120 x 160 points: the last
+    curves meet the east edge at a glancing angle and bow back from it between
+    their ends, and their offsets lie beyond the border; strips up to 1.5 m
+    wide and 16 m long were left bare (23% of the points within 1.2 m of the
+    edge). Now they are filled with nodes on the trim: plan points within
+    1.2 m of the east edge lie under the panels (the rest are the triangles'
+    chords where the rows meet the edge)."""
+    face, edges = _roof_build((120, 160), 22.245, 0.0)
+    res = tessella.panelize(face, method="guide_line_scaling", guides=[edges["west"]],
+                            rod_length=2000.0)
+    bb = face.BoundBox
+    # The strip lies 14 m from the drum: every plan point there is on the face.
+    ys = bb.YMin + (bb.YMax - bb.YMin) * (np.arange(400) + 0.5) / 400
+    pts = np.array([(x, y) for y in ys for x in (bb.XMax - 1200.0, bb.XMax - 600.0, bb.XMax - 100.0)])
+    assert _plan_coverage(pts, res) > 0.97  # 0.77 before the strips were filled
 
 
 def _roof_build(samples, drum_m, turn_deg):

@@ -1,11 +1,12 @@
 // Equal-chord division of a curve with the left-over rule (seed 004 section 5.1
 // step 7).
+#include "methods/guide_lines/chord_division.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "tessella/errors.h"
-#include "methods/guide_lines/chord_division.h"
 #include "methods/guide_lines/right_angle_rule.h"
+#include "tessella/errors.h"
 #include "tessella/guide_line_scaling.h"
 #include "tessella/two_guide_lines.h"
 

@@ -35,6 +35,11 @@ struct Context {
 };
 
 double polyline_length(const std::vector<Vec3>& pts);
+// Distance from x to the polyline.
+double distance_to_polyline(const std::vector<Vec3>& pts, const Vec3& x);
+// The trim crossing between an inside and an outside (u,v) point (bisection;
+// exact: the last steps on OCCT's classifier, so the point is on the true trim).
+Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out, bool exact = true);
 // Resampled to `count` points evenly spaced in 3D arc length.
 SurfaceCurve resample(const SurfaceFace& face, const SurfaceCurve& c, int count);
 // The pieces of the curve inside the trimmed face, cut at the trim (exact:

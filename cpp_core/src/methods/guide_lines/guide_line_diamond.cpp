@@ -4,12 +4,12 @@
 #include <cmath>
 
 #include "mesh/curve_family_mesh.h"
-#include "tessella/errors.h"
 #include "methods/guide_lines/chord_division.h"
 #include "methods/guide_lines/right_angle_rule.h"
+#include "tessella/errors.h"
 #include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
 #include "tessella/surface_face.h"
+#include "tessella/two_guide_lines.h"
 
 namespace tessella {
 

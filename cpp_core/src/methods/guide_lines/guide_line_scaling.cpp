@@ -14,6 +14,7 @@
 #include "methods/guide_lines/chord_division.h"
 #include "methods/guide_lines/guide_curves.h"
 #include "methods/guide_lines/right_angle_rule.h"
+#include "methods/guide_lines/trim_gap_fill.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 #include "tessella/two_guide_lines.h"
@@ -54,7 +55,7 @@ SurfaceCurve resample(const SurfaceFace& face, const SurfaceCurve& c, int count)
 // The fast test finds the crossing of the trim polyline; the last steps use
 // OCCT's classifier in a small bracket around it, so the point lies on the true
 // trim (the polyline is up to the trim deflection away from it).
-Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out, bool exact = true) {
+Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out, bool exact) {
   const Vec2 in0 = in, out0 = out;
   for (int it = 0; it < 36; ++it) {
     const Vec2 mid = 0.5 * (in + out);
@@ -255,7 +256,7 @@ bool end_at_distance(const Boundary& bd, const std::vector<Vec3>& curve, bool at
   const bool ahead = df >= db;
   Vec3 prev = foot;
   Vec2 prev_uv = foot_uv;
-  double prev_dist = distance_to_polyline(c, prev), walked = 0.0;
+  double walked = 0.0;
   for (std::size_t k = 1; k <= n && walked < 8.0 * step; ++k) {
     const std::size_t idx = ahead ? (seg + k) % n : (seg + 1 + n - k) % n;
     const Vec3 x = bd.xyz[idx];
@@ -276,9 +277,8 @@ bool end_at_distance(const Boundary& bd, const std::vector<Vec3>& curve, bool at
       return true;
     }
     walked += (x - prev).norm();
-    prev = x, prev_uv = xuv, prev_dist = dist;
+    prev = x, prev_uv = xuv;
   }
-  (void)prev_dist;
   return false;
 }
 
@@ -1035,6 +1035,12 @@ GuideLineResult guide_line_scaling_curves(const SurfaceFace& face,
         throw LimitExceeded("guide_line_scaling: more panels than max_panels");
     }
   }
+  // The strips the rows leave along the trims (glancing curve ends, the far
+  // edge): filled when under a row and a half wide (wider ones are what the
+  // sweep did not reach; the coverage check reports them).
+  if (params.finish_sweep)
+    fill_trim_gaps(cx, loops, 4.0 * deflection + 1e-6 * size, 0.1 * cx.advance, 1.5 * cx.advance,
+                   mesh);
   const double diagonal = std::sqrt(cx.advance * cx.advance + 0.25 * cx.l1 * cx.l1);
   split_long_boundary_edges(cx, mesh);
   flip_long_edges(mesh, 1.3 * std::max(cx.l1, diagonal), 10);

@@ -1,7 +1,8 @@
 // The 90-degree rule connecting two neighbouring node rows into triangles
 // (seed 004 section 5.1 step 8, Fig. 14).
-#include "methods/guide_lines/chord_division.h"
 #include "methods/guide_lines/right_angle_rule.h"
+
+#include "methods/guide_lines/chord_division.h"
 #include "tessella/guide_line_scaling.h"
 #include "tessella/two_guide_lines.h"
 
