@@ -89,18 +89,36 @@ def sample_height(x, y):
     return roof_height(x, y)
 
 
-def build_face(nx=74, ny=98):
+def build_face(nx=74, ny=98, drum_radius=A):
+    """The roof interpolated on (nx + 1) x (ny + 1) samples of the formula, the
+    drum (radius in m) cut out. Other samplings and drum radii give the
+    independent builds the guide-line tests and benchmarks run on."""
     dx = 2 * B / nx
     dy = (C + D) / ny
     z = [[sample_height(-B + i * dx, -D + j * dy) * 1000.0 for j in range(ny + 1)] for i in range(nx + 1)]
     surface = Part.BSplineSurface()
     surface.interpolate(z, -B * 1000.0, dx * 1000.0, -D * 1000.0, dy * 1000.0)
     roof = Part.Face(surface)
-    drum = Part.makeCylinder(A * 1000.0, 100000.0, Vector(0, 0, -20000.0))
+    drum = Part.makeCylinder(drum_radius * 1000.0, 100000.0, Vector(0, 0, -20000.0))
     faces = roof.cut(drum).Faces
     if len(faces) != 1:
         raise RuntimeError(f"expected one face after cutting the drum, got {len(faces)}")
     return faces[0]
+
+
+def court_edges(face):
+    """The four straight court edges by compass side ("west", "east", "south",
+    "north"), as indices into face.Edges (they stay valid after the face is
+    moved or turned)."""
+    bb = face.BoundBox
+    sides = {}
+    for i, e in enumerate(face.Edges):
+        eb = e.BoundBox
+        if eb.XLength < 1:
+            sides["west" if abs(eb.XMin - bb.XMin) < 1 else "east"] = i
+        elif eb.YLength < 1:
+            sides["south" if abs(eb.YMin - bb.YMin) < 1 else "north"] = i
+    return sides
 
 
 def check(face):

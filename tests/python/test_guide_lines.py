@@ -378,27 +378,13 @@ def test_the_strips_along_the_far_edge_are_filled():
 
 def _roof_build(samples, drum_m, turn_deg):
     """The roof from Williams' formula (examples/make_british_museum.py), built
-    here on its own sampling grid, drum radius and orientation; returns the
-    face and its four court edges by compass side (before the turn)."""
+    on its own sampling grid, drum radius and orientation; returns the face
+    and its four court edges by compass side (before the turn)."""
     sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "examples"))
     import make_british_museum as bm
 
-    nx, ny = samples
-    dx, dy = 2 * bm.B / nx, (bm.C + bm.D) / ny
-    z = [[bm.sample_height(-bm.B + i * dx, -bm.D + j * dy) * 1000.0 for j in range(ny + 1)]
-         for i in range(nx + 1)]
-    surface = Part.BSplineSurface()
-    surface.interpolate(z, -bm.B * 1000.0, dx * 1000.0, -bm.D * 1000.0, dy * 1000.0)
-    drum = Part.makeCylinder(drum_m * 1000.0, 100000.0, FreeCAD.Vector(0, 0, -20000.0))
-    face = Part.Face(surface).cut(drum).Faces[0]
-    bb = face.BoundBox
-    sides = {}
-    for i, e in enumerate(face.Edges):
-        eb = e.BoundBox
-        if eb.XLength < 1:
-            sides["west" if abs(eb.XMin - bb.XMin) < 1 else "east"] = i
-        elif eb.YLength < 1:
-            sides["south" if abs(eb.YMin - bb.YMin) < 1 else "north"] = i
+    face = bm.build_face(*samples, drum_radius=drum_m)
+    sides = bm.court_edges(face)
     face.rotate(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(0, 0, 1), turn_deg)
     return face, {k: face.Edges[i] for k, i in sides.items()}
 

@@ -49,6 +49,12 @@ ParamDeclaration finish_sweep() {
               "(false: the paper's sweep only)",
               kGroup, "FinishSweep");
 }
+ParamDeclaration ends_by_distance() {
+  return decl("ends_by_distance", ParamKind::Boolean, "", 0, 1, "Ends by distance",
+              "A new curve's ends are the boundary points Advance away from the curve "
+              "(false: the paper's line through the advanced end point)",
+              kGroup, "EndsByDistance");
+}
 ParamDeclaration triangulate() {
   return decl("triangulate", ParamKind::Boolean, "", 0, 1, "Triangulate",
               "Split every cell along its shorter diagonal", kGroup, "Triangulate");
@@ -76,11 +82,7 @@ std::vector<MethodDeclaration> guide_line_methods() {
         .param(&P::guide_tolerance, guide_tolerance())
         .param(&P::max_curves, max_curves())
         .param(&P::finish_sweep, finish_sweep())
-        .param(&P::ends_by_distance,
-               decl("ends_by_distance", ParamKind::Boolean, "", 0, 1, "Ends by distance",
-                    "A new curve's ends are the boundary points Advance away from the curve "
-                    "(false: the paper's line through the advanced end point)",
-                    kGroup, "EndsByDistance"))
+        .param(&P::ends_by_distance, ends_by_distance())
         .param(&P::stagger,
                decl("stagger", ParamKind::Boolean, "", 0, 1, "Staggered rows",
                     "Nodes of each curve at the feet of the neighbouring curve's rod midpoints "

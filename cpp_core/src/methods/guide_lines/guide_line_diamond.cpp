@@ -23,6 +23,7 @@ PanelMesh guide_line_diamond(const SurfaceFace& face, const GuideLineDiamondPara
   gsm.rod_length = advance;
   gsm.advance = advance;
   gsm.finish_sweep = params.finish_sweep;
+  gsm.ends_by_distance = params.ends_by_distance;
   gsm.guide_tolerance = params.guide_tolerance;
   gsm.max_curves = params.max_curves;
   gsm.trim_deflection = params.trim_deflection;
