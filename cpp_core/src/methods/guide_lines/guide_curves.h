@@ -37,6 +37,14 @@ struct Context {
 double polyline_length(const std::vector<Vec3>& pts);
 // Distance from x to the polyline.
 double distance_to_polyline(const std::vector<Vec3>& pts, const Vec3& x);
+// The point of a closed polyline (last point joined to the first) nearest to
+// x: segment `seg` from point seg to point seg + 1, at parameter t on it.
+struct LoopPoint {
+  std::size_t seg = 0;
+  double t = 0.0;
+  double distance = 0.0;
+};
+LoopPoint nearest_on_loop(const std::vector<Vec3>& loop, const Vec3& x);
 // The trim crossing between an inside and an outside (u,v) point (bisection;
 // exact: the last steps on OCCT's classifier, so the point is on the true trim).
 Vec2 bisect_boundary(const Context& cx, Vec2 in, Vec2 out, bool exact = true);

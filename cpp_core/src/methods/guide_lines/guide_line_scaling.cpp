@@ -203,6 +203,20 @@ double distance_to_polyline(const std::vector<Vec3>& pts, const Vec3& x) {
   return best;
 }
 
+LoopPoint nearest_on_loop(const std::vector<Vec3>& loop, const Vec3& x) {
+  LoopPoint best;
+  best.distance = std::numeric_limits<double>::infinity();
+  const std::size_t n = loop.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 a = loop[i], ab = loop[(i + 1) % n] - a;
+    const double l2 = ab.squaredNorm();
+    const double t = l2 > 0.0 ? std::clamp((x - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+    const double d = (a + t * ab - x).norm();
+    if (d < best.distance) best = {i, t, d};
+  }
+  return best;
+}
+
 // The new end of a curve by distance (beyond seed 004): from the old end
 // `from`, along the outer boundary in the direction that goes towards `d`
 // (the side being advanced), the first boundary point `step` away from the
@@ -233,15 +247,9 @@ bool end_at_distance(const Boundary& bd, const std::vector<Vec3>& curve, bool at
   c.insert(c.end(), curve.begin(), curve.end());
   if (!at_start) c.push_back(from + 8.0 * step * outward);
   // Where `from` lies on the loop.
-  std::size_t seg = 0;
-  double at = 0.0, best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 a = bd.xyz[i], ab = bd.xyz[(i + 1) % n] - a;
-    const double l2 = ab.squaredNorm();
-    const double t = l2 > 0.0 ? std::clamp((from - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-    const double dist = (a + t * ab - from).norm();
-    if (dist < best) best = dist, seg = i, at = t;
-  }
+  const LoopPoint on = nearest_on_loop(bd.xyz, from);
+  const std::size_t seg = on.seg;
+  const double at = on.t;
   // The walk as a sequence of points: `from`'s foot, then loop vertices.
   auto vertex = [&](std::size_t k) { return bd.xyz[k % n]; };
   const Vec3 foot = bd.xyz[seg] + at * (vertex(seg + 1) - bd.xyz[seg]);

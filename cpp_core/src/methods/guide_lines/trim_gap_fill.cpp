@@ -43,17 +43,10 @@ struct LoopIndex {
   TrimFoot foot(const Vec3& p) const {
     TrimFoot best;
     for (std::size_t l = 0; l < loops.size(); ++l) {
-      const std::vector<Vec3>& x = loops[l].xyz;
-      const std::size_t n = x.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 a = x[i], ab = x[(i + 1) % n] - a;
-        const double l2 = ab.squaredNorm();
-        const double t = l2 > 0.0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-        const double d = (a + t * ab - p).norm();
-        if (d < best.dist) {
-          best.loop = static_cast<int>(l), best.seg = i, best.t = t, best.dist = d;
-          best.s = cum[l][i] + t * (cum[l][i + 1] - cum[l][i]);
-        }
+      const LoopPoint on = nearest_on_loop(loops[l].xyz, p);
+      if (on.distance < best.dist) {
+        best.loop = static_cast<int>(l), best.seg = on.seg, best.t = on.t, best.dist = on.distance;
+        best.s = cum[l][on.seg] + on.t * (cum[l][on.seg + 1] - cum[l][on.seg]);
       }
     }
     return best;
@@ -127,10 +120,7 @@ int fill_trim_gaps(const Context& cx, const std::vector<TrimLoop>& loops, double
     }
   const LoopIndex index(loops);
   std::map<int, TrimFoot> feet;
-  for (const auto& [v, b] : next) {
-    (void)b;
-    feet[v] = index.foot(mesh.xyz[v]);
-  }
+  for (const auto& edge : next) feet[edge.first] = index.foot(mesh.xyz[edge.first]);
   auto is_on_trim = [&](int v) {
     const auto it = feet.find(v);
     return it != feet.end() && it->second.dist <= on_trim;
@@ -140,8 +130,8 @@ int fill_trim_gaps(const Context& cx, const std::vector<TrimLoop>& loops, double
   // boundary edges (two cycles touching) stops its cycles from being filled.
   std::map<int, char> seen;
   std::vector<std::vector<int>> cycles;
-  for (const auto& [start, b] : next) {
-    (void)b;
+  for (const auto& edge : next) {
+    const int start = edge.first;
     if (seen[start]) continue;
     std::vector<int> cycle;
     bool clean = true;
