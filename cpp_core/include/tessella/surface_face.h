@@ -69,6 +69,10 @@ class SurfaceFace {
 
   // Bounds of the trimmed face in (u,v) (not of the underlying surface).
   UvBounds bounds() const;
+  // The (u,v) range project() searches: bounds() widened by 10% each way,
+  // within the surface's own bounds. A foot point on its border need not be
+  // orthogonal (the nearest point of the range lies on its border).
+  UvBounds search_bounds() const;
   // Diagonal of the face's 3D bounding box: the length tolerances scale with it.
   double model_size() const;
   bool u_periodic() const;
