@@ -215,12 +215,57 @@ def test_strongly_varying_surfaces_need_far_fewer_panels_than_any_iso_grid(heigh
     assert len(r.panels) <= 0.7 * iso_grid_lower_bound(face, bound)
 
 
+
+def nodes_inside_edges(r):
+    """(panel, edge, vertex) where a vertex lies strictly inside a panel's
+    straight edge in (u,v) (a T-junction), by brute force."""
+    uv = np.asarray(r.uv)
+    span = np.ptp(uv, axis=0).max()
+    found = []
+    for k, panel in enumerate(r.panels):
+        c = [int(v) for v in panel]
+        for e in range(len(c)):
+            a, b = uv[c[e]], uv[c[(e + 1) % len(c)]]
+            ab = b - a
+            t = np.clip(((uv - a) @ ab) / (ab @ ab), 0, 1)
+            off = np.linalg.norm(a + t[:, None] * ab - uv, axis=1)
+            inside = (off < 1e-9 * span) & (t > 1e-9) & (t < 1 - 1e-9)
+            found += [(k, e, int(v)) for v in np.nonzero(inside)[0] if v not in c]
+    return found
+
+
+@pytest.mark.parametrize("height", [corner_bump, two_bumps])
+def test_lines_stop_where_the_bumps_no_longer_need_them(height):
+    """Issue 18 part 2: lines placed for a bump stop where the flat field no
+    longer needs them (neighbouring cells merge), with a triangle and a quad
+    where a line ends, never a T-junction; fewer panels than the thesis'
+    lines across the whole face, every panel within the bound (checked by an
+    independent re-measure too)."""
+    face = height_field(height)
+    bound = 30.0
+    across = tessella.panelize(face, method="walking_agent", max_deviation=bound,
+                               local_lines=False)
+    local = tessella.panelize(face, method="walking_agent", max_deviation=bound)
+    assert len(local.panels) <= 0.85 * len(across.panels)
+    assert local.metrics["panel_deviation"].max() <= bound
+    # No more panels of over four vertices than the thesis' layout has (boundary
+    # panels whose outline follows the face's curved edge).
+    assert sum(len(p) > 4 for p in local.panels) <= sum(len(p) > 4 for p in across.panels)
+    assert local.summary["quad_share"] >= 0.75
+    assert nodes_inside_edges(local) == []
+    assert nodes_inside_edges(across) == []
+    # Where a line stops: a triangle beside a quad (more triangles than folds make).
+    assert sum(len(p) == 3 for p in local.panels) > 2 * len(local.folds)
+    dev = independent_deviation(face, local, panels_to_check(local, bound, worst=10, others=5))
+    assert max(dev.values()) <= bound * (1 + 1e-6)
+
 def test_folds_carry_their_angle(freeform_face):
     # The untrimmed surface under the freeform face, walked with the thesis'
-    # rule at the full bound: two quads bend over the bound and fold along
-    # their better diagonal.
+    # rule at the full bound, lines across the whole face (no transition
+    # triangles): quads bend over the bound and fold along their better diagonal.
     untrimmed = freeform_face.Surface.toShape()
-    r = tessella.panelize(untrimmed, method="walking_agent", max_deviation=BOUND, edge_share=1.0)
+    r = tessella.panelize(untrimmed, method="walking_agent", max_deviation=BOUND, edge_share=1.0,
+                          local_lines=False)
     assert r.metrics["panel_deviation"].max() <= BOUND
     assert len(r.folds) == r.summary["fold_count"] > 0
     assert len(r.metrics["fold_angle"]) == len(r.folds)

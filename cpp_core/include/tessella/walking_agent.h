@@ -58,6 +58,11 @@ struct WalkingAgentParams {
   // quads folded where that holds the bound, no panel cut by a trim) that
   // holds the bound with fewer panels than the agents' layout, if any.
   bool iso_fallback = true;
+  // Let lines stop where the surface no longer needs them: neighbouring whole
+  // cells merge wherever the merged panel holds the bound (panels of five or
+  // six corners where a line ends; methods/agents/local_lines.h). False: the
+  // thesis' lines across the whole face.
+  bool local_lines = true;
   GridClipParams clip;
 };
 
@@ -72,6 +77,7 @@ struct WalkingAgentReport {
   // The coarsest iso grid holding the bound, kept instead of the agents'
   // layout because it has fewer panels (0 x 0: the agents' layout kept).
   int iso_u_count = 0, iso_v_count = 0;
+  int merged_cells = 0;  // merges of neighbouring cells (lines stopped early)
 };
 
 PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& params,

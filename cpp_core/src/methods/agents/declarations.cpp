@@ -59,7 +59,13 @@ std::vector<MethodDeclaration> agent_methods() {
                decl("iso_fallback", ParamKind::Boolean, "", 0, 1, "Iso grid fallback",
                     "Where a uniform (u,v) grid holds the bound with fewer panels than the "
                     "agents' lines (even curvature), keep the coarsest such grid",
-                    kGroup, "IsoFallback"));
+                    kGroup, "IsoFallback"))
+        .param(&P::local_lines,
+               decl("local_lines", ParamKind::Boolean, "", 0, 1, "Lines stop locally",
+                    "Lines stop where the surface no longer needs them: neighbouring cells merge "
+                    "wherever the merged panel holds the bound (five- or six-cornered panels "
+                    "where a line ends); off: the thesis' lines across the whole face",
+                    kGroup, "LocalLines"));
     out.push_back(
         with_clip(b).build([](const SurfaceFace& f, const P& p) { return walking_agent(f, p); }));
   }

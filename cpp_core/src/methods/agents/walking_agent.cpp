@@ -11,6 +11,7 @@
 #include "mesh/grid_clipping.h"
 #include "mesh/panel_model.h"
 #include "methods/agents/agent_walk.h"
+#include "methods/agents/local_lines.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
@@ -356,7 +357,8 @@ double panels_area(const PanelMesh& mesh) {
 std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrimClassifier& trim,
                                            const Gauge& gauge, const GridClipParams& clip,
                                            double sample_step, double max_size,
-                                           const PanelMesh& agents, double share,
+                                           const PanelMesh& agents, double share, bool local_lines,
+                                           const agents::OutlineCheck& holds,
                                            WalkingAgentReport& rep) {
   const std::size_t fewer_than = agents.panels.size();
   const double covered = panels_area(agents);
@@ -441,6 +443,7 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
       if (verdict.fold >= 0) folds.push_back({p, verdict.fold});
       worst = std::max(worst, verdict.kept);
     }
+    if (local_lines) got.merged_cells = agents::stop_lines_early(mesh, l.u, l.v, folds, holds);
     apply_folds(mesh, folds);
     got.folds = static_cast<int>(folds.size());
     got.max_estimate = worst;
@@ -470,6 +473,7 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
       if (mesh->panels.size() < best && std::abs(panels_area(*mesh) - covered) <= 0.01 * covered) {
         best = mesh->panels.size();
         rep.folds = got.folds, rep.max_estimate = got.max_estimate;
+        rep.merged_cells = got.merged_cells;
         rep.iso_u_count = nu, rep.iso_v_count = nv;
         found = std::move(mesh);
       }
@@ -510,6 +514,11 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
   const UvTrimClassifier trim = agents::agent_trim(face);
   const double limit = kBoundMargin * bound;
   const Gauge gauge{face, limit};
+  // A merged panel (lines stopped early) must hold the bound as it is: no fold.
+  const agents::OutlineCheck holds = [&](const std::vector<Vec3>& x, const std::vector<Vec2>& q,
+                                         double longest) {
+    return longest <= max_size && polygon_estimate(gauge, x, q) <= gauge.limit;
+  };
 
   // One run of the agents whose edge rule uses `share` x max_deviation.
   auto attempt = [&](double share, WalkingAgentReport& rep) -> PanelMesh {
@@ -569,6 +578,8 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
       rep.refinement_rounds = round;
       if (added == 0) {
         rep.grid_cells = static_cast<double>(lines.u.size() - 1) * (lines.v.size() - 1);
+        if (params.local_lines)
+          rep.merged_cells = agents::stop_lines_early(mesh, lines.u, lines.v, folds, holds);
         apply_folds(mesh, folds);
         rep.folds = static_cast<int>(folds.size());
         rep.max_estimate = worst_kept;
@@ -626,8 +637,9 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
   // Never more panels than the coarsest iso grid that holds the bound.
   if (params.iso_fallback && best_rep.grid_cells > 0) {
     const double share = static_cast<double>(best.panels.size()) / best_rep.grid_cells;
-    if (std::optional<PanelMesh> iso = coarsest_iso_grid(
-            face, trim, gauge, params.clip, params.sample_step, max_size, best, share, best_rep))
+    if (std::optional<PanelMesh> iso =
+            coarsest_iso_grid(face, trim, gauge, params.clip, params.sample_step, max_size, best,
+                              share, params.local_lines, holds, best_rep))
       best = std::move(*iso);
   }
   if (report) *report = best_rep;
