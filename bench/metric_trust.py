@@ -17,7 +17,7 @@ smooth dome (both built here). Prints per face and run: panels re-measured,
 the metric's time, unreliable flags, the lowest and highest ratio
 reported / re-measured and how many panels lie outside 1%.
 
-    PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/metric_trust.py [corpus/]
+    PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/metric_trust.py [corpus/] [--only dome]
 """
 
 import math
@@ -137,14 +137,23 @@ def check(name, face, rows):
 
 
 def main(argv):
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("corpus", nargs="?", default=os.path.join(HERE, "..", "corpus"))
+    ap.add_argument("--only", action="append", help="face name(s) to check (default: all)")
+    args = ap.parse_args(argv[1:])
     faces = [("bumps 17", bumpy_face(17.0)), ("bumps 22", bumpy_face(22.0)),
              ("dome", bench_faces.dome_with_opening())]
-    corpus = argv[1] if len(argv) > 1 else os.path.join(HERE, "..", "corpus")
+    corpus = args.corpus
     mat = os.path.join(corpus, "occt-misc", "MAT.brep")
     if os.path.exists(mat):
         shape = Part.Shape()
         shape.read(mat)
         faces.insert(0, ("MAT.brep", max(shape.Faces, key=lambda f: f.Area)))
+    if args.only:
+        faces = [(n, f) for n, f in faces if n in args.only]
     rows = []
     for name, face in faces:
         check(name, face, rows)

@@ -74,6 +74,7 @@ struct WalkingAgentReport {
   double max_estimate = 0.0;  // largest panel deviation estimate at the end (mm)
   double edge_share = 1.0;    // share of the bound the kept layout was walked with
   double grid_cells = 0.0;    // cells of the agents' line grid (before the trim cut)
+  double grid_panels = 0.0;   // the agents' panels before lines stopped early (folds: two)
   // The coarsest iso grid holding the bound, kept instead of the agents'
   // layout because it has fewer panels (0 x 0: the agents' layout kept).
   int iso_u_count = 0, iso_v_count = 0;

@@ -418,7 +418,7 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
   // The clipped grid under the hard bound (folds applied; counted in `got`),
   // or nothing.
   WalkingAgentReport got;
-  auto bounded = [&](int nu, int nv) -> std::optional<PanelMesh> {
+  auto bounded = [&](int nu, int nv, bool merge) -> std::optional<PanelMesh> {
     const Lines l = iso_lines(b, nu, nv);
     PanelMesh mesh;
     try {
@@ -443,7 +443,7 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
       if (verdict.fold >= 0) folds.push_back({p, verdict.fold});
       worst = std::max(worst, verdict.kept);
     }
-    if (local_lines) got.merged_cells = agents::stop_lines_early(mesh, l.u, l.v, folds, holds);
+    if (merge) got.merged_cells = agents::stop_lines_early(mesh, l.u, l.v, folds, holds);
     apply_folds(mesh, folds);
     got.folds = static_cast<int>(folds.size());
     got.max_estimate = worst;
@@ -466,7 +466,7 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
     v = w;
     // The frontier point, or the next count up if its clipped panels fail.
     for (int nv = w; nv <= std::min(cap, w + 1); ++nv) {
-      std::optional<PanelMesh> mesh = bounded(nu, nv);
+      std::optional<PanelMesh> mesh = bounded(nu, nv, false);
       if (!mesh) continue;
       // The same surface covered (a grid the trim cut differently, e.g. round
       // a pole, is no fallback).
@@ -478,6 +478,15 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
         found = std::move(mesh);
       }
       break;
+    }
+  }
+  // The lines of the grid kept stop early too (not while searching: a search
+  // tries dozens of grids).
+  if (found && local_lines) {
+    if (std::optional<PanelMesh> merged = bounded(rep.iso_u_count, rep.iso_v_count, true)) {
+      found = std::move(merged);
+      rep.folds = got.folds, rep.max_estimate = got.max_estimate;
+      rep.merged_cells = got.merged_cells;
     }
   }
   return found;
@@ -514,6 +523,7 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
   const UvTrimClassifier trim = agents::agent_trim(face);
   const double limit = kBoundMargin * bound;
   const Gauge gauge{face, limit};
+  // A merged panel (lines stopped early) must hold the bound as it is: no fold.
   // A merged panel (lines stopped early) must hold the bound as it is: no fold.
   const agents::OutlineCheck holds = [&](const std::vector<Vec3>& x, const std::vector<Vec2>& q,
                                          double longest) {
@@ -578,6 +588,7 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
       rep.refinement_rounds = round;
       if (added == 0) {
         rep.grid_cells = static_cast<double>(lines.u.size() - 1) * (lines.v.size() - 1);
+        rep.grid_panels = static_cast<double>(mesh.panels.size() + folds.size());
         if (params.local_lines)
           rep.merged_cells = agents::stop_lines_early(mesh, lines.u, lines.v, folds, holds);
         apply_folds(mesh, folds);
@@ -636,7 +647,9 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
   if (!have) std::rethrow_exception(failure);
   // Never more panels than the coarsest iso grid that holds the bound.
   if (params.iso_fallback && best_rep.grid_cells > 0) {
-    const double share = static_cast<double>(best.panels.size()) / best_rep.grid_cells;
+    // Panels per cell before lines stopped early (merged cells would make
+    // the iso search's cell budget several times too large).
+    const double share = best_rep.grid_panels / best_rep.grid_cells;
     if (std::optional<PanelMesh> iso =
             coarsest_iso_grid(face, trim, gauge, params.clip, params.sample_step, max_size, best,
                               share, params.local_lines, holds, best_rep))
