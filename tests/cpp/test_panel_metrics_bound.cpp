@@ -122,6 +122,20 @@ Handle(Geom_BSplineSurface) wrinkled_surface() {
   return fit.Surface();
 }
 
+// Corners of cell (i, j) of a cells x cells grid over the surface's
+// parameter box: (u,v) and points, counter-clockwise.
+void cell_corners(const Handle(Geom_BSplineSurface) & s, int cells, int i, int j,
+                  std::vector<Vec2>& uv, std::vector<Vec3>& p) {
+  double u0, u1, v0, v1;
+  s->Bounds(u0, u1, v0, v1);
+  for (auto [a, b] : {std::pair{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}})
+    uv.push_back({u0 + (u1 - u0) * a / cells, v0 + (v1 - v0) * b / cells});
+  for (const Vec2& q : uv) {
+    const gp_Pnt x = s->Value(q.x(), q.y());
+    p.push_back({x.X(), x.Y(), x.Z()});
+  }
+}
+
 // The independent re-measure: OCCT's global extremum search from every point
 // of a dense sampling of the model.
 double dense_distance(GeomAPI_ProjectPointOnSurf& proj, const std::vector<Vec3>& xs) {
@@ -153,13 +167,8 @@ TEST(PanelDeviationBound, WrinkledSurfaceQuadsAndTriangles) {
   for (int i = 0; i < cells; ++i) {
     for (int j = 0; j < cells; ++j) {
       std::vector<Vec2> uv;
-      for (auto [a, b] : {std::pair{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}})
-        uv.push_back({u0 + (u1 - u0) * a / cells, v0 + (v1 - v0) * b / cells});
       std::vector<Vec3> p;
-      for (const Vec2& q : uv) {
-        const gp_Pnt x = s->Value(q.x(), q.y());
-        p.push_back({x.X(), x.Y(), x.Z()});
-      }
+      cell_corners(s, cells, i, j, uv, p);
       std::vector<Vec3> quad_pts, tri_pts;
       for (int a = 0; a <= n; ++a)
         for (int b = 0; b <= n; ++b) {
@@ -347,8 +356,6 @@ TEST(PanelDeviationBound, CreasedDistanceOverNarrowBumps) {
     Handle(Geom_BSplineSurface) s = bumpy_surface(60, waves);
     const SurfaceFace face =
         SurfaceFace::from_brep_string(brep(BRepBuilderAPI_MakeFace(s, 1e-7).Face()));
-    double u0, u1, v0, v1;
-    s->Bounds(u0, u1, v0, v1);
     HeightFieldDistance distance(s);
     const int cells = 8;
     int below = 0, above = 0, checked = 0;
@@ -356,13 +363,8 @@ TEST(PanelDeviationBound, CreasedDistanceOverNarrowBumps) {
     for (int i = 0; i < cells; ++i) {
       for (int j = 0; j < cells; ++j) {
         std::vector<Vec2> uv;
-        for (auto [a, b] : {std::pair{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}})
-          uv.push_back({u0 + (u1 - u0) * a / cells, v0 + (v1 - v0) * b / cells});
         std::vector<Vec3> p;
-        for (const Vec2& q : uv) {
-          const gp_Pnt x = s->Value(q.x(), q.y());
-          p.push_back({x.X(), x.Y(), x.Z()});
-        }
+        cell_corners(s, cells, i, j, uv, p);
         const double dense = dense_quad_maximum(distance, p);
         const double measured = measure_panel_deviation(face, p, uv, {}, 8).value;
         worst_ratio = std::min(worst_ratio, measured / dense);
