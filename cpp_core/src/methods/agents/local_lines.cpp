@@ -62,6 +62,15 @@ class CellLayout {
       rects_.push_back({i, i + 1, j, j + 1});
       count_corners(rects_.back(), +1);
     }
+    // Grid points that are one vertex (a periodic face's seam: the first and
+    // last line meet) stay nodes: a merge on one side must not drop a node
+    // the cells on the other side still have as a corner.
+    std::map<int, int> first_point;
+    for (std::size_t g = 0; g < vertex_.size(); ++g) {
+      if (vertex_[g] < 0) continue;
+      const auto [it, fresh] = first_point.emplace(vertex_[g], int(g));
+      if (!fresh) permanent_[g] = permanent_[std::size_t(it->second)] = 1;
+    }
   }
 
   std::size_t rect_count() const { return rects_.size(); }
