@@ -386,3 +386,29 @@ def test_document_saved_before_the_agent_methods_upgrades(tmp_path):
         assert p.PanelCount >= math.ceil(360 / 11.47)
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_lines_stop_without_a_gap_at_a_periodic_seam():
+    """A whole vase (closed round its axis) with lines that stop: the panels
+    still close up, every edge used by a single panel lies on the face's
+    boundary (top or bottom circle), none along the seam or inside. (On this
+    vase the merges run along the meridians, so it guards the invariant; the
+    seam rule in local_lines.cpp covers merges that cross the seam's nodes.)"""
+    zs = np.linspace(0, 7000, 15)
+    profile = Part.BSplineCurve()
+    profile.interpolate([FreeCAD.Vector(3000 + 700 * math.sin(z / 1200), 0, z) for z in zs])
+    face = profile.toShape().revolve(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(0, 0, 1), 360).Faces[0]
+    across = tessella.panelize(face, method="walking_agent", max_deviation=20.0, local_lines=False)
+    local = tessella.panelize(face, method="walking_agent", max_deviation=20.0)
+    assert len(local.panels) < len(across.panels)  # some lines stopped
+    assert local.metrics["panel_deviation"].max() <= 20.0
+    uses = {}
+    for panel in local.panels:
+        c = [int(v) for v in panel]
+        for k in range(len(c)):
+            e = frozenset((c[k], c[(k + 1) % len(c)]))
+            uses[e] = uses.get(e, 0) + 1
+    z = np.asarray(local.vertices)[:, 2]
+    for e, n in uses.items():
+        if n == 1:  # on the bottom (z = 0) or top (z = 7000) circle
+            assert all(min(abs(z[v]), abs(z[v] - 7000.0)) < 1e-6 for v in e), e
