@@ -50,7 +50,9 @@ FREECAD_LIB = "/usr/lib/freecad-python3/lib"
 DEFAULT_METHODS = ("iso_grid", "equal_size_grid", "walking_agent", "boundary_driven")
 BOUND_METHODS = ("walking_agent", "gradient_descent")
 CAD_EXTENSIONS = (".step", ".stp", ".iges", ".igs", ".brep", ".brp", ".fcstd")
-REMEASURE_BUDGET = 10.0  # seconds of independent re-measure per run
+# Seconds of independent re-measure per run (env TESSELLA_REMEASURE_SECONDS:
+# FreeCAD's projection takes ~20 ms a point on MAT.brep's 80 x 83 poles).
+REMEASURE_BUDGET = float(os.environ.get("TESSELLA_REMEASURE_SECONDS", "10"))
 MIN_AREA_FRACTION = 1e-4  # of the file's largest face: smaller faces are fillets and slivers
 
 
@@ -137,8 +139,9 @@ def _dense(face, pts3, deadline=math.inf):
 def _dense_panel(face, p, deadline=math.inf):
     """Largest distance from the panel (bilinear quad or flat triangle with
     corners p) to the face's surface: a 21 x 21 grid of its parameters, then
-    a pattern search from the farthest sample (halving steps down to 1/1000
-    of the panel), so a peak between the samples is not missed (on
+    a pattern search from the three farthest samples (eight directions,
+    halving steps down to 1/10000 of the panel), so a peak between the
+    samples is not missed (on
     OCCT's wavy MAT.brep the grid alone read up to 4% under the top of a
     wave). None when the deadline passes first."""
     import numpy as np
@@ -187,12 +190,16 @@ def _dense_panel(face, p, deadline=math.inf):
 
     order = np.argsort(dists)[::-1]
     worst = max(checked(*params[k], dists[k]) for k in order[:3])
-    for k in order[:1]:
+    # From the three farthest samples, along the edges and the diagonals (a
+    # crease of the distance can run diagonally: on MAT.brep one climb from
+    # the farthest sample along s and t read 2.7% under the top).
+    for k in order[:3]:
         a, b = params[k]
         best, step = dists[k], 0.05
-        while step > 1e-3:
+        while step > 1e-4:
             moved = False
-            for da, db in ((step, 0), (-step, 0), (0, step), (0, -step)):
+            for da, db in ((step, 0), (-step, 0), (0, step), (0, -step),
+                           (step, step), (-step, -step), (step, -step), (-step, step)):
                 if not valid(a + da, b + db):
                     continue
                 d = _dense(face, [point(a + da, b + db)], deadline)
