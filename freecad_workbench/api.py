@@ -439,6 +439,7 @@ def _face_set_result(r, method, values, params, face_set):
     result.summary["shared_edges"] = r.shared_edges
     result.summary["shared_edge_nodes"] = r.shared_edge_nodes
     result.summary["shared_nodes_taken_over"] = r.shared_nodes_taken_over
+    result.summary["faces_traced_across"] = r.faces_traced_across
     return result
 
 

@@ -265,6 +265,63 @@ def test_boundary_driven_on_a_periodic_side_next_to_its_top(size):
     assert abs(r.metrics["panel_area"][side].sum() / alone.metrics["panel_area"].sum() - 1) < 1e-3
 
 
+def rows_carried(shape, r, angle=20.0):
+    """Share of the nodes on shared edges (found with FreeCAD's distance) where
+    a rod of each face, both leaving the edge, lie within `angle` of one line."""
+    tol = 10e-6 * shape.BoundBox.DiagonalLength
+    edges = [e for e, _ in shared_edges(shape)]
+    on = {int(v) for v in r.nodes
+          if any(e.distToShape(Part.Vertex(V(*r.vertices[v])))[0] <= tol for e in edges)}
+    leaving = {v: {} for v in on}
+    for k, (a, b) in enumerate(r.rods):
+        for x, y in ((int(a), int(b)), (int(b), int(a))):
+            if x in on and y not in on:
+                d = r.vertices[y] - r.vertices[x]
+                leaving[x].setdefault(int(r.rod_face[k]), []).append(d / np.linalg.norm(d))
+    cos = math.cos(math.radians(angle))
+    carried = 0
+    for v, by_face in leaving.items():
+        sides = list(by_face.values())
+        carried += len(sides) >= 2 and any(float(-d1 @ d2) >= cos
+                                           for d1 in sides[0] for d2 in sides[1])
+    return carried / max(1, len(on)), len(on)
+
+
+@pytest.mark.parametrize("size", [800.0, 1300.0])
+def test_boundary_driven_rows_run_on_across_faces_of_one_surface(shell, size):
+    """The split shell's faces lie on one B-spline surface: boundary_driven
+    traces its curves on their union (sources: the union's boundary, not the
+    splits), so its rows carry on across the splits, and the faces together
+    take about the panels of the unsplit surface (each face tracing its own
+    curves: 72% of the rows carried and 104 panels for the surface's 96 at
+    1300 mm; before the strips along a split were split once, not in four,
+    the union's curves gave 140)."""
+    r = tessella.panelize_faces(shell, method="boundary_driven", size=size)
+    assert r.summary["faces_traced_across"] == 4
+    assert check_conforming(shell, r) > 8
+    assert abs(r.metrics["panel_area"].sum() / shell.Area - 1) < 5e-3
+    share, count = rows_carried(shell, r)
+    assert count >= 15 and share >= 0.9, (share, count)
+    whole = tessella.panelize(shell.Faces[0].Surface.toShape(), method="boundary_driven",
+                              size=size)
+    assert abs(len(r.panels) / len(whole.panels) - 1) <= 0.06, (len(r.panels), len(whole.panels))
+    two = tessella.panelize_faces(shell, method="boundary_driven", size=size, threads=1)
+    assert np.array_equal(r.vertices, two.vertices) and r.panels == two.panels
+
+
+def test_coplanar_faces_parameterized_apart_trace_their_own_curves():
+    """Two squares on one plane whose (u,v) differ (each plane's origin at its
+    own corner): their union's (u,v) is not theirs, so each face traces its
+    own curves, and the set still conforms."""
+    shape = Part.Shell([Part.makePlane(3000, 3000, V(0, 0, 0)),
+                        Part.makePlane(3000, 3000, V(3000, 0, 0))])
+    shape.sewShape()
+    r = tessella.panelize_faces(shape, method="boundary_driven", size=700.0)
+    assert r.summary["faces_traced_across"] == 0
+    assert check_conforming(shape, r) >= 2
+    assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 1e-6
+
+
 def test_guide_line_methods_take_one_face(shell):
     edge = shell.Faces[0].Edges[0]
     with pytest.raises(ValueError, match="guides lie on one face; pick one face"):

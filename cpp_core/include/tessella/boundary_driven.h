@@ -77,6 +77,7 @@ struct BdNode {
   int loop = -1;        // trim loop (index into boundary) the node lies on, -1 inside
   double s = 0.0;       // arc length along that loop
   bool corner = false;  // a trim corner: never moved or removed
+  bool shared = false;  // on an edge this face shares with another of a face set
 };
 
 struct BdNetwork {

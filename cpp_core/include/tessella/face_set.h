@@ -53,6 +53,9 @@ struct FaceSetResult {
   // Nodes on shared edges, counted once; how many of them one face had and
   // the other took over (inserted into its outline or moved onto it).
   int shared_edge_nodes = 0, shared_nodes_taken_over = 0;
+  // boundary_driven: faces meshed from curves traced on the union of faces
+  // lying on one surface (the curves run on across the edges between them).
+  int faces_traced_across = 0;
 };
 
 // The pipeline on every face of `set` (faces side by side on `threads`

@@ -66,6 +66,7 @@ FaceSet FaceSet::from_brep_string(const std::string& brep) {
   std::vector<std::unique_ptr<BRepBuilderAPI_Copy>> copies;
   for (int i = 1; i <= face_map.Extent(); ++i) {
     const TopoDS_Face& face = TopoDS::Face(face_map(i));
+    impl->original.push_back(face);
     try {
       copies.push_back(std::make_unique<BRepBuilderAPI_Copy>(face, true));
       const TopoDS_Face copy = TopoDS::Face(copies.back()->Shape());

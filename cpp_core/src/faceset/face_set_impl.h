@@ -9,8 +9,10 @@
 #include <TopoDS_Face.hxx>
 #include <array>
 #include <memory>
+#include <mutex>
 #include <vector>
 
+#include "faceset/surface_groups.h"
 #include "tessella/face_set.h"
 #include "tessella/surface_face.h"
 
@@ -34,6 +36,10 @@ struct FaceSet::Impl {
   std::vector<std::shared_ptr<const SurfaceFace>> faces;
   std::vector<SharedEdge> shared;
   bool sewn = false;  // faces touching along edges they did not share were sewn
+  // The faces as given (sewn), sharing their edges: what surface_groups unifies.
+  std::vector<TopoDS_Face> original;
+  mutable std::once_flag groups_once;
+  mutable std::vector<SurfaceGroup> groups;
 };
 
 }  // namespace tessella

@@ -12,6 +12,8 @@
 #include "common/parallel_chunks.h"
 #include "faceset/face_set_impl.h"
 #include "faceset/shared_edge_nodes.h"
+#include "faceset/surface_groups.h"
+#include "methods/boundary_driven/bd_across_faces.h"
 #include "pipeline/stages.h"
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
@@ -239,6 +241,39 @@ std::string single_face_curves(const MethodDeclaration& decl, const ParamValues&
   return {};
 }
 
+// boundary_driven's curves traced once on each group of faces lying on one
+// surface (surface_groups), so they run on across the edges between those
+// faces instead of meeting them as trims; per face, the curves it uses (null:
+// the face traces its own). Not with chosen source loops or extra curves
+// (they belong to one face), nor for a group whose union cannot be traced.
+std::vector<std::shared_ptr<const BdSurfaceCurves>> curves_across_faces(const FaceSet& set,
+                                                                        const ParamValues& values,
+                                                                        int threads) {
+  std::vector<std::shared_ptr<const BdSurfaceCurves>> out(set.size());
+  const BoundaryDrivenParams params = boundary_driven_params(values);
+  if (set.size() < 2 || !params.sources.loops.empty() || !params.sources.extra_curves.empty())
+    return out;
+  const std::vector<SurfaceGroup>& groups = surface_groups(set);
+  std::vector<std::shared_ptr<const BdSurfaceCurves>> traced(groups.size());
+  ChunkQueue queue(groups.size(), 1);
+  run_chunks(queue, threads, [&](bool) {
+    std::size_t begin = 0, end = 0;
+    while (queue.next(begin, end))
+      for (std::size_t g = begin; g < end; ++g) {
+        const SurfaceFace& face = *groups[g].face;
+        const SurfaceFace::FastEvaluation fast(face);
+        try {
+          traced[g] =
+              std::make_shared<const BdSurfaceCurves>(trace_bd_surface_curves(face, params));
+        } catch (const std::exception&) {  // each face then traces its own
+        }
+      }
+  });
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (int f : groups[g].members) out[static_cast<std::size_t>(f)] = traced[g];
+  return out;
+}
+
 // One more than for one face: a face also runs again when its join moved nodes.
 constexpr int kHardBoundRetries = 5;
 
@@ -260,13 +295,33 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
   const int workers = worker_threads(threads);
   std::vector<ParamValues> face_values(n, values);
   std::vector<Modelled> modelled(n);
+  std::vector<std::shared_ptr<const BdSurfaceCurves>> across;
+  if (method == "boundary_driven") {
+    report_stage(0.0, "tracing curves across faces of one surface");
+    across = curves_across_faces(set, values, workers);
+  }
+  std::vector<char> traced_alone(n, 0);
   for (int attempt = 0;; ++attempt) {
     report_stage(0.0, "panelizing the faces");
     for_each_face(set, workers, [&](std::size_t f) {
       const SurfaceFace& face = *set.face(f);
       const SurfaceFace::FastEvaluation fast(face);
       face.reset_global_projections();
-      modelled[f] = run_method(face, decl, face_values[f]);
+      bool done = false;
+      if (f < across.size() && across[f]) {
+        // A face the union's curves leave without a valid mesh (a sliver of
+        // it between two curves) falls back to its own curves.
+        try {
+          const BoundaryDrivenParams bp = boundary_driven_params(face_values[f]);
+          modelled[f] = run_method_with(face, decl, face_values[f], [&] {
+            return boundary_driven_on_curves(face, bp, *across[f]);
+          });
+          done = true;
+        } catch (const GeometryFailure&) {
+          traced_alone[f] = 1;
+        }
+      }
+      if (!done) modelled[f] = run_method(face, decl, face_values[f]);
       promote_hard_bound_trim_nodes(face, decl, face_values[f], modelled[f]);
       // The faces already keep the threads busy.
       modelled[f].metrics_threads_requested = n > 1 && workers > 1 ? 1 : threads;
@@ -327,6 +382,8 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     out.shared_edges = static_cast<int>(set.shared_edge_count());
     out.shared_edge_nodes = shared.nodes;
     out.shared_nodes_taken_over = shared.taken_over;
+    for (std::size_t f = 0; f < across.size(); ++f)
+      out.faces_traced_across += across[f] && !traced_alone[f] ? 1 : 0;
     join(results, out);
     summarize_set(
         results, out,

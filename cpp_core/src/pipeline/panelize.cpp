@@ -131,11 +131,16 @@ double param_number(const ParamValues& values, const MethodDeclaration& method,
 
 Modelled run_method(const SurfaceFace& face, const MethodDeclaration& decl,
                     const ParamValues& values) {
+  return run_method_with(face, decl, values, [&] { return decl.run(face, values); });
+}
+
+Modelled run_method_with(const SurfaceFace& face, const MethodDeclaration& decl,
+                         const ParamValues& values, const std::function<PanelMesh()>& make) {
   const std::string& method = decl.name;
   Modelled out;
   face.reset_evaluations();
   const auto started = std::chrono::steady_clock::now();
-  out.mesh = decl.run(face, values);
+  out.mesh = make();
   // No method returns a panel without area (collinear or repeated corners).
   out.zero_area = remove_zero_area_panels(out.mesh, face.model_size());
   // No rod shorter than min_rod_length, whatever the method; walking_agent's

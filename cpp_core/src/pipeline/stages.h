@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +46,11 @@ double param_number(const ParamValues& values, const MethodDeclaration& method,
 // The method, zero-area panels removed, short rods merged.
 Modelled run_method(const SurfaceFace& face, const MethodDeclaration& decl,
                     const ParamValues& values);
+
+// The same with the method's mesh made by `make` (boundary_driven on faces of
+// one surface: from curves traced on their union).
+Modelled run_method_with(const SurfaceFace& face, const MethodDeclaration& decl,
+                         const ParamValues& values, const std::function<PanelMesh()>& make);
 
 // Metrics, boundary pieces, the pieces' metrics (on out.mesh as it is).
 void model_and_measure(const SurfaceFace& face, const MethodDeclaration& decl,

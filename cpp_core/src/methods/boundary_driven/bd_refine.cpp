@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 
 #include "methods/boundary_driven/bd_geometry.h"
 #include "tessella/errors.h"
@@ -288,8 +289,8 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
 // cylinder) that its projection is no longer a well-defined point.
 constexpr double kFarFromSurface = 0.25;
 
-void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
-                   BdNetwork& net) {
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net,
+                   double short_shared_edge) {
   std::map<std::pair<int, int>, int> uses;
   std::map<std::pair<int, int>, int> mid;
   auto add = [&](const BdNode& n) {
@@ -427,9 +428,82 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
       const int a = p[i], b = p[(i + 1) % p.size()];
       ++uses[{std::min(a, b), std::max(a, b)}];
     }
+  // Sides left without a midpoint (face sets' strips along shared edges).
+  // A side on the trim (one panel) shorter than short_shared_edge is free:
+  // no neighbour needs its midpoint, so it takes whatever its panel's split
+  // needs.
+  std::set<std::pair<int, int>> bare;
+  auto key_of = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  enum Split { kFull = -1, kWhole = -2, kMixed = -3 };  // or >= 0: strip across sides i, i + 2
+  auto split_of = [&](const std::vector<int>& p) {
+    const std::size_t n = p.size();
+    std::vector<char> side(n);  // 'B' bare, 'F' free, 'M' midpoint
+    bool any_bare = false, all_bare = true;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int a = p[i], b = p[(i + 1) % n];
+      const auto key = key_of(a, b);
+      if (bare.count(key)) {
+        side[i] = 'B';
+      } else if (uses[key] == 1 &&
+                 (net.nodes[a].xyz - net.nodes[b].xyz).norm() < short_shared_edge) {
+        side[i] = 'F';
+      } else {
+        side[i] = 'M';
+      }
+      any_bare = any_bare || side[i] == 'B';
+      all_bare = all_bare && side[i] != 'M';
+    }
+    if (!any_bare) return static_cast<int>(kFull);
+    if (n == 4)
+      for (int i = 0; i < 2; ++i)
+        if (side[i] != 'M' && side[i + 2] != 'M' && side[i + 1] != 'B' && side[i + 3] != 'B')
+          return i;
+    return static_cast<int>(all_bare ? kWhole : kMixed);
+  };
+  if (short_shared_edge > 0) {
+    for (const auto& p : net.panels)
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const BdNode& na = net.nodes[p[i]];
+        const BdNode& nb = net.nodes[p[(i + 1) % p.size()]];
+        if ((na.shared || nb.shared) && (na.xyz - nb.xyz).norm() < short_shared_edge)
+          bare.insert(key_of(p[i], p[(i + 1) % p.size()]));
+      }
+    // A panel that can keep its bare sides neither as a strip nor whole gives
+    // them midpoints, and so its neighbours across them.
+    for (bool changed = !bare.empty(); changed;) {
+      changed = false;
+      for (const auto& p : net.panels) {
+        if (split_of(p) != kMixed) continue;
+        for (std::size_t i = 0; i < p.size(); ++i)
+          changed = bare.erase(key_of(p[i], p[(i + 1) % p.size()])) > 0 || changed;
+      }
+    }
+  }
   std::vector<std::vector<int>> out;
   for (const auto& p : net.panels) {
     const std::size_t n = p.size();
+    const int split = short_shared_edge > 0 ? split_of(p) : static_cast<int>(kFull);
+    if (split == kWhole) {  // a small piece between shared edges and curves
+      out.push_back(p);
+      continue;
+    }
+    if (split >= 0) {
+      // p[i] -> p[i+1] and p[i+2] -> p[i+3] bare: cut between the other two
+      // sides' midpoints (counter-clockwise kept).
+      const int a = p[split], b = p[(split + 1) % 4], c = p[(split + 2) % 4],
+                d = p[(split + 3) % 4];
+      Vec2 c2 = Vec2::Zero();
+      for (int v : p) c2 += 0.25 * net.nodes[v].uv;
+      const int m1 = midpoint(b, c, c2), m3 = midpoint(d, a, c2);
+      const std::vector<int> q0{a, b, m1, m3}, q1{m3, m1, c, d};
+      if (uv_area(net.nodes, q0) > 0 && uv_area(net.nodes, q1) > 0) {
+        out.push_back(q0);
+        out.push_back(q1);
+      } else {
+        out.push_back({a, b, m1, c, d, m3});
+      }
+      continue;
+    }
     Vec3 c3 = Vec3::Zero();
     Vec2 c2 = Vec2::Zero();
     for (int v : p) c3 += net.nodes[v].xyz, c2 += net.nodes[v].uv;

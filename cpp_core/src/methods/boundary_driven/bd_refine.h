@@ -31,8 +31,14 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
 // midpoint shared by two panels splits both). Midpoints of edges along the trim
 // are placed on the trim polyline (half-way in arc length); other new nodes are
 // projected onto the surface.
-void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
-                   BdNetwork& net);
+// Face sets (`short_shared_edge` > 0): a network face cut by an edge shared
+// with another face is a strip between a curve and that edge; its sides
+// shorter than `short_shared_edge` with an end on the shared edge get no
+// midpoint, and such a quad is split across its length only (2 quads, not 4),
+// where its neighbours allow it (a panel keeps sides without a midpoint only as
+// a quad's opposite pair).
+void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net,
+                   double short_shared_edge = 0.0);
 
 // Section 3.3: Laplacian smoothing (eq. 3, equal weights, step `factor`).
 // Interior nodes move toward the centroid of their neighbours and are projected

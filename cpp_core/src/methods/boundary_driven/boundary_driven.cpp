@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -10,6 +11,7 @@
 #include "analysis/coverage.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/seam_sides.h"
+#include "methods/boundary_driven/bd_across_faces.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
@@ -162,8 +164,7 @@ void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdN
 
 namespace {
 
-BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
-                                           const BoundaryDrivenParams& params) {
+void check_params(const SurfaceFace& face, const BoundaryDrivenParams& params) {
   const double ms = face.model_size();
   require_in_range("size (mm)", params.size, 1e-4 * ms, ms);
   require_in_range("rho", params.rho, 0.5, 8.0);
@@ -179,8 +180,12 @@ BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
     throw LimitExceeded("about " + std::to_string(static_cast<long long>(estimate)) +
                         " panels would exceed max_panels = " + std::to_string(params.max_panels) +
                         ": raise size or max_panels");
+}
 
-  BoundaryDrivenResult r;
+// Stages 1-3: sources, field, curves. Returns the spacing they were traced at.
+double trace_stages(const SurfaceFace& face, const BoundaryDrivenParams& params,
+                    BoundaryDrivenResult& r) {
+  const double ms = face.model_size();
   const double deflection = trim_deflection(face, params.trim_deflection);
   const BdSources src = select_bd_sources(face, face.trim_loops(deflection), params.sources);
   r.boundary = src.boundary;
@@ -196,7 +201,28 @@ BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
   cp.step_fraction = params.step_fraction;
   cp.corner_angle_deg = params.corner_angle_deg;
   r.curves = trace_bd_curves(face, tensor, r.boundary, cp);
+  return cp.spacing;
+}
 
+// Trim nodes `pinned` says lie on an edge shared with another face become
+// corners: never moved or removed, so both faces keep the curves' crossings.
+// Only after the short edges are collapsed: a crossing next to a trim corner
+// still goes into that corner (as a corner, it could take the corner away).
+using PinnedTest = std::function<bool(const Vec2&)>;
+void pin_shared_edge_nodes(BdNetwork& net, const PinnedTest& pinned, bool as_corners) {
+  if (!pinned) return;
+  for (BdNode& n : net.nodes) {
+    if (n.loop < 0 || n.corner || !(n.shared || pinned(n.uv))) continue;
+    n.shared = true;
+    n.corner = as_corners;
+  }
+}
+
+// Stages 4-6 from r.boundary and r.curves traced `spacing` apart: the network,
+// its refinement and the panels.
+void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, double spacing,
+                 const PinnedTest& pinned, BoundaryDrivenResult& r) {
+  const double ms = face.model_size();
   BdNetworkParams np;
   np.corner_angle_deg = params.corner_angle_deg;
   r.network = build_bd_network(face, r.boundary, r.curves, np);
@@ -204,9 +230,11 @@ BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
     throw GeometryFailure("the boundary-driven curve network has no faces");
 
   BdNetwork net = r.network;
-  r.collapsed_edges = collapse_short_edges(face, net, params.min_edge_fraction * cp.spacing);
+  r.collapsed_edges = collapse_short_edges(face, net, params.min_edge_fraction * spacing);
   r.removed_triangles = remove_skewed_triangles(net, params.skew_ratio);
-  if (params.quadrangulate) quadrangulate(face, r.boundary, net);
+  pin_shared_edge_nodes(net, pinned, false);
+  if (params.quadrangulate) quadrangulate(face, r.boundary, net, pinned ? 0.75 * spacing : 0.0);
+  pin_shared_edge_nodes(net, pinned, true);
   smooth_bd_mesh(face, r.boundary, net, params.smoothing_iterations);
   if (params.angle_target_deg > 0)
     r.angle_moves =
@@ -248,6 +276,14 @@ BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
   if (!problem.empty())
     throw GeometryFailure(problem + " (size " + std::to_string(params.size) +
                           " mm is too coarse for this face's openings and notches" + kCoarseTail);
+}
+
+BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
+                                           const BoundaryDrivenParams& params) {
+  check_params(face, params);
+  BoundaryDrivenResult r;
+  const double spacing = trace_stages(face, params, r);
+  mesh_stages(face, params, spacing, nullptr, r);
   return r;
 }
 
@@ -289,6 +325,49 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
 
 PanelMesh boundary_driven(const SurfaceFace& face, const BoundaryDrivenParams& params) {
   return boundary_driven_stages(face, params).mesh;
+}
+
+}  // namespace tessella
+
+namespace tessella {
+
+BdSurfaceCurves trace_bd_surface_curves(const SurfaceFace& union_face,
+                                        const BoundaryDrivenParams& params) {
+  check_params(union_face, params);
+  BoundaryDrivenResult r;
+  BdSurfaceCurves out;
+  out.spacing = trace_stages(union_face, params, r);
+  out.curves = std::move(r.curves);
+  out.boundary = std::move(r.boundary);
+  // The faces' trim polylines and the union's discretize the same edges
+  // apart (each within its deflection): points within a few deflections, in
+  // (u,v), lie on the same trim.
+  const UvBounds b = union_face.bounds();
+  const double uv_diagonal = std::hypot(b.u_max - b.u_min, b.v_max - b.v_min);
+  const double deflection = trim_deflection(union_face, params.trim_deflection);
+  out.on_trim = uv_diagonal * (4.0 * deflection / union_face.model_size() + 1e-9);
+  return out;
+}
+
+PanelMesh boundary_driven_on_curves(const SurfaceFace& member, const BoundaryDrivenParams& params,
+                                    const BdSurfaceCurves& traced) {
+  check_params(member, params);
+  BoundaryDrivenResult r;
+  const double deflection = trim_deflection(member, params.trim_deflection);
+  r.boundary = select_bd_sources(member, member.trim_loops(deflection), {}).boundary;
+  r.curves = clip_bd_curves(member, traced.curves, r.boundary, traced.on_trim);
+  // A trim node farther than on_trim from the union's trim is on a shared edge.
+  const PinnedTest on_shared_edge = [&traced](const Vec2& uv) {
+    for (const BdPolyline& line : traced.boundary)
+      for (int i = 0; i < line.segment_count(); ++i) {
+        const Vec2 a = line.uv[i], d = line.seg_end_uv(i) - a;
+        const double t = std::clamp((uv - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        if ((a + t * d - uv).norm() <= traced.on_trim) return false;
+      }
+    return true;
+  };
+  mesh_stages(member, params, traced.spacing, on_shared_edge, r);
+  return std::move(r.mesh);
 }
 
 }  // namespace tessella
