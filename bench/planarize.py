@@ -1,7 +1,8 @@
 """Planarization (tessella.planarize) side by side: planarity reached against
 distance from the surface, with the closeness goal on (a 20 mm band, hard) and
 off (what libigl's planarize_quad_mesh does), on iso grids and boundary-driven
-meshes of a surface of revolution and the bundled doubly curved examples.
+meshes and the curvature-line layout (method="curvature_lines") of two
+surfaces of revolution and the bundled doubly curved examples.
 
     PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/planarize.py [--size 1500]
 
@@ -39,6 +40,16 @@ def funnel():
     return s.toShape()
 
 
+def vase():
+    """A vase turned by 120 degrees: radius 3000 + 1500 sin(z / 2500), 12 m high."""
+    pts = [[V((3000 + 1500 * math.sin(z / 2500.0)) * math.cos(math.radians(120) * j / 12),
+              (3000 + 1500 * math.sin(z / 2500.0)) * math.sin(math.radians(120) * j / 12), z)
+            for j in range(13)] for z in [1200.0 * i for i in range(11)]]
+    s = Part.BSplineSurface()
+    s.interpolate(pts)
+    return s.toShape()
+
+
 def example(name):
     s = Part.Shape()
     s.read(os.path.join(ROOT, "examples", name + ".brep"))
@@ -50,13 +61,14 @@ def main():
     ap.add_argument("--size", type=float, default=1500.0)
     args = ap.parse_args()
     faces = [("funnel (revolution)", funnel()),
+             ("vase (revolution)", vase()),
              ("british_museum_roof", example("british_museum_roof")),
              ("chen_shan_dome", example("chen_shan_dome")),
              ("notched_shell", example("notched_shell"))]
     print(f"{'face':22s} {'layout':16s} {'closeness':9s} {'quads':>5s} {'planar 1mm':>13s} "
           f"{'max diag (mm)':>17s} {'node dev':>9s} {'rounds':>6s} {'s':>6s}")
     for name, face in faces:
-        for layout in ("iso_grid", "boundary_driven"):
+        for layout in ("curvature_lines", "iso_grid", "boundary_driven"):
             try:
                 r = tessella.panelize(face, method=layout, size=args.size)
             except (ValueError, RuntimeError) as exc:

@@ -106,6 +106,28 @@ struct BoundaryDrivenParams {
   double angle_target_deg = 30.0;
   int angle_passes = 30;
   int max_panels = kDefaultMaxPanels;
+  // curvature_lines (issue 16): the curves follow the principal curvature
+  // directions instead of the trims' field, which takes over within
+  // `boundary_blend` curve spacings of the trim (methods/boundary_driven/
+  // principal_field.h); `field_smoothness` weighs equal neighbours in the
+  // field's fit.
+  bool principal_directions = false;
+  double boundary_blend = 0.25;
+  double field_smoothness = 0.25;
+};
+
+// curvature_lines' parameters: boundary_driven's, along the principal
+// directions, with defaults that keep the lines on them: no quadrangulation
+// (its centres lie off the lines), no Laplacian smoothing and no angle moves
+// (both pull nodes off them); a line's node moves off its curvature line turn
+// planar quads warped.
+struct CurvatureLinesParams : BoundaryDrivenParams {
+  CurvatureLinesParams() {
+    principal_directions = true;
+    quadrangulate = false;
+    smoothing_iterations = 0;
+    angle_target_deg = 0.0;
+  }
 };
 
 // Everything the stages produced (the curve network for display, the mesh).
@@ -129,5 +151,10 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
 // The final mesh: panels counter-clockwise about the face normal, rods built,
 // nominal_area = size^2.
 PanelMesh boundary_driven(const SurfaceFace& face, const BoundaryDrivenParams& params);
+
+// The same along the principal curvature lines (params.principal_directions
+// set whatever it was): a layout planarize() can make planar close to the
+// surface.
+PanelMesh curvature_lines(const SurfaceFace& face, const BoundaryDrivenParams& params);
 
 }  // namespace tessella

@@ -1,8 +1,8 @@
 #include "tessella/planarize.h"
 
 #include <Eigen/Dense>
-#include <Eigen/Sparse>
 #include <Eigen/IterativeLinearSolvers>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -29,6 +29,8 @@ namespace {
 constexpr double kDamping = 1e-3;
 // Rounds without a better one before the solver stops.
 constexpr int kPatience = 20;
+// Quads farther off planar than this many tolerances weigh in linearly.
+constexpr double kHuberTolerances = 5.0;
 // Conjugate-gradient iterations per Gauss-Newton step at most.
 constexpr int kCgIterations = 200;
 
@@ -158,9 +160,17 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
           c(static_cast<Eigen::Index>(qi)) = 0;
           continue;
         }
-        c(static_cast<Eigen::Index>(qi)) = a.dot(nrm) / scale;
-        const std::array<Vec3, 4> grad{(-nrm - d2.cross(a)) / scale, (nrm - a.cross(d1)) / scale,
-                                       d2.cross(a) / scale, a.cross(d1) / scale};
+        const double dist = a.dot(nrm) / scale;
+        // Huber weights (iteratively reweighted): a quad far off planar (a
+        // warped corner of the layout no band-bound move can flatten) counts
+        // linearly, not squared, so it does not hold back the many quads a
+        // few millimetres off.
+        const double huber = kHuberTolerances * params.planarity_tolerance;
+        const double w = std::abs(dist) > huber ? std::sqrt(huber / std::abs(dist)) : 1.0;
+        c(static_cast<Eigen::Index>(qi)) = w * dist;
+        const double ws = w / scale;
+        const std::array<Vec3, 4> grad{(-nrm - d2.cross(a)) * ws, (nrm - a.cross(d1)) * ws,
+                                       d2.cross(a) * ws, a.cross(d1) * ws};
         for (int i = 0; i < 4; ++i) {
           const int k = index[static_cast<std::size_t>(q[i])];
           if (k < 0) continue;

@@ -70,9 +70,9 @@ std::vector<ParamDeclaration> make_shared_params() {
 // guide-line methods. The preferences page stores the index in this order, so
 // a new method goes at the end.
 constexpr const char* kMethodOrder[] = {
-    "iso_grid",           "equal_size_grid",  "boundary_driven",
-    "walking_agent",      "gradient_descent", "relaxed_grid",
-    "guide_line_scaling", "two_guide_lines",  "guide_line_diamond"};
+    "iso_grid",           "equal_size_grid", "boundary_driven",    "walking_agent",
+    "gradient_descent",   "relaxed_grid",    "guide_line_scaling", "two_guide_lines",
+    "guide_line_diamond", "curvature_lines"};
 
 std::vector<MethodDeclaration> make_methods() {
   std::vector<MethodDeclaration> found;

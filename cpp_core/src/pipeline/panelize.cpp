@@ -151,7 +151,7 @@ Modelled run_method_with(const SurfaceFace& face, const MethodDeclaration& decl,
   sp.min_rod_length = value_or<double>(values, decl, "min_rod_length");
   sp.samples = value_or<int>(values, decl, "samples");
   // boundary_driven's point is an all-quad layout: a collapse may not make a triangle.
-  sp.keep_quads = method == "boundary_driven";
+  sp.keep_quads = method == "boundary_driven" || method == "curvature_lines";
   if (method == "walking_agent") sp.max_deviation = value_or<double>(values, decl, "max_deviation");
   out.merged = merge_short_rods(face, out.mesh, sp);
   out.core_seconds =
@@ -171,7 +171,8 @@ BoundaryPiecesParams boundary_pieces_params(const ParamValues& values,
   // boundary_driven's point is an all-quad layout: its boundary quads are
   // bent along a diagonal, not refined with new trim nodes (which would make
   // them pentagons and split them), unless boundary_deviation asks for it.
-  if (method == "boundary_driven" && !(value_or<double>(values, decl, "boundary_deviation") > 0)) {
+  if ((method == "boundary_driven" || method == "curvature_lines") &&
+      !(value_or<double>(values, decl, "boundary_deviation") > 0)) {
     bp.max_deviation = 0;
     bp.may_add_nodes = false;
   }

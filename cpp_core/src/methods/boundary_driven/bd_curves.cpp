@@ -28,7 +28,7 @@ class Tracer {
         h_(p.spacing * p.step_fraction),
         hash_(p.spacing * 0.75),
         grid_(make_grid(face, boundary)),
-        grid_field_(make_field(face, tensor, p.spacing)),
+        grid_field_(p.field ? *p.field : make_field(face, tensor, p.spacing)),
         inside_(bd::make_classifier(boundary)) {
     for (std::size_t k = 0; k < boundary.size(); ++k) {
       const BdPolyline& line = boundary[k];
@@ -337,25 +337,9 @@ class Tracer {
   }
 
  private:
-  // Grid nodes about spacing / 3 apart in 3D (from the mean lengths of the
-  // iso-lines through the middle), between 16 and 400 per direction.
   static BdTensorGrid make_field(const SurfaceFace& face, const BdTensor& tensor, double spacing) {
-    const UvBounds b = face.bounds();
-    auto length = [&](bool along_u) {
-      double len = 0;
-      Vec3 prev = Vec3::Zero();
-      for (int k = 0; k <= 64; ++k) {
-        const double t = k / 64.0;
-        const Vec3 p =
-            along_u ? face.point(b.u_min + t * (b.u_max - b.u_min), 0.5 * (b.v_min + b.v_max))
-                    : face.point(0.5 * (b.u_min + b.u_max), b.v_min + t * (b.v_max - b.v_min));
-        if (k > 0) len += (p - prev).norm();
-        prev = p;
-      }
-      return len;
-    };
-    const int nu = std::clamp(static_cast<int>(3 * length(true) / spacing) + 2, 16, 400);
-    const int nv = std::clamp(static_cast<int>(3 * length(false) / spacing) + 2, 16, 400);
+    int nu = 0, nv = 0;
+    bd_field_grid_size(face, spacing, nu, nv);
     return sample_bd_tensor(tensor, face, nu, nv);
   }
 
@@ -389,6 +373,25 @@ class Tracer {
 };
 
 }  // namespace
+
+void bd_field_grid_size(const SurfaceFace& face, double spacing, int& nu, int& nv) {
+  const UvBounds b = face.bounds();
+  auto length = [&](bool along_u) {
+    double len = 0;
+    Vec3 prev = Vec3::Zero();
+    for (int k = 0; k <= 64; ++k) {
+      const double t = k / 64.0;
+      const Vec3 p = along_u
+                         ? face.point(b.u_min + t * (b.u_max - b.u_min), 0.5 * (b.v_min + b.v_max))
+                         : face.point(0.5 * (b.u_min + b.u_max), b.v_min + t * (b.v_max - b.v_min));
+      if (k > 0) len += (p - prev).norm();
+      prev = p;
+    }
+    return len;
+  };
+  nu = std::clamp(static_cast<int>(3 * length(true) / spacing) + 2, 16, 400);
+  nv = std::clamp(static_cast<int>(3 * length(false) / spacing) + 2, 16, 400);
+}
 
 std::vector<BdCurve> trace_bd_curves(const SurfaceFace& face, const BdTensor& tensor,
                                      const std::vector<BdPolyline>& boundary,

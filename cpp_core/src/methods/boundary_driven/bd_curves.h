@@ -27,7 +27,14 @@ struct BdCurveParams {
   double stop_fraction = 0.5;    // [0.1, 0.9]
   double corner_angle_deg = 30;  // boundary corners: no seed on them
   int max_curves = 20000;
+  // The field to follow, sampled on a grid (curvature_lines' principal
+  // directions); null: the tensor's, sampled on bd_field_grid_size's grid.
+  const BdTensorGrid* field = nullptr;
 };
+
+// The field grid's size: nodes about spacing / 3 apart in 3D (from the
+// lengths of the iso-lines through the middle), 16 to 400 per direction.
+void bd_field_grid_size(const SurfaceFace& face, double spacing, int& nu, int& nv);
 
 std::vector<BdCurve> trace_bd_curves(const SurfaceFace& face, const BdTensor& tensor,
                                      const std::vector<BdPolyline>& boundary,

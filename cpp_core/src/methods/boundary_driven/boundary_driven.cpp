@@ -17,6 +17,7 @@
 #include "methods/boundary_driven/bd_refine.h"
 #include "methods/boundary_driven/bd_sources.h"
 #include "methods/boundary_driven/bd_tensor.h"
+#include "methods/boundary_driven/principal_field.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
@@ -175,6 +176,8 @@ void check_params(const SurfaceFace& face, const BoundaryDrivenParams& params) {
   require_in_range("angle_target", params.angle_target_deg, 0.0, 90.0);
   require_in_range("angle_passes", params.angle_passes, 0, 1000);
   require_in_range("max_panels", params.max_panels, 1, 1e8);
+  require_in_range("boundary_blend", params.boundary_blend, 0.0, 100.0);
+  require_in_range("field_smoothness", params.field_smoothness, 1e-3, 100.0);
   const double estimate = face.area() / (params.size * params.size);
   if (estimate > params.max_panels)
     throw LimitExceeded("about " + std::to_string(static_cast<long long>(estimate)) +
@@ -200,6 +203,16 @@ double trace_stages(const SurfaceFace& face, const BoundaryDrivenParams& params,
   cp.spacing = std::min(spacing, ms);
   cp.step_fraction = params.step_fraction;
   cp.corner_angle_deg = params.corner_angle_deg;
+  BdTensorGrid principal;
+  if (params.principal_directions) {
+    int nu = 0, nv = 0;
+    bd_field_grid_size(face, cp.spacing, nu, nv);
+    PrincipalFieldParams fp;
+    fp.blend_distance = params.boundary_blend * cp.spacing;
+    fp.smoothness = params.field_smoothness;
+    principal = principal_curvature_field(face, tensor, nu, nv, fp);
+    cp.field = &principal;
+  }
   r.curves = trace_bd_curves(face, tensor, r.boundary, cp);
   return cp.spacing;
 }
@@ -325,6 +338,12 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
 
 PanelMesh boundary_driven(const SurfaceFace& face, const BoundaryDrivenParams& params) {
   return boundary_driven_stages(face, params).mesh;
+}
+
+PanelMesh curvature_lines(const SurfaceFace& face, const BoundaryDrivenParams& params) {
+  BoundaryDrivenParams p = params;
+  p.principal_directions = true;
+  return boundary_driven_stages(face, p).mesh;
 }
 
 }  // namespace tessella

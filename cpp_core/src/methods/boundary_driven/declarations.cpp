@@ -66,10 +66,66 @@ MethodBuilder<BoundaryDrivenParams> builder() {
       .shared("max_panels", &P::max_panels);
   return b;
 }
+
+// curvature_lines: the boundary-driven stages along the principal curvature
+// lines (issue 16); the trims' own field only near the trims, so no source
+// loops or extra curves.
+// BoundaryDrivenParams' fields as CurvatureLinesParams' (the builder binds
+// fields of its own params struct).
+template <class T>
+T CurvatureLinesParams::*as_cl(T BoundaryDrivenParams::*field) {
+  return static_cast<T CurvatureLinesParams::*>(field);
+}
+
+MethodBuilder<CurvatureLinesParams> curvature_lines_builder() {
+  using P = CurvatureLinesParams;
+  const char* group = "Curvature lines";
+  MethodBuilder<P> b("curvature_lines", "Curvature lines",
+                     "quad mesh along the principal curvature lines (for planar panels)");
+  b.param(as_cl(&BoundaryDrivenParams::size),
+          decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size", "Target panel edge length",
+               "Panelization", "Size"))
+      .param(as_cl(&BoundaryDrivenParams::boundary_blend),
+             decl("boundary_blend", ParamKind::Real, "", 0.0, 100.0, "Boundary blend (spacings)",
+                  "Within this many curve spacings of the trim the lines turn to follow the "
+                  "trim (0: principal directions up to the trim)",
+                  group, "BoundaryBlend"))
+      .param(as_cl(&BoundaryDrivenParams::field_smoothness),
+             decl("field_smoothness", ParamKind::Real, "", 1e-3, 100.0, "Field smoothness",
+                  "Weight of equal neighbours in the direction field's fit (higher: smoother "
+                  "lines, less exactly principal)",
+                  group, "FieldSmoothness"))
+      .param(as_cl(&BoundaryDrivenParams::quadrangulate),
+             decl("quadrangulate", ParamKind::Boolean, "", 0, 1, "Quadrangulate",
+                  "Split every panel by centre and edge midpoints (all quads; curves are then "
+                  "traced 2 x Size apart)",
+                  group, "Quadrangulate"))
+      .param(as_cl(&BoundaryDrivenParams::smoothing_iterations),
+             decl("smoothing_iterations", ParamKind::Integer, "", 0, 1000, "Smoothing iterations",
+                  "Laplacian smoothing passes (nodes stay on the surface and the trims)", group,
+                  "SmoothingIterations"))
+      .param(as_cl(&BoundaryDrivenParams::skew_ratio),
+             decl("skew_ratio", ParamKind::Real, "", 0.0, 1.0, "Skew ratio (min/max angle)",
+                  "Triangles whose smallest / largest corner angle is under this are removed",
+                  group, "SkewRatio"))
+      .param(as_cl(&BoundaryDrivenParams::step_fraction),
+             decl("step_fraction", ParamKind::Real, "", 0.01, 0.5, "Tracing step (of the spacing)",
+                  "Step of the curve tracing as a fraction of the curve spacing (smaller: "
+                  "curves follow the field more closely, slower)",
+                  group, "StepFraction"))
+      .param(as_cl(&BoundaryDrivenParams::angle_target_deg),
+             decl("angle_target", ParamKind::Real, "deg", 0.0, 90.0, "Angle target (0: off)",
+                  "After smoothing, nodes of panels with a corner under this angle are moved "
+                  "to open it (0 = off)",
+                  group, "AngleTarget"))
+      .shared("trim_deflection", as_cl(&BoundaryDrivenParams::trim_deflection))
+      .shared("max_panels", as_cl(&BoundaryDrivenParams::max_panels));
+  return b;
+}
 }  // namespace
 
 std::vector<MethodDeclaration> boundary_driven_methods() {
-  return {builder().build(&boundary_driven)};
+  return {builder().build(&boundary_driven), curvature_lines_builder().build(&curvature_lines)};
 }
 
 }  // namespace tessella::declare
