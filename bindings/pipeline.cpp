@@ -190,7 +190,8 @@ void bind_pipeline(py::module_& m) {
       .def_readwrite("max_deviation", &PlanarizeParams::max_deviation)
       .def_readwrite("closeness", &PlanarizeParams::closeness)
       .def_readwrite("fairness", &PlanarizeParams::fairness)
-      .def_readwrite("max_iterations", &PlanarizeParams::max_iterations);
+      .def_readwrite("max_iterations", &PlanarizeParams::max_iterations)
+      .def_readwrite("slide_on_trims", &PlanarizeParams::slide_on_trims);
   py::class_<PlanarizeReport>(m, "PlanarizeReport")
       .def_readonly("quads", &PlanarizeReport::quads)
       .def_readonly("planar_before", &PlanarizeReport::planar_before)
@@ -201,7 +202,8 @@ void bind_pipeline(py::module_& m) {
       .def_readonly("max_node_deviation_after", &PlanarizeReport::max_node_deviation_after)
       .def_readonly("max_move", &PlanarizeReport::max_move)
       .def_readonly("iterations", &PlanarizeReport::iterations)
-      .def_readonly("converged", &PlanarizeReport::converged);
+      .def_readonly("converged", &PlanarizeReport::converged)
+      .def_readonly("sliding_nodes", &PlanarizeReport::sliding_nodes);
   m.def(
       "planarize",
       [](const PanelizeResult& r, const PlanarizeParams& p, int samples, py::object progress) {

@@ -8,26 +8,29 @@ within a tolerance while the nodes stay within a band around the surface.
     report["max_planarity_after"], report["max_node_deviation_after"]   # mm
     r2.metrics["panel_deviation"]     # each quad's flat piece against the surface
 
-A local/global solver in the core (cpp_core/include/tessella/planarize.h):
-each round projects every quad's corners onto its best-fit plane and every
-node into the band of `max_deviation` around the surface, then solves one
-sparse system (Eigen's sparse Cholesky, factored once) for the nodes;
-`closeness=0` drops the band (what libigl's planarize_quad_mesh does). Nodes
-on the face's boundary and boundary pieces stay where they are (on their
-trims). A layout whose lines do not follow a conjugate network (an iso grid
-on a freeform face) cannot be made planar inside a narrow band; the report
-says how far it got. One face's result (not a face set).
+A damped Gauss-Newton solver in the core (cpp_core/include/tessella/planarize.h):
+the quads' diagonal distances (Huber-weighted: a quad far off planar counts
+linearly), a hard band of `max_deviation` around the surface and a fairness
+term, each step solved by Eigen's conjugate gradients; `closeness=0` drops
+the band (what libigl's planarize_quad_mesh does). Boundary nodes slide along
+their trims (`slide_on_trims`, exactly on the trim after every step) except at
+trim corners; the outlines of boundary pieces stay. Quads along a conjugate
+network (method="curvature_lines") can be made planar inside a narrow band;
+an iso grid on a freeform face cannot, and the report says how far it got.
+One face's result (not a face set).
 """
 
 from . import _core
 
 REPORT_FIELDS = ("quads", "planar_before", "planar_after", "max_planarity_before",
                  "max_planarity_after", "max_node_deviation_before",
-                 "max_node_deviation_after", "max_move", "iterations", "converged")
+                 "max_node_deviation_after", "max_move", "iterations", "converged",
+                 "sliding_nodes")
 
 
 def planarize(result, planarity_tolerance=1.0, max_deviation=20.0, closeness=0.1,
-              fairness=0.001, max_iterations=200, samples=8, progress=None):
+              fairness=0.001, max_iterations=200, samples=8, progress=None,
+              slide_on_trims=True):
     """(new result, report dict); see the module docstring."""
     from . import api
 
@@ -39,6 +42,7 @@ def planarize(result, planarity_tolerance=1.0, max_deviation=20.0, closeness=0.1
     p.closeness = float(closeness)
     p.fairness = float(fairness)
     p.max_iterations = int(max_iterations)
+    p.slide_on_trims = bool(slide_on_trims)
     moved, rep = _core.planarize(result._core, p, int(samples), progress)
     out = api.single_face_result(moved, result.method, None, result.params)
     report = {name: getattr(rep, name) for name in REPORT_FIELDS}

@@ -82,3 +82,32 @@ def test_bad_parameters(domed_face):
         planarize(r, planarity_tolerance=0.0)
     with pytest.raises(ValueError, match="max_deviation"):
         planarize(r, max_deviation=-5.0)
+
+
+def test_boundary_nodes_slide_along_their_trims(domed_face):
+    """Boundary nodes slide along the trims (issue 16: "keeps boundary nodes
+    on their trims, sliding along them, and corner nodes fixed"): those that
+    moved are still on the trim (FreeCAD's distance, within 1e-6 of the
+    model's size), and the four corners of the outer trim stay put."""
+    r = tessella.panelize(domed_face, method="curvature_lines", size=1000.0)
+    r2, rep = planarize(r, planarity_tolerance=1.0, max_deviation=20.0)
+    assert rep["sliding_nodes"] > 10
+    tol = 1e-6 * domed_face.BoundBox.DiagonalLength
+    slid = 0
+    for v in r.nodes:
+        x = V(*r.vertices[v])
+        if min(w.distToShape(Part.Vertex(x))[0] for w in domed_face.Wires) > tol:
+            continue
+        y = V(*r2.vertices[v])
+        if (y - x).Length > 1e-9:
+            slid += 1
+            assert min(w.distToShape(Part.Vertex(y))[0] for w in domed_face.Wires) <= tol
+    assert slid > 5
+    for corner in domed_face.OuterWire.Vertexes:
+        p = np.array([corner.X, corner.Y, corner.Z])
+        k = int(np.argmin(np.linalg.norm(r.vertices - p, axis=1)))
+        if np.linalg.norm(r.vertices[k] - p) <= tol:
+            assert np.array_equal(r2.vertices[k], r.vertices[k])
+    # Without sliding every boundary node stays exactly.
+    r3, rep3 = planarize(r, slide_on_trims=False)
+    assert rep3["sliding_nodes"] == 0

@@ -12,9 +12,10 @@
 // planarize_quad_mesh. The best round is kept (most quads within
 // planarity_tolerance, then the smallest worst one); rounds stop when every
 // quad is planar and every node in the band, after 20 rounds without a better
-// one, or after max_iterations. Nodes on the mesh boundary and the outlines of
-// boundary pieces (panels with trim points) do not move: boundary nodes stay
-// exactly on their trims. Deterministic.
+// one, or after max_iterations. Nodes on the mesh boundary slide along their
+// trims (put back exactly onto the trim's curve after every step) except at
+// trim corners and B-rep vertices; the outlines of boundary pieces (panels
+// with trim points) do not move. Deterministic.
 #pragma once
 
 #include "tessella/panel_mesh.h"
@@ -31,6 +32,9 @@ struct PlanarizeParams {
   double closeness = 0.1;   // the closeness goal (0: off, as libigl's planarize_quad_mesh)
   double fairness = 0.001;  // the fairness goal
   int max_iterations = 200;
+  // Boundary nodes slide along their trims (away from trim corners and B-rep
+  // vertices; not those of boundary pieces, whose outlines follow the trim).
+  bool slide_on_trims = true;
 };
 
 struct PlanarizeReport {
@@ -43,6 +47,7 @@ struct PlanarizeReport {
   double max_move = 0;  // mm
   int iterations = 0;
   bool converged = false;  // every quad planar and every node in the band
+  int sliding_nodes = 0;   // boundary nodes that slid along their trims
 };
 
 // Distance (mm) between the diagonals of quad p (as skew lines).

@@ -4,9 +4,12 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 
+#include "geometry/trim_deflection.h"
 #include "mesh/fixed_vertices.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
@@ -29,6 +32,76 @@ namespace {
 constexpr double kDamping = 1e-3;
 // Rounds without a better one before the solver stops.
 constexpr int kPatience = 20;
+// A sliding node's move across its trim's tangent: penalized this stiffly
+// (per mm^2, against the planarity goal's 1 per quad).
+constexpr double kSlideStiffness = 100.0;
+// A boundary node turning more than this (deg) is a corner: it stays.
+constexpr double kSlideTurnDeg = 30.0;
+
+// A boundary node that slides along trim loop `loop` (-1: it does not), in
+// the direction `tangent`, by at most `reach` (mm) a round.
+struct TrimSlider {
+  int loop = -1;
+  Vec3 tangent = Vec3::Zero();
+  double reach = 0;
+};
+
+// The nodes on the mesh's boundary (sides of one panel) that may slide: in
+// no boundary piece (a panel with trim points would need its outline redone),
+// on exactly two boundary sides, the boundary turning there by at most
+// kSlideTurnDeg, and no B-rep vertex of the trim within 1e-6 of the model.
+std::vector<TrimSlider> trim_sliders(const SurfaceFace& face, const PanelMesh& mesh) {
+  const std::size_t nv = mesh.vertex_count();
+  std::vector<TrimSlider> out(nv);
+  std::vector<char> in_piece(nv, 0);
+  std::vector<std::array<int, 2>> sides;
+  for (const auto& p : mesh.panels) {
+    bool piece = false;
+    for (int v : p) piece = piece || !is_node(mesh, v);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int a = p[i], b = p[(i + 1) % p.size()];
+      sides.push_back({std::min(a, b), std::max(a, b)});
+      if (piece) in_piece[static_cast<std::size_t>(a)] = 1;
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::vector<int>> along(nv);  // boundary neighbours
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j] == sides[i]) ++j;
+    if (j - i == 1) {
+      along[static_cast<std::size_t>(sides[i][0])].push_back(sides[i][1]);
+      along[static_cast<std::size_t>(sides[i][1])].push_back(sides[i][0]);
+    }
+    i = j;
+  }
+  const double ms = face.model_size();
+  const std::vector<TrimLoop> loops = face.trim_loops(trim_deflection(face, 0.0));
+  const double cos_turn = std::cos(kSlideTurnDeg * 3.14159265358979323846 / 180.0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (along[v].size() != 2 || in_piece[v] || !is_node(mesh, static_cast<int>(v))) continue;
+    const Vec3& x = mesh.xyz[v];
+    const Vec3 back = x - mesh.xyz[static_cast<std::size_t>(along[v][0])];
+    const Vec3 ahead = mesh.xyz[static_cast<std::size_t>(along[v][1])] - x;
+    if (!(back.norm() > 0 && ahead.norm() > 0)) continue;
+    if (back.normalized().dot(ahead.normalized()) < cos_turn) continue;
+    int loop = -1;
+    double nearest = std::numeric_limits<double>::infinity();
+    bool at_vertex = false;
+    for (std::size_t k = 0; k < loops.size(); ++k)
+      for (std::size_t i = 0; i < loops[k].xyz.size(); ++i) {
+        const double d = (loops[k].xyz[i] - x).norm();
+        if (d < nearest) nearest = d, loop = static_cast<int>(k);
+        if (i < loops[k].corner.size() && loops[k].corner[i] && d <= 1e-6 * ms) at_vertex = true;
+      }
+    if (at_vertex || loop < 0) continue;
+    out[v].loop = loop;
+    out[v].tangent = (back + ahead).normalized();
+    out[v].reach = 0.25 * std::min(back.norm(), ahead.norm());
+  }
+  return out;
+}
+
 // Quads farther off planar than this many tolerances weigh in linearly.
 constexpr double kHuberTolerances = 5.0;
 // Conjugate-gradient iterations per Gauss-Newton step at most.
@@ -57,15 +130,19 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
     if (nodes) quads.push_back({p[0], p[1], p[2], p[3]});
   }
   rep.quads = static_cast<int>(quads.size());
-  // Free nodes: nodes of a quad or a triangle of nodes, not fixed.
+  // Free nodes: nodes of a quad, not fixed, or sliding along their trim.
   const std::vector<char> fixed = fixed_vertices(mesh);
+  const std::vector<TrimSlider> slider =
+      params.slide_on_trims ? trim_sliders(face, mesh) : std::vector<TrimSlider>(nv);
   std::vector<int> index(nv, -1);
   std::vector<int> free;
   for (const auto& q : quads)
     for (int v : q)
-      if (!fixed[static_cast<std::size_t>(v)] && index[static_cast<std::size_t>(v)] < 0) {
+      if ((!fixed[static_cast<std::size_t>(v)] || slider[static_cast<std::size_t>(v)].loop >= 0) &&
+          index[static_cast<std::size_t>(v)] < 0) {
         index[static_cast<std::size_t>(v)] = static_cast<int>(free.size());
         free.push_back(v);
+        rep.sliding_nodes += slider[static_cast<std::size_t>(v)].loop >= 0 ? 1 : 0;
       }
   auto quad_points = [&](const std::array<int, 4>& q) {
     return std::array<Vec3, 4>{
@@ -192,6 +269,18 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
       }
       Sparse m = Sparse(j.transpose() * j) + params.fairness * ltl;
       for (Eigen::Index i = 0; i < dim; ++i) m.coeffRef(i, i) += params.closeness + kDamping;
+      // A sliding node moves along its trim's tangent: a stiff penalty on
+      // the rest of its move (it is put exactly back onto the trim after).
+      for (std::size_t k = 0; k < n; ++k) {
+        const TrimSlider& sl = slider[static_cast<std::size_t>(free[k])];
+        if (sl.loop < 0) continue;
+        const Eigen::Matrix3d across =
+            kSlideStiffness * (Eigen::Matrix3d::Identity() - sl.tangent * sl.tangent.transpose());
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b)
+            m.coeffRef(static_cast<Eigen::Index>(3 * k + a),
+                       static_cast<Eigen::Index>(3 * k + b)) += across(a, b);
+      }
       m.makeCompressed();
       const Eigen::VectorXd rhs =
           -(j.transpose() * c + params.closeness * (x - band) + params.fairness * (ltl * (x - x0)));
@@ -200,6 +289,19 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
       if (!dx.allFinite()) throw GeometryFailure("planarize: the Gauss-Newton step is not finite");
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t v = static_cast<std::size_t>(free[k]);
+        const TrimSlider& sl = slider[v];
+        if (sl.loop >= 0) {
+          // Along the trim, at most a quarter of its shorter boundary side
+          // (no node passes its neighbour), then exactly onto the trim.
+          const double along =
+              std::clamp(Vec3(dx.segment<3>(static_cast<Eigen::Index>(3 * k))).dot(sl.tangent),
+                         -sl.reach, sl.reach);
+          const Projection at = face.project(out.xyz[v] + along * sl.tangent, out.uv[v]);
+          const Vec2 uv = face.snap_to_trim(sl.loop, at.uv);
+          out.uv[v] = uv;
+          out.xyz[v] = face.point(uv.x(), uv.y());
+          continue;
+        }
         out.xyz[v] += dx.segment<3>(static_cast<Eigen::Index>(3 * k));
         if (params.closeness > 0) {
           // The band is a hard target: back onto its edge along the line to
@@ -213,7 +315,9 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
       int planar = 0;
       double worst = 0, far = 0;
       measure(planar, worst, far);
-      for (std::size_t k = 0; k < n; ++k) out.uv[static_cast<std::size_t>(free[k])] = foot[k].uv;
+      for (std::size_t k = 0; k < n; ++k)
+        if (slider[static_cast<std::size_t>(free[k])].loop < 0)
+          out.uv[static_cast<std::size_t>(free[k])] = foot[k].uv;
       if (planar == rep.quads && far <= params.max_deviation) {
         best = out;
         break;
