@@ -30,8 +30,12 @@ namespace {
 // keeps the system positive definite with closeness and fairness off, and the
 // steps short where the linearised diagonal distances mislead.
 constexpr double kDamping = 1e-3;
-// Rounds without a better one before the solver stops.
+// Rounds without a better one before the solver stops; it also stops when
+// kPatience rounds together made fewer than kPlateauShare of the quads
+// planar (the last few warped quads of a layout creep in over hundreds of
+// rounds: 98.7% of the dome's quads in 60 rounds, 99.2% in 200).
 constexpr int kPatience = 20;
+constexpr double kPlateauShare = 1e-3;
 // A sliding node's move across its trim's tangent: penalized this stiffly
 // (per mm^2, against the planarity goal's 1 per quad).
 constexpr double kSlideStiffness = 100.0;
@@ -105,7 +109,7 @@ std::vector<TrimSlider> trim_sliders(const SurfaceFace& face, const PanelMesh& m
 // Quads farther off planar than this many tolerances weigh in linearly.
 constexpr double kHuberTolerances = 5.0;
 // Conjugate-gradient iterations per Gauss-Newton step at most.
-constexpr int kCgIterations = 200;
+constexpr int kCgIterations = 30;
 
 }  // namespace
 
@@ -217,6 +221,7 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
     solver.setTolerance(1e-8);
     PanelMesh best = out;
     int best_planar = rep.planar_before, since_best = 0;
+    std::vector<int> best_by_round;  // best_planar after each round
     double best_worst = rep.max_planarity_before;
     for (int round = 0; round < params.max_iterations; ++round) {
       report_stage(static_cast<double>(round) / params.max_iterations, "planarizing");
@@ -329,6 +334,11 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
       } else if (++since_best >= kPatience) {
         break;
       }
+      best_by_round.push_back(best_planar);
+      if (round >= kPatience &&
+          best_planar - best_by_round[static_cast<std::size_t>(round - kPatience)] <
+              std::max(1.0, kPlateauShare * rep.quads))
+        break;
     }
     out = std::move(best);
   }
