@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "numpy_convert.h"
+#include "tessella/panel_classes.h"
 #include "tessella/panel_families.h"
 #include "tessella/panel_mesh.h"
 #include "tessella/panel_types.h"
@@ -52,6 +53,31 @@ void bind_analysis(py::module_& m) {
         return panel_types(mesh, unfold, p);
       },
       py::arg("mesh"), py::arg("unfold"), py::arg("params"));
+
+  // Panel classes (tessella/panel_classes.h).
+  py::class_<PanelClassParams>(m, "PanelClassParams")
+      .def(py::init<>())
+      .def_readwrite("flat_tolerance", &PanelClassParams::flat_tolerance)
+      .def_readwrite("cold_bend_ratio", &PanelClassParams::cold_bend_ratio)
+      .def_readwrite("cold_bend_warp", &PanelClassParams::cold_bend_warp);
+  py::class_<PanelClasses>(m, "PanelClasses")
+      .def_property_readonly("label",
+                             [](const PanelClasses& c) { return bindings::integers(c.label); })
+      .def_property_readonly("warp", [](const PanelClasses& c) { return bindings::values(c.warp); })
+      .def_property_readonly("limit",
+                             [](const PanelClasses& c) { return bindings::values(c.limit); })
+      .def_property_readonly("count", [](const PanelClasses& c) {
+        return std::vector<int>(c.count.begin(), c.count.end());
+      });
+  m.def(
+      "classify_panels",
+      [](const std::vector<DoubleArray>& panels, const PanelClassParams& p) {
+        std::vector<std::vector<Vec3>> points;
+        points.reserve(panels.size());
+        for (const auto& c : panels) points.push_back(bindings::points<3>(c, "a panel's vertices"));
+        return classify_panels(points, p);
+      },
+      py::arg("panels"), py::arg("params"));
 
   // Panel families (tessella/panel_families.h): panels as (k,3) corner arrays.
   py::class_<PanelFamilyParams>(m, "PanelFamilyParams")

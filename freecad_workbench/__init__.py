@@ -18,6 +18,7 @@ from .api import METHODS, Cancelled, PanelizeResult, panelize, panelize_faces  #
 from .plots import histograms  # noqa: F401,E402
 from .boundary_driven import boundary_driven_stages  # noqa: F401,E402
 from .families import PanelFamilies, panel_families  # noqa: F401,E402
+from .panel_classes import PanelClasses, panel_classes  # noqa: F401,E402
 from .family_regularization import regularize_families  # noqa: F401,E402
 from .planarization import planarize  # noqa: F401,E402
 

@@ -1,7 +1,7 @@
 """Analysis colours: per-panel and per-rod values mapped to colours (no GUI needed).
 
 The view providers use this to colour the Panels (by deviation, planarity, area,
-irregularity, type or family) and the Rods (by length); the legend shows the same scale.
+irregularity, type, family or class) and the Rods (by length); the legend shows the same scale.
 """
 
 import numpy as np
@@ -26,6 +26,7 @@ PANEL_MODES = {
     "Irregular": ("Irregular", ""),
     "Type": ("PanelType", "type"),
     "Family": ("PanelFamily", "family"),  # empty while FamilyTolerance is 0
+    "Class": ("PanelClass", "0 flat, 1 cold-bent, 2 curved"),
 }
 ROD_MODES = {"Length": ("RodLengths", "mm")}
 

@@ -458,6 +458,14 @@ def _result(r, method, values, params):
         "rod_length": np.asarray(m.rod_length),
         "node_valence": np.asarray(r.valence)[node_index],
     }
+    from .panel_classes import CLASS_NAMES, classify
+
+    classes = classify(mesh.xyz, mesh.panels)
+    metrics["panel_warp"] = classes.warp
+    summary = dict(r.summary)
+    # At the defaults (flat within 1 mm, cold-bent within 1% of the diagonal).
+    summary["panel_classes"] = dict(classes.counts)
+    assert tuple(summary["panel_classes"]) == CLASS_NAMES
     return PanelizeResult(
         method=method,
         params=dict(params if params is not None else values),
@@ -469,7 +477,7 @@ def _result(r, method, values, params):
         metrics=metrics,
         irregular=np.asarray(r.irregular, dtype=bool),
         nodes=node_index,
-        summary=dict(r.summary),
+        summary=summary,
         folds=np.asarray(core.mesh_folds(mesh), dtype=np.int64).reshape(-1, 2),
         _mesh=mesh,
         _core=r,

@@ -37,6 +37,8 @@ from ._core import (  # noqa: E402,F401
     PanelTypeParams,
     PanelFamilyParams,
     panel_families,
+    PanelClassParams,
+    classify_panels,
     panel_distance,
     flat_panel_types,
     mesh_panel_types,

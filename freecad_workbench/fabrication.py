@@ -486,6 +486,27 @@ def flatten(result, face=None, subdivisions=8):
     return _flat_patches(result, patches)
 
 
+def by_class(result, classes=None, face=None, subdivisions=8,
+             fold_tolerance=DEFAULT_FOLD_TOLERANCE):
+    """Each panel made flat as its class says (issue 16): flat and cold-bent
+    panels unfolded exactly (a cold-bent panel is cut flat and bent on site:
+    its cut shape is its unfolded one, edge lengths kept), curved panels
+    flattened as their surface patches with the strain reported (FlatPatch).
+    `classes`: a panel_classes.PanelClasses of the result (default: the
+    result's own at the defaults). Panel order."""
+    from .panel_classes import panel_classes
+
+    if classes is None:
+        classes = panel_classes(result)
+    if len(classes.labels) != len(result.panels):
+        raise ValueError("the panel classes are not of this result's panels")
+    flat = unfold(result, fold_tolerance=fold_tolerance)
+    if not np.any(classes.labels == 2):
+        return flat
+    patches = flatten(result, face, subdivisions=subdivisions)
+    return [patches[k] if classes.labels[k] == 2 else flat[k] for k in range(len(flat))]
+
+
 def _flat_patches(result, patches):
     return [FlatPatch(pid, np.asarray(f.outline), list(f.corner_index), float(f.strain_max),
                       float(f.strain_mean), float(f.area_3d), tuple(f.u_direction))

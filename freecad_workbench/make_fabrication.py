@@ -4,6 +4,8 @@
                              sheet_width=2500, sheet_height=1250, margin=10, spacing=6,
                              rotations=4, kerf=0.0,
                              stock_sizes=[(2500, 1250), (3000, 1500)])   # optional
+    # curved panels (the Panels' classes) flattened with their strain, the rest unfolded:
+    u = tessella.make_unfold(panelization, by_panel_class=True)
 """
 
 import FreeCAD
@@ -11,6 +13,7 @@ import FreeCAD
 _OPTIONS = {
     "fold_tolerance": "FoldTolerance",
     "curved_panels": "CurvedPanels",
+    "by_panel_class": "ByPanelClass",
     "subdivisions": "Subdivisions",
     "nest": "Nest",
     "sheet_width": "SheetWidth",
@@ -42,7 +45,8 @@ def make_unfold(panelization, doc=None, **options):
     res = panelization.Proxy.result(panelization).result
     flat = feat.flat_panels(panelization, res, options.get("curved_panels", False),
                             options.get("subdivisions", 8),
-                            options.get("fold_tolerance", fabrication.DEFAULT_FOLD_TOLERANCE))
+                            options.get("fold_tolerance", fabrication.DEFAULT_FOLD_TOLERANCE),
+                            options.get("by_panel_class", False))
     kerf = options.get("kerf", 0.0)
     if "stock_sizes" in options:  # entries like "2500 x 1250" or (width, height) pairs
         options["stock_sizes"] = feat.format_stock_sizes(options["stock_sizes"])

@@ -40,6 +40,7 @@ SHEET_COLUMNS = {
     "valence": ("Rod count", "count"), "rods": ("Rods (azimuth, elevation)", "rods"),
     "family": ("Family", "text"), "template": ("Template", "text"), "count": ("Panels", "count"),
     "max_error_mm": ("Max error", "mm"), "members": ("Members", "text"),
+    "warp_mm": ("Warp", "mm"), "class": ("Class", "text"),
 }
 
 #: Display unit per kind (areas of panels read in m², as quantity surveyors do).
@@ -113,6 +114,17 @@ def panel_families_of(panelization):
     return None
 
 
+def panel_classes_of(panelization):
+    """panel_classes.PanelClasses of a Panelization's Panels object at its
+    FlatTolerance / ColdBendRatio / ColdBendWarp, or None (no Panels child)."""
+    from .features import panelization as pfeat
+
+    for child in pfeat.children_of(panelization):
+        if child.Role == "Panels" and hasattr(child.Proxy, "classes"):
+            return child.Proxy.classes(child)
+    return None
+
+
 def make_schedules(panelization, doc=None, fold_tolerance=0.01):
     import FreeCAD  # noqa: F401
 
@@ -126,8 +138,9 @@ def make_schedules(panelization, doc=None, fold_tolerance=0.01):
     res = panelization.Proxy.result(panelization).result
     flat = fabrication.unfold(res, fold_tolerance=fold_tolerance)
     fam = panel_families_of(panelization)
-    writers = [("PanelSchedule", lambda p: mx.write_panel_fabrication_schedule(res, flat, p,
-                                                                               families=fam)),
+    cls = panel_classes_of(panelization)
+    writers = [("PanelSchedule", lambda p: mx.write_panel_fabrication_schedule(
+                   res, flat, p, families=fam, classes=cls)),
                ("RodSchedule", lambda p: mx.write_rod_data(res, p)),
                ("NodeSchedule", lambda p: mx.write_node_schedule(res, p))]
     if fam is not None:

@@ -26,7 +26,7 @@ NODE_SCHEDULE_COLUMNS = ("id", "type", "x", "y", "z", "axis_x", "axis_y", "axis_
 
 PANEL_FAB_COLUMNS = ("id", "type", "vertex_count", "flat_width_mm", "flat_height_mm", "area_mm2",
                      "flat_area_mm2", "perimeter_mm", "deviation_mm", "planarity", "fold",
-                     "fold_angle_deg", "fold_valley", "folds")
+                     "fold_angle_deg", "fold_valley", "folds", "warp_mm", "class")
 
 
 def _open(path):
@@ -151,13 +151,15 @@ def write_abaqus_inp(result, path, profile=("pipe", 60.0, 4.0), young=210000.0, 
 
 
 def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_tol=0.5,
-                                     families=None):
+                                     families=None, classes=None):
     """One row per panel: type (congruent flat panels), flat size (bounding box of
     the outline as unfolded), 3D model area and flat area, perimeter, deviation,
     planarity, fold diagonal ("a-b", corner indices) and angle; with `families`
     (a families.PanelFamilies of the result) a last column "family" (PF-001,
-    ...). Returns the row count."""
-    from .schedule_csv import panel_perimeters
+    ...). The warp (mm) and class (flat / cold-bent / curved) of `classes` (a
+    panel_classes.PanelClasses of the result) or the result's at the defaults.
+    Returns the row count."""
+    from .schedule_csv import _class_columns, panel_perimeters
 
     from ..fabrication import unique_ids
 
@@ -171,6 +173,7 @@ def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_t
             raise ValueError(f"flat panel {pid!r} is not a panel of this result: unfold "
                              "the result you write")
         rows.append(index[pid])
+    warp, class_names = _class_columns(result, classes, len(result.panels))
     with _open(path) as f:
         w = csv.writer(f)
         names = None
@@ -187,6 +190,7 @@ def write_panel_fabrication_schedule(result, flat, path, length_tol=1.0, angle_t
                         repr(float(result.metrics["panel_deviation"][k])),
                         repr(float(result.metrics["panel_planarity"][k])),
                         f"{fp.fold[0]}-{fp.fold[1]}" if fp.fold else "",
-                        repr(float(fp.fold_angle)), int(fp.fold_valley), len(fp.folds)]
+                        repr(float(fp.fold_angle)), int(fp.fold_valley), len(fp.folds),
+                        repr(float(warp[k])), class_names[k]]
                        + ([names[k]] if names is not None else []))
     return len(flat)

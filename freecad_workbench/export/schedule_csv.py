@@ -24,6 +24,8 @@ PANEL_COLUMNS = (
     "centroid_x",
     "centroid_y",
     "centroid_z",
+    "warp_mm",
+    "class",
 )
 ROD_COLUMNS = ("id", "node_a", "node_b", "length_mm")
 #: The family schedule (freecad_workbench.families): one row per family; members
@@ -62,10 +64,23 @@ def _open(path):
     return open(path, "w", newline="", encoding="utf-8")
 
 
-def write_panel_schedule(result, path, families=None):
+def _class_columns(result, classes, n):
+    """(warp mm, class name) per panel: of `classes` (a panel_classes.PanelClasses
+    of the result) or, without, the result's own at the defaults."""
+    from ..panel_classes import panel_classes
+
+    if classes is None:
+        classes = panel_classes(result)
+    if len(classes.labels) != n:
+        raise ValueError("the panel classes are not of this result's panels")
+    return classes.warp, classes.names
+
+
+def write_panel_schedule(result, path, families=None, classes=None):
     """Writes one row per panel (columns PANEL_COLUMNS, then "family" when
-    `families`, a families.PanelFamilies of the result, is given). Returns the
-    number of rows."""
+    `families`, a families.PanelFamilies of the result, is given; the warp and
+    class of `classes`, a panel_classes.PanelClasses, or the defaults').
+    Returns the number of rows."""
     n = len(result.panels)
     xyz = np.asarray(result.vertices, dtype=float)
     area = _metric(result, "panel_area", n)
@@ -79,6 +94,7 @@ def write_panel_schedule(result, path, families=None):
     perimeter = panel_perimeters(result)
     ids = result.panel_ids
     names = _family_names(families, n)
+    warp, class_names = _class_columns(result, classes, n)
     with _open(path) as f:
         w = csv.writer(f)
         w.writerow(PANEL_COLUMNS + (("family",) if names is not None else ()))
@@ -98,6 +114,8 @@ def write_panel_schedule(result, path, families=None):
                     _num(c[0]),
                     _num(c[1]),
                     _num(c[2]),
+                    _num(warp[k]),
+                    class_names[k],
                 )
                 + ((names[k],) if names is not None else ())
             )

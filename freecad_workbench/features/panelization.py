@@ -515,6 +515,26 @@ class PanelizationPart(_StateMixin):
                          "Mean number of panels per family", attr=ro)
             add_property(obj, "App::PropertyLength", "FamilyMaxError", "Families",
                          "Largest corner distance of a panel to its family's template", attr=ro)
+            # Panel classes (freecad_workbench.panel_classes): flat, cold-bent, curved.
+            add_property(obj, "App::PropertyLength", "FlatTolerance", "Classes",
+                         "A panel warped no more than this (a quad: the distance between its "
+                         "diagonals) is flat", default=1.0)
+            add_property(obj, "App::PropertyFloat", "ColdBendRatio", "Classes",
+                         "A panel warped no more than this ratio of its longest diagonal can be "
+                         "cold-bent from flat sheet (1% default: a placeholder, use the "
+                         "supplier's figure)", default=0.01)
+            add_property(obj, "App::PropertyLength", "ColdBendWarp", "Classes",
+                         "Cold-bending limit in mm (0: ColdBendRatio x the diagonal)", default=0.0)
+            add_property(obj, "App::PropertyIntegerList", "PanelClass", "Data",
+                         "Class per panel: 0 flat, 1 cold-bent, 2 curved", attr=ro)
+            add_property(obj, "App::PropertyFloatList", "Warp", "Data",
+                         "Warp per panel (mm)", attr=ro)
+            add_property(obj, "App::PropertyInteger", "FlatPanels", "Classes",
+                         "Panels within FlatTolerance", attr=ro)
+            add_property(obj, "App::PropertyInteger", "ColdBentPanels", "Classes",
+                         "Panels within the cold-bending limit", attr=ro)
+            add_property(obj, "App::PropertyInteger", "CurvedPanels", "Classes",
+                         "Panels beyond it (need a mould)", attr=ro)
         elif role == "Rods":
             add_property(obj, "App::PropertyStringList", "RodIds", "Data",
                          "Rod IDs, one per edge", attr=ro)
@@ -545,7 +565,9 @@ class PanelizationPart(_StateMixin):
         if role == "Panels":
             tol = max(value_of(obj.TypeTolerance), 1e-6)
             inputs = (cache.serial, res.panel_id_format, tol,
-                      value_of(obj.FamilyTolerance), bool(obj.Mirror))
+                      value_of(obj.FamilyTolerance), bool(obj.Mirror),
+                      value_of(obj.FlatTolerance), float(obj.ColdBendRatio),
+                      value_of(obj.ColdBendWarp))
         elif role == "Rods":
             inputs = (cache.serial, res.rod_id_format)
         else:
@@ -555,6 +577,7 @@ class PanelizationPart(_StateMixin):
         self._applied = None
         if role == "Panels":  # before the shape, so a colouring by family sees them
             self._apply_families(obj, cache)
+            self._apply_classes(obj)
         obj.Shape = cache.shapes[role]
         if role == "Panels":
             obj.PanelIds = res.panel_ids  # the parent's PanelIdFormat (checked there)
@@ -591,6 +614,30 @@ class PanelizationPart(_StateMixin):
         obj.LargestFamily = int(s.get("largest_family", 0))
         obj.PanelsPerFamily = float(s.get("mean_panels_per_family", 0.0))
         obj.FamilyMaxError = float(s.get("max_error", 0.0))
+
+    def _apply_classes(self, obj):
+        """PanelClass, Warp and the class counts from FlatTolerance /
+        ColdBendRatio / ColdBendWarp."""
+        cls = self.classes(obj)
+        obj.PanelClass = cls.labels.tolist()
+        obj.Warp = cls.warp.tolist()
+        obj.FlatPanels = cls.counts["flat"]
+        obj.ColdBentPanels = cls.counts["cold-bent"]
+        obj.CurvedPanels = cls.counts["curved"]
+
+    def classes(self, obj):
+        """panel_classes.PanelClasses of a Panels object at its FlatTolerance /
+        ColdBendRatio / ColdBendWarp: what schedules and the Unfold use. Raises
+        ValueError (naming the object) for a bad setting."""
+        from ..panel_classes import panel_classes
+
+        parent = obj.Base
+        res = parent.Proxy.result(parent).result
+        try:
+            return panel_classes(res, value_of(obj.FlatTolerance), float(obj.ColdBendRatio),
+                                 value_of(obj.ColdBendWarp))
+        except ValueError as exc:
+            raise ValueError(f"{obj.Label}: {exc}") from None
 
     def families(self, obj):
         """families.PanelFamilies of a Panels object at its FamilyTolerance / Mirror

@@ -66,17 +66,27 @@ def format_stock_sizes(sizes):
     return [f"{w:g} x {h:g}" for w, h in parse_stock_sizes(sizes)]
 
 
-def flat_panels(panelization, result, curved, subdivisions, fold_tolerance):
+def flat_panels(panelization, result, curved, subdivisions, fold_tolerance, by_class=False):
     """The flat panels of `result` (the Panelization's): flattened curved
-    patches (`curved`) or unfolded flat panels."""
+    patches (`curved`), each panel as its class says (`by_class`: the Panels
+    object's classes; curved ones flattened, the others unfolded) or unfolded
+    flat panels."""
     from .. import fabrication
+    from ..spreadsheets import panel_classes_of
+
+    # A face set's result keeps its faces; one face is named for a result
+    # made elsewhere.
+    def face_arg():
+        return (None if result.face_count > 1
+                else panelization.Proxy.source_face(panelization)[0])
 
     if curved:
-        # A face set's result keeps its faces; one face is named for a
-        # result made elsewhere.
-        face_arg = (None if result.face_count > 1
-                    else panelization.Proxy.source_face(panelization)[0])
-        return fabrication.flatten(result, face_arg, subdivisions=subdivisions)
+        return fabrication.flatten(result, face_arg(), subdivisions=subdivisions)
+    if by_class:
+        classes = panel_classes_of(panelization)
+        if classes is not None and bool((classes.labels == 2).any()):
+            return fabrication.by_class(result, classes, face_arg(), subdivisions=subdivisions,
+                                        fold_tolerance=fold_tolerance)
     return fabrication.unfold(result, fold_tolerance=fold_tolerance)
 
 
@@ -96,6 +106,9 @@ class Unfold(_StateMixin):
         add_property(obj, "App::PropertyBool", "CurvedPanels", "Unfold",
                      "Keep panels as curved patches of the surface and flatten them (LSCM)",
                      default=False)
+        add_property(obj, "App::PropertyBool", "ByPanelClass", "Unfold",
+                     "Curved panels (the Panels' classes) flattened as surface patches with "
+                     "their strain, flat and cold-bent ones unfolded exactly", default=False)
         add_property(obj, "App::PropertyInteger", "Subdivisions", "Unfold",
                      "Curved panels: mesh pieces per triangle edge", default=8)
         add_property(obj, "App::PropertyBool", "Nest", "Nesting",
@@ -145,6 +158,7 @@ class Unfold(_StateMixin):
         return {
             "fold_tolerance": value_of(obj.FoldTolerance),
             "curved": bool(obj.CurvedPanels),
+            "by_class": bool(getattr(obj, "ByPanelClass", False)),
             "subdivisions": int(obj.Subdivisions),
             "nest": bool(obj.Nest),
             "sheet_width": value_of(obj.SheetWidth),
@@ -162,7 +176,8 @@ class Unfold(_StateMixin):
             raise ValueError("Base must link to a Panelization object")
         res = base.Proxy.result(base).result  # carries the Panelization's ID formats
         o = self.options(obj)
-        flat = flat_panels(base, res, o["curved"], o["subdivisions"], o["fold_tolerance"])
+        flat = flat_panels(base, res, o["curved"], o["subdivisions"], o["fold_tolerance"],
+                           o["by_class"])
         return res, flat
 
     def compute_flat(self, obj):

@@ -174,7 +174,7 @@ class ViewProviderPanelizationPart(_VPState):
         if vobj is None:
             return
         if prop in ("Shape", "Deviation", "Planarity", "Area", "Irregular", "PanelType",
-                    "PanelFamily", "RodLengths"):
+                    "PanelFamily", "PanelClass", "RodLengths"):
             if getattr(vobj, "ColorBy", "Shape") != "Shape":
                 self.apply_colors(vobj)
         if prop in ("Shape", "PanelIds", "RodIds", "NodeIds") and getattr(vobj, "ShowIds", False):

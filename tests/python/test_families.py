@@ -418,7 +418,9 @@ def test_spreadsheets_and_document_exports_with_families(doc, tmp_path):
     assert fs[0].get("A1") == "Family" and fs[0].get("C1") == "Panels"
     assert [fs[0].get(f"C{i}") for i in range(2, 6)] == [12, 12, 12, 12]
     ps = [s for s in sheets if s.Name.startswith("PanelSchedule")][-1]
-    last = "O"  # the column after the 14 fabrication columns
+    assert ps.get("O1") == "Warp" and ps.get("P1") == "Class"
+    assert {ps.get(f"P{i}") for i in range(2, 50)} <= {"flat", "cold-bent", "curved"}
+    last = "Q"  # the column after the 16 fabrication columns (warp and class the last two)
     assert ps.get(f"{last}1") == "Family"
     assert {ps.get(f"{last}{i}") for i in range(2, 50)} == {"PF-001", "PF-002", "PF-003", "PF-004"}
     s = make_fabrication.export_families(p, str(tmp_path / "t.svg"))
