@@ -344,10 +344,15 @@ class PreparedRun:
     def __init__(self, source, method, params):
         from .selection import faces_of
 
+        from .planarization import pop_options, refuse_on_face_sets
+
         faces = faces_of(source, context="source")
-        self.method, self.params = method, dict(params)
+        params = dict(params)
+        self.planarize = pop_options(params)
+        self.method, self.params = method, params
         self.several = len(faces) > 1
         if self.several:
+            refuse_on_face_sets(self.planarize)
             import Part
 
             self.brep = Part.Compound(faces).exportBrepToString()
@@ -361,7 +366,10 @@ class PreparedRun:
     def run(self, progress=None):
         """The result (raises Cancelled when progress says stop)."""
         if not self.several:
-            return panelize_surface(self.target, self.method, self.values, self.params, progress)
+            from .planarization import apply_options
+
+            res = panelize_surface(self.target, self.method, self.values, self.params, progress)
+            return apply_options(res, self.planarize, progress)
         r = core.panelize_faces(self.target, self.method, self.values, progress, 0)
         return _face_set_result(r, self.method, self.values, self.params, self.target)
 
@@ -369,9 +377,14 @@ class PreparedRun:
 def panelize_brep(brep, method="iso_grid", progress=None, **params):
     """panelize() on a face given as its BRep string (what a document recompute
     already has: the face is serialized once)."""
+    from .planarization import apply_options, pop_options
+
+    params = dict(params)
+    options = pop_options(params)  # the planarize step's keywords
     surface = core.SurfaceFace.from_brep_string(brep)
     values = core_values(method, params, surface)  # checks the keywords
-    return panelize_surface(surface, method, values, params, progress)
+    return apply_options(panelize_surface(surface, method, values, params, progress), options,
+                         progress)
 
 
 def panelize_surface(surface, method, values, params=None, progress=None):
@@ -418,6 +431,10 @@ def panelize_faces(faces, method="iso_grid", progress=None, threads=0, **params)
 def panelize_faces_brep(brep, method="iso_grid", progress=None, threads=0, **params):
     """panelize_faces() on a shape given as its BRep string (a document
     recompute's: the faces serialized once)."""
+    from .planarization import pop_options, refuse_on_face_sets
+
+    params = dict(params)
+    refuse_on_face_sets(pop_options(params))
     face_set = core.FaceSet.from_brep_string(brep)
     values = core_values(method, params)
     r = core.panelize_faces(face_set, method, values, progress, int(threads))

@@ -17,8 +17,11 @@ from . import selection
 def _param_to_property():
     """make_panelization keyword -> Panelization property (from the declarations)."""
     from .methods import METHODS
+    from .planarization import OPTIONS
 
-    return {p.name: p.property for m in METHODS.values() for p in m}
+    out = {p.name: p.property for m in METHODS.values() for p in m}
+    out.update({name: spec[0] for name, spec in OPTIONS.items()})
+    return out
 
 
 _VIEW_STYLE = {

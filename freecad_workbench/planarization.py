@@ -28,6 +28,62 @@ REPORT_FIELDS = ("quads", "planar_before", "planar_after", "max_planarity_before
                  "sliding_nodes")
 
 
+#: The planarize step as keywords of panelize / make_panelization (the step
+#: runs after the method when `planarize` is on) and the Panelization
+#: properties that store them: keyword -> (property, kind, default, unit,
+#: label, doc). One face's panels only.
+OPTIONS = {
+    "planarize": ("Planarize", "bool", False, "", "Planarize",
+                  "After the method, move the nodes so that the quads become planar while "
+                  "every node stays within the band around the surface (tessella.planarize)"),
+    "planarity_tolerance": ("PlanarityTolerance", "float", 1.0, "mm", "Planarity tolerance",
+                            "A quad is planar when its diagonals pass within this"),
+    "planarize_max_deviation": ("PlanarizeMaxDeviation", "float", 20.0, "mm", "Planarize band",
+                                "Largest distance of a node from the surface the planarize "
+                                "step allows"),
+}
+
+
+def pop_options(params):
+    """The planarize keywords taken out of `params` (a dict of panelize keywords),
+    with their defaults; raises ValueError for a bad value."""
+    out = {}
+    for name, (_prop, kind, default, _unit, _label, _doc) in OPTIONS.items():
+        value = params.pop(name, default)
+        if kind == "bool":
+            if not isinstance(value, (bool, int)) or isinstance(value, float):
+                raise ValueError(f"{name} must be True or False, got {value!r}")
+            value = bool(value)
+        else:
+            try:
+                value = float(value)
+            except (TypeError, ValueError):
+                raise ValueError(f"{name} (mm) must be a number, got {value!r}") from None
+            if not value > 0:
+                raise ValueError(f"{name} (mm) must be above 0, got {value!r}")
+        out[name] = value
+    return out
+
+
+def apply_options(result, options, progress=None):
+    """`result` planarized as `options` (pop_options') say: the same result when
+    the step is off; the report in `summary["planarize"]`."""
+    if not options.get("planarize"):
+        return result
+    out, _report = planarize(result, planarity_tolerance=options["planarity_tolerance"],
+                             max_deviation=options["planarize_max_deviation"],
+                             progress=progress)
+    out.params = dict(result.params)
+    out.params.update({k: v for k, v in options.items()})
+    return out
+
+
+def refuse_on_face_sets(options):
+    if options.get("planarize"):
+        raise ValueError("planarize works on one face's panels: pick one face (the step "
+                         "is not built for face sets)")
+
+
 def planarize(result, planarity_tolerance=1.0, max_deviation=20.0, closeness=0.1,
               fairness=0.001, max_iterations=200, samples=8, progress=None,
               slide_on_trims=True):

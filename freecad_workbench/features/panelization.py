@@ -200,6 +200,11 @@ class Panelization(_StateMixin):
                          enum=list(first.choices) if first.type == "choice" else None)
             if first.type == "choice":
                 _upgrade_enumeration(obj, prop, list(first.choices))
+        from ..planarization import OPTIONS as PLANARIZE_OPTIONS
+
+        for _name, (prop, kind, default, _unit, _label, doc) in PLANARIZE_OPTIONS.items():
+            add_property(obj, "App::PropertyBool" if kind == "bool" else "App::PropertyLength",
+                         prop, "Planarize", doc, default=default)
         add_property(obj, "App::PropertyString", "PanelIdFormat", "Output",
                      "Python format of the panel IDs from the panel number, e.g. P-{:04d}",
                      default="P-{:04d}")
@@ -319,6 +324,12 @@ class Panelization(_StateMixin):
             if p.name in params:
                 for other in p.replaces:
                     params.pop(other, None)
+        from ..planarization import OPTIONS as PLANARIZE_OPTIONS
+
+        if bool(getattr(obj, "Planarize", False)):  # the step after the method
+            for name, (prop, kind, _d, _u, _l, _doc) in PLANARIZE_OPTIONS.items():
+                raw = getattr(obj, prop)
+                params[name] = bool(raw) if kind == "bool" else value_of(raw)
         return method, params
 
     def guide_edges(self, obj):

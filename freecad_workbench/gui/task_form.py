@@ -70,6 +70,19 @@ def common_rows():
     return [_describe(shared[name]) for name in COMMON]
 
 
+def planarize_rows():
+    """The rows of the planarize step (any method; one face's panels), from
+    planarization.OPTIONS."""
+    from ..planarization import OPTIONS
+
+    rows = []
+    for name, (prop, kind, _default, unit, label, doc) in OPTIONS.items():
+        rows.append(ParamRow(name, label, unit, "bool" if kind == "bool" else "quantity", prop,
+                             f"{doc} (the Panelization's {prop} property)", 1e-6, 1e6,
+                             0 if kind == "bool" else 3))
+    return rows
+
+
 def guides_needed(method):
     """How many guide edges the method takes (0: none)."""
     return api.GUIDE_COUNT.get(method, 0)
@@ -140,9 +153,14 @@ def initial_values(obj=None, size=None):
                 values[name] = float(v.Value) if hasattr(v, "Value") else v
             elif name == "source_loops" and hasattr(obj, prop):
                 values[name] = [int(k) for k in getattr(obj, prop)]
-        return {"method": obj.Method, "values": values, "obj": obj,
-                "sliver_fraction": float(obj.SliverFraction),
-                "min_angle": float(obj.MinAngle.Value), "max_panels": int(obj.MaxPanels)}
+        out = {"method": obj.Method, "values": values, "obj": obj,
+               "sliver_fraction": float(obj.SliverFraction),
+               "min_angle": float(obj.MinAngle.Value), "max_panels": int(obj.MaxPanels)}
+        for r in planarize_rows():
+            v = getattr(obj, r.prop, None)
+            if v is not None:
+                out[r.name] = float(v.Value) if hasattr(v, "Value") else bool(v)
+        return out
     from . import preferences
 
     prefs = preferences.defaults()
@@ -307,6 +325,13 @@ class ParameterForm:
             box = make_widget(r, initial[r.name])
             self.common[r.name] = box
             form.addRow(r.label, box)
+        from ..planarization import OPTIONS as PLANARIZE_OPTIONS
+
+        self.planarize = {}
+        for r in planarize_rows():
+            box = make_widget(r, initial.get(r.name, PLANARIZE_OPTIONS[r.name][2]))
+            self.planarize[r.name] = box
+            form.addRow(r.label, box)
         self.sliver = self.common["sliver_fraction"]
         self.min_angle = self.common["min_angle"]
         self.max_panels = self.common["max_panels"]
@@ -322,7 +347,7 @@ class ParameterForm:
         form.addRow(self.stop_preview)
         for signal in (self.method.currentIndexChanged, self.live.toggled):
             signal.connect(on_change_slot)
-        for box in self.common.values():
+        for box in list(self.common.values()) + list(self.planarize.values()):
             on_change(box, on_change_slot)
 
     def current_method(self):
@@ -414,4 +439,7 @@ class ParameterForm:
         for name in list(params):  # only what this method takes
             if name not in api.METHODS[method].params:
                 params.pop(name)
+        # The planarize step (any method): on or off, and its settings when on.
+        step = {name: read(box) for name, box in self.planarize.items()}
+        params.update(step if step.get("planarize") else {"planarize": False})
         return method, params

@@ -461,6 +461,13 @@ def test_task_panel_edit():
             method, params = panel.parameters()
             check("rows: counts replace the size", method == "iso_grid" and "size" not in params
                   and params["u_count"] == 5, str(params))
+            check("rows: planarize off by default", params.get("planarize") is False
+                  and "planarity_tolerance" not in params, str(params))
+            panel.form_parts.planarize["planarize"].setChecked(True)
+            method, params = panel.parameters()
+            check("rows: planarize on with its settings", params.get("planarize") is True
+                  and abs(params.get("planarity_tolerance", 0) - 1.0) < 1e-9
+                  and abs(params.get("planarize_max_deviation", 0) - 20.0) < 1e-9, str(params))
             panel.timer.stop()
             panel.update_preview()
             check("rows: preview of the counts", panel.last_result is not None and
@@ -468,6 +475,9 @@ def test_task_panel_edit():
             check("rows: OK", panel.accept())
             check("rows: counts written", parent.UCount == 5 and parent.VCount == 3
                   and parent.Method == "iso_grid", f"{parent.UCount} {parent.VCount}")
+            check("rows: planarize written", parent.Planarize and
+                  "planarize" in parent.Proxy.result(parent).result.summary,
+                  str(parent.Planarize))
     finally:
         if Gui.Control.activeDialog():
             Gui.Control.closeDialog()
@@ -655,7 +665,8 @@ def test_analysis_colors():
         check("colours: Panels has a ColorBy view property",
               "ColorBy" in vp.PropertiesList, str(vp.PropertiesList))
         check("colours: modes offered", set(vp.getEnumerationsOfProperty("ColorBy"))
-              == {"Shape", "Deviation", "Planarity", "Area", "Irregular", "Type", "Family"},
+              == {"Shape", "Deviation", "Planarity", "Area", "Irregular", "Type", "Family",
+                  "Class"},
               str(vp.getEnumerationsOfProperty("ColorBy")))
         vp.ColorBy = "Deviation"
         process_events()
@@ -683,6 +694,14 @@ def test_analysis_colors():
                    for a in range(0, len(kinds), 7) for b in range(0, len(kinds), 5))
         check("colours: same type, same colour (and only then)",
               same and panels.TypeCount == len(set(kinds)), str(panels.TypeCount))
+        vp.ColorBy = "Class"
+        process_events()
+        classes = list(panels.PanelClass)
+        face_colors = [tuple(vp.DiffuseColor[firsts[k]][:3]) for k in range(len(classes))]
+        same = all((face_colors[a] == face_colors[b]) == (classes[a] == classes[b])
+                   for a in range(0, len(classes), 3) for b in range(0, len(classes), 4))
+        check("colours: same class, same colour (and only then)",
+              same and len(set(classes)) >= 2 and vp.Proxy.has_legend(), str(set(classes)))
         vp.ColorBy = "Shape"
         process_events()
         check("colours: back to the shape colour removes the legend", not vp.Proxy.has_legend())

@@ -111,3 +111,50 @@ def test_boundary_nodes_slide_along_their_trims(domed_face):
     # Without sliding every boundary node stays exactly.
     r3, rep3 = planarize(r, slide_on_trims=False)
     assert rep3["sliding_nodes"] == 0
+
+
+def test_planarize_step_of_a_document_panelization(domed_face, tmp_path):
+    """The Panelization's Planarize option (with PlanarityTolerance and
+    PlanarizeMaxDeviation): the document's result is the console's
+    panelize(..., planarize=True), it recomputes when a setting changes,
+    survives saving and reopening, and face sets are refused clearly."""
+    doc = FreeCAD.newDocument("PlanarizeStep")
+    try:
+        src = doc.addObject("Part::Feature", "Shell")
+        src.Shape = domed_face
+        doc.recompute()
+        p = tessella.make_panelization((src, "Face1"), method="curvature_lines", size=1200.0,
+                                       planarize=True)
+        assert p.Planarize and float(p.PlanarityTolerance) == 1.0
+        res = p.Proxy.result(p).result
+        console = tessella.panelize(domed_face, method="curvature_lines", size=1200.0,
+                                    planarize=True)
+        assert np.array_equal(res.vertices, console.vertices)
+        rep = res.summary["planarize"]
+        assert rep["planar_after"] >= rep["planar_before"]
+        plain = tessella.panelize(domed_face, method="curvature_lines", size=1200.0)
+        assert not np.array_equal(res.vertices, plain.vertices)
+        p.PlanarizeMaxDeviation = 5.0
+        doc.recompute()
+        tight = p.Proxy.result(p).result
+        assert tight.summary["planarize"]["max_node_deviation_after"] <= 5.0 + 1e-6
+        path = str(tmp_path / "planarize.FCStd")
+        doc.saveAs(path)
+        vertices = tight.vertices.copy()
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(path)
+    try:
+        p = [o for o in doc.Objects if o.Name.startswith("Panelization")][0]
+        assert p.Planarize and float(p.PlanarizeMaxDeviation) == pytest.approx(5.0)
+        p.touch()
+        doc.recompute()
+        assert np.array_equal(p.Proxy.result(p).result.vertices, vertices)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    with pytest.raises(ValueError, match="planarize works on one face"):
+        tessella.panelize_faces(Part.makeBox(3000, 3000, 3000), method="iso_grid",
+                                size=1000.0, planarize=True)
+    with pytest.raises(ValueError, match="planarity_tolerance"):
+        tessella.panelize(domed_face, method="iso_grid", size=2000.0, planarize=True,
+                          planarity_tolerance=0.0)
