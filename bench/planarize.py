@@ -56,9 +56,40 @@ def example(name):
     return s.Faces[0]
 
 
+def draw_classes(r, title, path):
+    """Top view of the panels coloured by class (matplotlib, PNG)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Patch
+
+    cls = tessella.panel_classes(r)
+    colours = {0: "#d9ead3", 1: "#f6b26b", 2: "#cc0000"}
+    fig, ax = plt.subplots(figsize=(7, 7))
+    polys = [r.vertices[list(p)][:, :2] for p in r.panels]
+    ax.add_collection(PolyCollection(polys, facecolors=[colours[int(c)] for c in cls.labels],
+                                     edgecolors="k", linewidths=0.3))
+    ax.autoscale()
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    counts = cls.counts
+    ax.set_title(f"{title}: curvature_lines + planarize, {len(r.panels)} panels")
+    ax.legend(handles=[Patch(color=colours[k], label=f"{n}: {counts[n]}")
+                       for k, n in enumerate(("flat", "cold-bent", "curved"))],
+              loc="lower right", fontsize=8)
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    fig.savefig(path, dpi=80, bbox_inches="tight")
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--size", type=float, default=1500.0)
+    ap.add_argument("--pictures", metavar="DIR",
+                    help="also draw each face's curvature-line panels after planarize, "
+                         "coloured by class (flat / cold-bent / curved), top view, to DIR")
     args = ap.parse_args()
     faces = [("funnel (revolution)", funnel()),
              ("vase (revolution)", vase()),
@@ -76,8 +107,11 @@ def main():
                 continue
             for closeness in (0.1, 0.0):
                 t = time.perf_counter()
-                _r2, rep = planarize(r, planarity_tolerance=1.0, max_deviation=20.0,
-                                     closeness=closeness)
+                r2, rep = planarize(r, planarity_tolerance=1.0, max_deviation=20.0,
+                                    closeness=closeness)
+                if args.pictures and layout == "curvature_lines" and closeness:
+                    draw_classes(r2, name, os.path.join(args.pictures,
+                                                        f"planar_{name.split()[0]}.png"))
                 dt = time.perf_counter() - t
                 print(f"{name:22s} {layout:16s} {'on' if closeness else 'off':9s} "
                       f"{rep['quads']:5d} {rep['planar_before']:5d} -> {rep['planar_after']:5d} "
