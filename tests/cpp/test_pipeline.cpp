@@ -40,7 +40,15 @@ TEST(Declarations, EveryMethodDeclaresItsParametersOnceWithRangesAndDefaults) {
     for (const ParamDeclaration& s : shared_param_declarations())
       EXPECT_TRUE(params.count(s.name)) << m.name << " lacks " << s.name;
   }
-  EXPECT_EQ(names.size(), 9u);
+  EXPECT_EQ(names.size(), 10u);
+  // curvature_lines keeps its lines principal: its defaults differ from
+  // boundary_driven's (no quadrangulation, smoothing or angle moves).
+  const MethodDeclaration& cl = method_declaration("curvature_lines");
+  EXPECT_EQ(std::get<bool>(cl.find("quadrangulate")->default_value), false);
+  EXPECT_EQ(std::get<int>(cl.find("smoothing_iterations")->default_value), 0);
+  EXPECT_EQ(
+      std::get<bool>(method_declaration("boundary_driven").find("quadrangulate")->default_value),
+      true);
   // Defaults come from the params structs themselves.
   const MethodDeclaration& iso = method_declaration("iso_grid");
   EXPECT_EQ(std::get<double>(iso.find("sliver_fraction")->default_value),
