@@ -104,3 +104,13 @@ def independent_coverage(face, r, samples=3000):
     gap = (weight * (inside & (count == 0))).sum() / total
     extra = (weight * (np.maximum(count - 1, 0) + ((~inside) & (count > 0)))).sum() / total
     return gap, extra
+
+
+def diagonal_distance(p):
+    """Distance between a quad's diagonals (as skew lines): its warp, computed
+    here independently of the core."""
+    import numpy as np
+
+    d1, d2 = p[2] - p[0], p[3] - p[1]
+    n = np.cross(d1, d2)
+    return abs(np.dot(p[1] - p[0], n)) / np.linalg.norm(n)

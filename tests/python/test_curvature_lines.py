@@ -12,6 +12,7 @@ import Part
 import pytest
 
 import freecad_workbench as tessella
+from conftest import diagonal_distance
 from freecad_workbench import planarize
 
 V = FreeCAD.Vector
@@ -37,12 +38,6 @@ def torus_patch():
 def vase():
     return revolved([(3000 + 1500 * math.sin(z / 2500.0), z) for z in np.linspace(0, 12000, 11)],
                     120)
-
-
-def diagonal_distance(p):
-    d1, d2 = p[2] - p[0], p[3] - p[1]
-    n = np.cross(d1, d2)
-    return abs(np.dot(p[1] - p[0], n)) / np.linalg.norm(n)
 
 
 def quad_warps(r):

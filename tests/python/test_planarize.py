@@ -11,15 +11,10 @@ import Part
 import pytest
 
 import freecad_workbench as tessella
+from conftest import diagonal_distance
 from freecad_workbench import planarize
 
 V = FreeCAD.Vector
-
-
-def diagonal_distance(p):
-    d1, d2 = p[2] - p[0], p[3] - p[1]
-    n = np.cross(d1, d2)
-    return abs(np.dot(p[1] - p[0], n)) / np.linalg.norm(n)
 
 
 def quads(r):

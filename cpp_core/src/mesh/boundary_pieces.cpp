@@ -170,7 +170,8 @@ class PieceModeller {
             placed[c] = xyz[c] - off * plane.normal;
             if (std::abs(off) > worst_offset) worst_offset = std::abs(off), worst = c;
           }
-          on_plane.emplace_back((placed[c] - plane.point).dot(e1), (placed[c] - plane.point).dot(e2));
+          on_plane.emplace_back((placed[c] - plane.point).dot(e1),
+                                (placed[c] - plane.point).dot(e2));
         }
         // A trim curving away from the plane can fold its projection over.
         if (piece.size() > 3 && crosses_itself(on_plane)) tangled = true;
@@ -179,10 +180,9 @@ class PieceModeller {
       // more than allowed (trim offset first: it needs no sampling): the trim
       // point farthest from its plane becomes a node (it stays on the trim),
       // and the panel is modelled again.
-      const bool too_far =
-          params_.max_deviation > 0 && (worst_offset > params_.max_deviation ||
-                                        node_triangles_deviation(draft, xyz, bends) >
-                                            params_.max_deviation);
+      const bool too_far = params_.max_deviation > 0 &&
+                           (worst_offset > params_.max_deviation ||
+                            node_triangles_deviation(draft, xyz, bends) > params_.max_deviation);
       // At most kMaxRefinements new nodes per panel: beyond that the piece is
       // kept and its deviation reported as measured.
       if (tangled && (worst < 0 || round >= kMaxRefinements)) {
@@ -239,7 +239,6 @@ class PieceModeller {
     report_.changed.push_back(changed ? 1 : 0);
   }
 
-
   // Deviation of the pieces' interiors: samples of each piece's node triangle
   // projected onto the surface (with the trim points' offsets this bounds the
   // piece; the metrics later sample the whole piece). No triangulation of the
@@ -258,14 +257,17 @@ class PieceModeller {
       for (int i = 0; i <= n; ++i)
         for (int j = 0; i + j <= n; ++j) {
           const double s = double(i) / n, t = double(j) / n, r = 1 - s - t;
-          worst = std::max(worst, face_.project(r * a + s * b + t * c, r * ua + s * ub + t * uc).distance);
+          worst = std::max(worst,
+                           face_.project(r * a + s * b + t * c, r * ua + s * ub + t * uc).distance);
         }
     }
     return worst;
   }
 
-  void finish(Draft draft, std::vector<Diagonal> bends, const std::vector<Vec3>& placed, int origin) {
-    for (std::size_t c = 0; c < draft.vertices.size(); ++c) mesh_.xyz[draft.vertices[c]] = placed[c];
+  void finish(Draft draft, std::vector<Diagonal> bends, const std::vector<Vec3>& placed,
+              int origin) {
+    for (std::size_t c = 0; c < draft.vertices.size(); ++c)
+      mesh_.xyz[draft.vertices[c]] = placed[c];
     report_.bends += static_cast<int>(bends.size());
     ++report_.modelled;
     emit(std::move(draft), std::move(bends), origin, true);
@@ -350,7 +352,8 @@ class PieceModeller {
     if (best_i < 0) return false;
     ++report_.split;
     rods_changed_ = true;
-    for (const std::vector<int>& part : split_polygon(int(draft.vertices.size()), {{best_i, best_j}})) {
+    for (const std::vector<int>& part :
+         split_polygon(int(draft.vertices.size()), {{best_i, best_j}})) {
       Draft sub;
       for (int c : part) {
         sub.vertices.push_back(draft.vertices[c]);
@@ -392,7 +395,8 @@ class PieceModeller {
 
   // The plane of one piece: through its three nodes, or fitted to its points
   // through the nodes it has (fewer than three, or collinear).
-  Plane piece_plane(const Draft& draft, const std::vector<Vec3>& xyz, const std::vector<int>& piece) {
+  Plane piece_plane(const Draft& draft, const std::vector<Vec3>& xyz,
+                    const std::vector<int>& piece) {
     std::vector<Vec3> nodes, points;
     for (int c : piece) {
       points.push_back(xyz[c]);
@@ -400,15 +404,16 @@ class PieceModeller {
     }
     if (nodes.size() == 3) {
       const Vec3 n = triangle_normal(nodes[0], nodes[1], nodes[2]);
-      const double scale = std::max({(nodes[1] - nodes[0]).squaredNorm(),
-                                     (nodes[2] - nodes[0]).squaredNorm(),
-                                     (nodes[2] - nodes[1]).squaredNorm()});
+      const double scale =
+          std::max({(nodes[1] - nodes[0]).squaredNorm(), (nodes[2] - nodes[0]).squaredNorm(),
+                    (nodes[2] - nodes[1]).squaredNorm()});
       if (n.norm() > 1e-9 * scale) return {nodes[0], n.normalized()};
       // Collinear nodes: the line through the two farthest apart is fixed.
       std::size_t a = 0, b = 1;
       for (std::size_t i = 0; i < 3; ++i)
         for (std::size_t j = i + 1; j < 3; ++j)
-          if ((nodes[i] - nodes[j]).squaredNorm() > (nodes[a] - nodes[b]).squaredNorm()) a = i, b = j;
+          if ((nodes[i] - nodes[j]).squaredNorm() > (nodes[a] - nodes[b]).squaredNorm())
+            a = i, b = j;
       return fit_plane(points, {nodes[a], nodes[b]});
     }
     return fit_plane(points, nodes);

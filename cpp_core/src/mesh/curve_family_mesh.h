@@ -18,8 +18,8 @@
 #include "methods/guide_lines/chord_division.h"
 #include "methods/guide_lines/right_angle_rule.h"
 #include "tessella/guide_line_scaling.h"
-#include "tessella/two_guide_lines.h"
 #include "tessella/panel_mesh.h"
+#include "tessella/two_guide_lines.h"
 
 namespace tessella {
 

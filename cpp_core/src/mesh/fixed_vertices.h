@@ -10,6 +10,15 @@
 
 namespace tessella {
 
+// Where the mesh's boundary runs: per vertex, its neighbours along the
+// boundary (the other ends of its sides used by one panel) and whether it is
+// a vertex of a boundary piece.
+struct MeshBoundary {
+  std::vector<std::vector<int>> along;
+  std::vector<char> in_piece;
+};
+MeshBoundary mesh_boundary(const PanelMesh& mesh);
+
 std::vector<char> fixed_vertices(const PanelMesh& mesh);
 
 }  // namespace tessella

@@ -57,28 +57,9 @@ struct TrimSlider {
 std::vector<TrimSlider> trim_sliders(const SurfaceFace& face, const PanelMesh& mesh) {
   const std::size_t nv = mesh.vertex_count();
   std::vector<TrimSlider> out(nv);
-  std::vector<char> in_piece(nv, 0);
-  std::vector<std::array<int, 2>> sides;
-  for (const auto& p : mesh.panels) {
-    bool piece = false;
-    for (int v : p) piece = piece || !is_node(mesh, v);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const int a = p[i], b = p[(i + 1) % p.size()];
-      sides.push_back({std::min(a, b), std::max(a, b)});
-      if (piece) in_piece[static_cast<std::size_t>(a)] = 1;
-    }
-  }
-  std::sort(sides.begin(), sides.end());
-  std::vector<std::vector<int>> along(nv);  // boundary neighbours
-  for (std::size_t i = 0; i < sides.size();) {
-    std::size_t j = i;
-    while (j < sides.size() && sides[j] == sides[i]) ++j;
-    if (j - i == 1) {
-      along[static_cast<std::size_t>(sides[i][0])].push_back(sides[i][1]);
-      along[static_cast<std::size_t>(sides[i][1])].push_back(sides[i][0]);
-    }
-    i = j;
-  }
+  const MeshBoundary boundary = mesh_boundary(mesh);
+  const std::vector<std::vector<int>>& along = boundary.along;
+  const std::vector<char>& in_piece = boundary.in_piece;
   const double ms = face.model_size();
   const std::vector<TrimLoop> loops = face.trim_loops(trim_deflection(face, 0.0));
   const double cos_turn = std::cos(kSlideTurnDeg * 3.14159265358979323846 / 180.0);

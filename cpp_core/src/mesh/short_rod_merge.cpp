@@ -82,8 +82,7 @@ int index_in(const std::vector<int>& poly, int v) {
 
 class Merger {
  public:
-  Merger(const SurfaceFace& face, PanelMesh& mesh, const ShortRodMergeParams& params,
-         double limit)
+  Merger(const SurfaceFace& face, PanelMesh& mesh, const ShortRodMergeParams& params, double limit)
       : face_(face), m_(mesh), params_(params), limit_(limit) {
     const std::size_t nv = m_.vertex_count(), np = m_.panels.size();
     if (m_.is_node.empty()) m_.is_node.assign(nv, 1);
@@ -96,9 +95,9 @@ class Merger {
         }
     }
     alive_.assign(np, 1);
-    all_quads_ = params.keep_quads &&
-                 std::all_of(m_.panels.begin(), m_.panels.end(),
-                             [](const std::vector<int>& p) { return p.size() == 4; });
+    all_quads_ =
+        params.keep_quads && std::all_of(m_.panels.begin(), m_.panels.end(),
+                                         [](const std::vector<int>& p) { return p.size() == 4; });
     vpanels_.assign(nv, {});
     double total = 0;
     for (std::size_t p = 0; p < np; ++p) {
@@ -325,7 +324,8 @@ class Merger {
     const std::vector<int> n = nodes_of(p);
     if (n.size() < 2) return;
     for (std::size_t k = 0; k < n.size(); ++k) {
-      const int a = std::min(n[k], n[(k + 1) % n.size()]), b = std::max(n[k], n[(k + 1) % n.size()]);
+      const int a = std::min(n[k], n[(k + 1) % n.size()]),
+                b = std::max(n[k], n[(k + 1) % n.size()]);
       if (a == b) continue;
       const double len = length(a, b);
       if (len < limit_) queue.insert({len, a, b});
@@ -352,7 +352,8 @@ class Merger {
       const std::vector<int> n = nodes_of(p);
       if (n.size() < 2) continue;
       for (std::size_t k = 0; k < n.size(); ++k)
-        if (n[k] != n[(k + 1) % n.size()]) best = std::min(best, length(n[k], n[(k + 1) % n.size()]));
+        if (n[k] != n[(k + 1) % n.size()])
+          best = std::min(best, length(n[k], n[(k + 1) % n.size()]));
     }
     return best;
   }
@@ -548,7 +549,8 @@ class Merger {
       const auto& q = m_.corner_uv[p];
       std::vector<int> sorted = v;
       std::sort(sorted.begin(), sorted.end());
-      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return why("repeated vertex", p), false;
+      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+        return why("repeated vertex", p), false;
       const double a = sign_ * signed_area(q);
       if (a <= area_eps_) return why("orientation", p), false;
       after += a;
@@ -561,7 +563,8 @@ class Merger {
             return why("quad not convex", p), false;
       // An all-quad layout stays one (keep_quads).
       if (all_quads_ && v.size() != 4) return why("not a quad", p), false;
-      if (nodes_of(p).size() < std::min<std::size_t>(3, nodes_before(p))) return why("nodes", p), false;
+      if (nodes_of(p).size() < std::min<std::size_t>(3, nodes_before(p)))
+        return why("nodes", p), false;
       for (std::size_t k = 0; k < v.size(); ++k) {
         const int x = v[k], y = v[(k + 1) % v.size()];
         bool twin = owner_.count({x, y}) > 0;
@@ -571,7 +574,8 @@ class Merger {
           if (o == p || !alive_[o]) continue;
           const auto& w = m_.panels[o];
           const int i = index_in(w, x);
-          if (w[(static_cast<std::size_t>(i) + 1) % w.size()] == y) return why("edge twice", p), false;
+          if (w[(static_cast<std::size_t>(i) + 1) % w.size()] == y)
+            return why("edge twice", p), false;
         }
       }
     }
@@ -591,8 +595,7 @@ class Merger {
         xa.push_back(std::move(x));
       }
       const double dev = deviation_of(pa, ua, xa);
-      if (dev > params_.max_deviation &&
-          dev > deviation_of(pb, ub, xb) * (1 + 1e-9))
+      if (dev > params_.max_deviation && dev > deviation_of(pb, ub, xb) * (1 + 1e-9))
         return why("deviation", -1), false;
     }
     return true;
