@@ -291,6 +291,52 @@ TEST(BdNetwork, CurveEndsOneUlpShortOfTrimVerticesKeepEveryPanel) {
   EXPECT_NEAR(area, 4e5, 1e-6);
 }
 
+// Two curves along one line (principal lines run into each other near a
+// singularity of curvature_lines' field) crossed by a third: one node at the
+// crossing, not two at one position (the faces between them had no area or
+// pinched, and the boundary pieces stage cut them into panels with 0 deg
+// corners on the British Museum roof).
+TEST(BdNetwork, OverlappingCurvesCrossAThirdAtOneNode) {
+  const SurfaceFace f = square_plate(1000);
+  const double deflection = 0.1;
+  const BdSources src = select_bd_sources(f, f.trim_loops(deflection), {});
+  const BdPolyline& loop = src.boundary[0];
+  auto arc_of = [&](const Vec2& uv) {
+    for (int i = 0; i < loop.segment_count(); ++i) {
+      const Vec2 a = loop.uv[i], d = loop.seg_end_uv(i) - a;
+      const double t = (uv - a).dot(d) / d.squaredNorm();
+      if (t >= 0 && t <= 1 && (a + t * d - uv).norm() < 1e-9) return loop.s_at(i, t);
+    }
+    return -1.0;
+  };
+  auto line = [&](const Vec2& a, const Vec2& b) {
+    BdCurve c;
+    for (int k = 0; k <= 4; ++k) {
+      const Vec2 p = a + (b - a) * (k / 4.0);
+      c.uv.push_back(p);
+      c.xyz.push_back(f.point(p.x(), p.y()));
+    }
+    c.start = {0, arc_of(a)};
+    c.end = {0, arc_of(b)};
+    return c;
+  };
+  // Two copies of the line u = 500 (the second traced in the other
+  // direction) and the line v = 400 across both.
+  const std::vector<BdCurve> curves{line({500, 0}, {500, 1000}), line({500, 1000}, {500, 0}),
+                                    line({0, 400}, {1000, 400})};
+  const BdNetwork net = build_bd_network(f, src.boundary, curves, {});
+  int at_crossing = 0;
+  for (const BdNode& n : net.nodes) at_crossing += (n.uv - Vec2(500, 400)).norm() < 1e-6 ? 1 : 0;
+  EXPECT_EQ(at_crossing, 1);
+  ASSERT_EQ(net.panels.size(), 4u);
+  double area = 0;
+  for (const auto& p : net.panels) {
+    EXPECT_GT(polygon_area(net.nodes, p), 1e4);
+    area += polygon_area(net.nodes, p);
+  }
+  EXPECT_NEAR(area, 1e6, 1e-6);
+}
+
 // A curve across a strip narrower than the shortest edge kept joins two far
 // points of one trim loop: its ends must not merge (that pinched a 0.06 mm
 // fillet to 6 panels covering 0.45 of it).

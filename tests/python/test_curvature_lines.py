@@ -81,6 +81,24 @@ def test_planarize_makes_98_percent_of_the_dome_planar_within_the_band():
         assert face.distToShape(Part.Vertex(V(*r2.vertices[v])))[0] <= 20.0 + 1e-6
 
 
+def test_no_panel_with_a_vanishing_corner_on_the_roof():
+    """Near the field's singularities two principal lines can run into one
+    another; their crossings with a third were two nodes at one point, and
+    three panels of the bundled roof had a 0 deg corner (one with no area).
+    Every corner here is measured from the vertices."""
+    face = Part.read(os.path.join(EXAMPLES, "british_museum_roof.brep")).Faces[0]
+    r = tessella.panelize(face, method="curvature_lines", size=1500.0)
+    worst = 180.0
+    for p in r.panels:
+        x = r.vertices[list(p)]
+        for i in range(len(x)):
+            a, b = x[i - 1] - x[i], x[(i + 1) % len(x)] - x[i]
+            cos = a @ b / (np.linalg.norm(a) * np.linalg.norm(b))
+            worst = min(worst, math.degrees(math.acos(max(-1.0, min(1.0, cos)))))
+    assert worst > 10.0
+    assert r.metrics["panel_min_angle"].min() > 10.0
+
+
 def test_same_input_same_panels():
     face = vase()
     a = tessella.panelize(face, method="curvature_lines", size=1200.0)

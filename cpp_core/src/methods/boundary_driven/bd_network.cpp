@@ -103,6 +103,25 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
   std::vector<std::vector<Entry>> curve_entries(curves.size());
   {
     const UvBounds b = face.bounds();
+    // Two curves along one streamline (principal lines near a singularity)
+    // cross a third at one point: one node there, not two at one position
+    // (the faces between them would have no area or pinch).
+    const double same = 1e-12 * std::hypot(b.u_max - b.u_min, b.v_max - b.v_min);
+    std::map<std::pair<long long, long long>, std::vector<int>> crossing_cells;
+    auto crossing_node = [&](const Vec2& uv) {
+      const long long cx = static_cast<long long>(std::floor(uv.x() / (same * 4))),
+                      cy = static_cast<long long>(std::floor(uv.y() / (same * 4)));
+      for (long long dx = -1; dx <= 1; ++dx)
+        for (long long dy = -1; dy <= 1; ++dy) {
+          const auto it = crossing_cells.find({cx + dx, cy + dy});
+          if (it == crossing_cells.end()) continue;
+          for (int n : it->second)
+            if ((net.nodes[n].uv - uv).norm() <= same) return n;
+        }
+      const int n = add_node(uv, -1, 0.0, false);
+      crossing_cells[{cx, cy}].push_back(n);
+      return n;
+    };
     std::size_t segs = 0;
     for (const auto& c : curves) segs += c.uv.size();
     bd::SegmentGrid grid(Vec2(b.u_min, b.v_min), Vec2(b.u_max, b.v_max),
@@ -141,7 +160,7 @@ BdNetwork build_bd_network(const SurfaceFace& face, const std::vector<BdPolyline
           if (b_last && s >= 1 - 1e-9 && end_node[d] >= 0) continue;
           if (i == 0 && t <= 1e-9 && start_node[c] >= 0) continue;
           if (j == 0 && s <= 1e-9 && start_node[d] >= 0) continue;
-          const int node = add_node(a0 + t * (a1 - a0), -1, 0.0, false);
+          const int node = crossing_node(a0 + t * (a1 - a0));
           curve_entries[c].push_back({i + t, node});
           curve_entries[d].push_back({j + s, node});
         }
