@@ -90,7 +90,7 @@ std::vector<TrimSlider> trim_sliders(const SurfaceFace& face, const PanelMesh& m
 // Quads farther off planar than this many tolerances weigh in linearly.
 constexpr double kHuberTolerances = 5.0;
 // Conjugate-gradient iterations per Gauss-Newton step at most.
-constexpr int kCgIterations = 30;
+constexpr int kCgIterations = 15;
 
 }  // namespace
 
@@ -140,7 +140,9 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
   };
   // Each free node's foot on the surface (its uv carried from round to round).
   std::vector<Projection> foot(free.size());
-  auto measure = [&](int& planar, double& worst, double& off) {
+  // `feet_known`: the round's step already projected every free node (its
+  // foot is in `foot`), as it does with the band on.
+  auto measure = [&](int& planar, double& worst, double& off, bool feet_known = false) {
     planar = 0, worst = 0, off = 0;
     for (const auto& q : quads) {
       const double d = planarity(q);
@@ -149,7 +151,7 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
     }
     for (std::size_t k = 0; k < free.size(); ++k) {
       const std::size_t v = static_cast<std::size_t>(free[k]);
-      foot[k] = face.project(out.xyz[v], out.uv[v]);
+      if (!feet_known) foot[k] = face.project(out.xyz[v], out.uv[v]);
       off = std::max(off, foot[k].distance);
     }
   };
@@ -286,21 +288,26 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
           const Vec2 uv = face.snap_to_trim(sl.loop, at.uv);
           out.uv[v] = uv;
           out.xyz[v] = face.point(uv.x(), uv.y());
+          foot[k].uv = uv, foot[k].point = out.xyz[v], foot[k].distance = 0;
           continue;
         }
         out.xyz[v] += dx.segment<3>(static_cast<Eigen::Index>(3 * k));
         if (params.closeness > 0) {
           // The band is a hard target: back onto its edge along the line to
           // the node's closest surface point.
-          const Projection at = face.project(out.xyz[v], foot[k].uv);
-          const Vec3 off = out.xyz[v] - at.point;
-          if (off.norm() > params.max_deviation)
-            out.xyz[v] = at.point + off * (params.max_deviation / off.norm());
+          // Moved along the line to its foot, the node keeps that foot: the
+          // next measure needs no second projection.
+          foot[k] = face.project(out.xyz[v], foot[k].uv);
+          const Vec3 off = out.xyz[v] - foot[k].point;
+          if (off.norm() > params.max_deviation) {
+            out.xyz[v] = foot[k].point + off * (params.max_deviation / off.norm());
+            foot[k].distance = params.max_deviation;
+          }
         }
       }
       int planar = 0;
       double worst = 0, far = 0;
-      measure(planar, worst, far);
+      measure(planar, worst, far, params.closeness > 0);
       for (std::size_t k = 0; k < n; ++k)
         if (slider[static_cast<std::size_t>(free[k])].loop < 0)
           out.uv[static_cast<std::size_t>(free[k])] = foot[k].uv;
