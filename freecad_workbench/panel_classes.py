@@ -54,25 +54,16 @@ class PanelClasses:
         return [CLASS_NAMES[int(k)] for k in self.labels]
 
 
-def _check(name, value, lo, hi):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not (lo <= v <= hi):
-        raise ValueError(f"{name} must be in [{lo:g}, {hi:g}], got {value!r}")
-    return v
-
-
 def classify(vertices, panels, flat_tolerance=FLAT_TOLERANCE, cold_bend_ratio=COLD_BEND_RATIO,
              cold_bend_warp=0.0):
     """PanelClasses of panels given as vertex index lists into `vertices` (n,3)."""
+    from .fabrication import _check_number
+
+    # Numbers here; their ranges are the core's (classify_panels checks them).
     p = core.PanelClassParams()
-    p.flat_tolerance = _check("flat_tolerance (mm)", flat_tolerance, 1e-9, 1e9)
-    if p.flat_tolerance <= 0:
-        raise ValueError("flat_tolerance (mm) must be above 0")
-    p.cold_bend_ratio = _check("cold_bend_ratio", cold_bend_ratio, 0.0, 1.0)
-    p.cold_bend_warp = _check("cold_bend_warp (mm)", cold_bend_warp, 0.0, 1e9)
+    p.flat_tolerance = _check_number("flat_tolerance (mm)", flat_tolerance, -1e300, 1e300)
+    p.cold_bend_ratio = _check_number("cold_bend_ratio", cold_bend_ratio, -1e300, 1e300)
+    p.cold_bend_warp = _check_number("cold_bend_warp (mm)", cold_bend_warp, -1e300, 1e300)
     xyz = np.asarray(vertices, dtype=float).reshape(-1, 3)
     c = core.classify_panels([xyz[list(panel)] for panel in panels], p)
     return PanelClasses(np.asarray(c.label, dtype=np.int64), np.asarray(c.warp),

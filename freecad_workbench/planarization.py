@@ -51,7 +51,7 @@ def pop_options(params):
     for name, (_prop, kind, default, _unit, _label, _doc) in OPTIONS.items():
         value = params.pop(name, default)
         if kind == "bool":
-            if not isinstance(value, (bool, int)) or isinstance(value, float):
+            if not isinstance(value, (bool, int)):
                 raise ValueError(f"{name} must be True or False, got {value!r}")
             value = bool(value)
         else:
@@ -73,8 +73,7 @@ def apply_options(result, options, progress=None):
     out, _report = planarize(result, planarity_tolerance=options["planarity_tolerance"],
                              max_deviation=options["planarize_max_deviation"],
                              progress=progress)
-    out.params = dict(result.params)
-    out.params.update({k: v for k, v in options.items()})
+    out.params = {**result.params, **options}
     return out
 
 

@@ -103,26 +103,27 @@ def _fill(sheet, rows):
         sheet.setColumnWidth(_col(j), width)
 
 
-def panel_families_of(panelization):
-    """families.PanelFamilies of a Panelization's Panels object at its
-    FamilyTolerance / Mirror, or None (families off, or no Panels child)."""
+def _panels_proxy_call(panelization, name):
+    """What the Panelization's Panels object's Proxy method `name` returns for
+    it, or None (no Panels child)."""
     from .features import panelization as pfeat
 
     for child in pfeat.children_of(panelization):
-        if child.Role == "Panels" and hasattr(child.Proxy, "families"):
-            return child.Proxy.families(child)
+        if child.Role == "Panels" and hasattr(child.Proxy, name):
+            return getattr(child.Proxy, name)(child)
     return None
+
+
+def panel_families_of(panelization):
+    """families.PanelFamilies of a Panelization's Panels object at its
+    FamilyTolerance / Mirror, or None (families off, or no Panels child)."""
+    return _panels_proxy_call(panelization, "families")
 
 
 def panel_classes_of(panelization):
     """panel_classes.PanelClasses of a Panelization's Panels object at its
     FlatTolerance / ColdBendRatio / ColdBendWarp, or None (no Panels child)."""
-    from .features import panelization as pfeat
-
-    for child in pfeat.children_of(panelization):
-        if child.Role == "Panels" and hasattr(child.Proxy, "classes"):
-            return child.Proxy.classes(child)
-    return None
+    return _panels_proxy_call(panelization, "classes")
 
 
 def make_schedules(panelization, doc=None, fold_tolerance=0.01):
