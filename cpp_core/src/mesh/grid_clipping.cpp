@@ -494,4 +494,24 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   return mesh;
 }
 
+std::vector<Vec2> trim_turning_points(const SurfaceFace& face, const GridClipParams& params) {
+  std::vector<Vec2> turning;
+  for (const TrimLoop& loop : face.trim_loops(trim_deflection(face, params.trim_deflection))) {
+    const std::size_t n = loop.uv.size();
+    if (n < 3) continue;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (loop.corner[k]) continue;
+      const Vec2& a = loop.uv[(k + n - 1) % n];
+      const Vec2& b = loop.uv[k];
+      const Vec2& c = loop.uv[(k + 1) % n];
+      const Vec2 ab = b - a, bc = c - b;
+      // Well clear of the collinear test that removes straight-run points
+      // (1e-12 there): only points that surely stay in an outline count.
+      const double cross = ab.x() * bc.y() - ab.y() * bc.x();
+      if (std::abs(cross) > 1e-6 * ab.norm() * bc.norm()) turning.push_back(b);
+    }
+  }
+  return turning;
+}
+
 }  // namespace tessella
