@@ -361,8 +361,40 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
                                            const agents::OutlineCheck& holds,
                                            WalkingAgentReport& rep) {
   const std::size_t fewer_than = agents.panels.size();
-  const double covered = panels_area(agents);
   const UvBounds b = face.bounds();
+  std::optional<PanelMesh> found;
+  std::size_t best = fewer_than;
+  const double per_cell = std::max(share, 1e-3);
+  // Round a closed direction a cell spans under a third of the period (one
+  // or two cells would join corners across the whole face).
+  const int nu_min = face.u_periodic() ? 3 : 1, nv_min = face.v_periodic() ? 3 : 1;
+  // A grid whose lines miss a point where the trim turns has a panel with a
+  // vertex that is no node (refused below): refused before it is cut, which
+  // on a face with a curved trim is every grid (90% of the method's time
+  // went into cutting grids only to refuse them).
+  const std::vector<Vec2> turning = trim_turning_points(face, clip);
+  // Whether x lies on one of the n + 1 uniform lines from lo to hi.
+  auto on_a_line = [](double lo, double hi, int n, double x) {
+    const double t = (x - lo) / (hi - lo) * n;
+    const double i = std::clamp(std::round(t), 0.0, static_cast<double>(n));
+    return std::abs(t - i) <= 1e-9 * n;
+  };
+  auto misses_a_turn = [&](int nu, int nv) {
+    for (const Vec2& p : turning)
+      if (!on_a_line(b.u_min, b.u_max, nu, p.x()) && !on_a_line(b.v_min, b.v_max, nv, p.y()))
+        return true;
+    return false;
+  };
+  // The search below only ever cuts grids of nu x nv cells with nv at most
+  // the first cell budget / nu: when every one of them misses a turn of the
+  // trim, none can be found and the screens (most of the rest) are skipped.
+  const double first_cells = (static_cast<double>(best) - 1) / per_cell;
+  bool any_may_pass = false;
+  for (int nu = nu_min; !any_may_pass && std::floor(first_cells / nu) >= nv_min; ++nu)
+    for (int nv = nv_min; !any_may_pass && nv <= std::floor(first_cells / nu); ++nv)
+      any_may_pass = !misses_a_turn(nu, nv);
+  if (!any_may_pass) return found;
+  const double covered = panels_area(agents);
   // Where grids failed so far (first: the point of largest curvature), most
   // recent first: the next grid is tried there first, so an infeasible grid
   // costs one or two cell estimates.
@@ -418,23 +450,6 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
   // The clipped grid under the hard bound (folds applied; counted in `got`),
   // or nothing.
   WalkingAgentReport got;
-  // A grid whose lines miss a point where the trim turns has a panel with a
-  // vertex that is no node (refused below): refused before it is cut, which
-  // on a face with a curved trim is every grid (90% of the method's time
-  // went into cutting grids only to refuse them).
-  const std::vector<Vec2> turning = trim_turning_points(face, clip);
-  // Whether x lies on one of the n + 1 uniform lines from lo to hi.
-  auto on_a_line = [](double lo, double hi, int n, double x) {
-    const double t = (x - lo) / (hi - lo) * n;
-    const double i = std::clamp(std::round(t), 0.0, static_cast<double>(n));
-    return std::abs(t - i) <= 1e-9 * n;
-  };
-  auto misses_a_turn = [&](int nu, int nv) {
-    for (const Vec2& p : turning)
-      if (!on_a_line(b.u_min, b.u_max, nu, p.x()) && !on_a_line(b.v_min, b.v_max, nv, p.y()))
-        return true;
-    return false;
-  };
   auto bounded = [&](int nu, int nv, bool merge) -> std::optional<PanelMesh> {
     if (misses_a_turn(nu, nv)) return std::nullopt;
     const Lines l = iso_lines(b, nu, nv);
@@ -467,21 +482,6 @@ std::optional<PanelMesh> coarsest_iso_grid(const SurfaceFace& face, const UvTrim
     got.max_estimate = worst;
     return mesh;
   };
-  std::optional<PanelMesh> found;
-  std::size_t best = fewer_than;
-  const double per_cell = std::max(share, 1e-3);
-  // Round a closed direction a cell spans under a third of the period (one
-  // or two cells would join corners across the whole face).
-  const int nu_min = face.u_periodic() ? 3 : 1, nv_min = face.v_periodic() ? 3 : 1;
-  // The search below only ever cuts grids of nu x nv cells with nv at most
-  // the first cell budget / nu: when every one of them misses a turn of the
-  // trim, none can be found and the screens (most of the rest) are skipped.
-  const double first_cells = (static_cast<double>(best) - 1) / per_cell;
-  bool any_may_pass = false;
-  for (int nu = nu_min; !any_may_pass && std::floor(first_cells / nu) >= nv_min; ++nu)
-    for (int nv = nv_min; !any_may_pass && nv <= std::floor(first_cells / nu); ++nv)
-      any_may_pass = !misses_a_turn(nu, nv);
-  if (!any_may_pass) return found;
   int v = std::numeric_limits<int>::max();
   for (int nu = nu_min;; ++nu) {
     const double cells = (static_cast<double>(best) - 1) / per_cell;
