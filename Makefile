@@ -12,8 +12,9 @@ DEB_PACKAGES := g++ make cmake freecad freecad-python3 \
   libgtest-dev libbenchmark-dev \
   python3-numpy python3-matplotlib python3-ezdxf python3-pytest xvfb xauth
 
-# Only for `make bench` (the Gmsh comparison), never for the build or the tests.
-BENCH_PACKAGES := python3-gmsh
+# Only for `make bench` (the Gmsh comparison; SciPy's MILP solver checks the
+# families' cover against the optimum), never for the build or the tests.
+BENCH_PACKAGES := python3-gmsh python3-scipy
 
 .PHONY: all deps bench-deps build test test-cpp test-python test-gui demo bench screenshots install uninstall format clean
 
