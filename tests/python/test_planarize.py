@@ -153,3 +153,22 @@ def test_planarize_step_of_a_document_panelization(domed_face, tmp_path):
     with pytest.raises(ValueError, match="planarity_tolerance"):
         tessella.panelize(domed_face, method="iso_grid", size=2000.0, planarize=True,
                           planarity_tolerance=0.0)
+
+
+def test_progress_and_cancel(domed_face):
+    """planarize reports its rounds and stops when the sink says so (a
+    cancelled run raises, it returns no half-moved result)."""
+    r = tessella.panelize(domed_face, method="iso_grid", size=1000.0)
+    stages = []
+
+    def progress(fraction, stage):
+        stages.append((fraction, stage))
+        return True
+
+    moved, rep = planarize(r, progress=progress)
+    assert any(stage == "planarizing" for _, stage in stages)
+    assert all(0.0 <= f <= 1.0 for f, _ in stages)
+    again, _ = planarize(r)
+    assert np.array_equal(moved.vertices, again.vertices)  # the sink changes nothing
+    with pytest.raises(tessella.Cancelled, match="cancelled"):
+        planarize(r, progress=lambda f, s: False)
