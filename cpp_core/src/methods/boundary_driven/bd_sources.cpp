@@ -46,14 +46,49 @@ Vec2 BdPolyline::uv_at(double s) const {
   return uv[i] + t * (seg_end_uv(i) - uv[i]);
 }
 
+namespace {
+
+// Where a closed loop starts: at its B-rep vertex of least (u, v) (any point
+// where it has none). The curves are seeded along each loop from its start,
+// and the first seeds win where two come close, so a start taken from the
+// B-rep (the wire's first edge) made one face give two layouts: the British
+// Museum roof as read and the same roof united from its four sub-surfaces
+// (the same edges and vertices, its wires listed from other edges) gave 2,650
+// and 2,679 panels.
+std::size_t canonical_start(const TrimLoop& loop, int shift) {
+  const std::size_t n = loop.uv.size();
+  auto before = [&](std::size_t i, std::size_t j) {
+    return loop.uv[i].x() < loop.uv[j].x() ||
+           (loop.uv[i].x() == loop.uv[j].x() && loop.uv[i].y() < loop.uv[j].y());
+  };
+  std::vector<std::size_t> corners;
+  for (std::size_t i = 0; i < n; ++i)
+    if (i < loop.corner.size() && loop.corner[i]) corners.push_back(i);
+  if (!corners.empty()) {
+    std::sort(corners.begin(), corners.end(), before);
+    return corners[static_cast<std::size_t>(shift) % corners.size()];
+  }
+  std::size_t least = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (before(i, least)) least = i;
+  return (least + static_cast<std::size_t>(shift) * n / 3) % n;
+}
+
+}  // namespace
+
 BdSources select_bd_sources(const SurfaceFace& face, const std::vector<TrimLoop>& loops,
-                            const BdSourceParams& params) {
+                            const BdSourceParams& params, int start_shift) {
   BdSources out;
   const double tiny = 1e-9 * face.model_size();
   for (std::size_t k = 0; k < loops.size(); ++k) {
     BdPolyline line;
     line.uv = loops[k].uv;
     line.xyz = loops[k].xyz;
+    if (!line.uv.empty()) {
+      const auto start = static_cast<long>(canonical_start(loops[k], start_shift));
+      std::rotate(line.uv.begin(), line.uv.begin() + start, line.uv.end());
+      std::rotate(line.xyz.begin(), line.xyz.begin() + start, line.xyz.end());
+    }
     line.closed = true;
     line.loop = static_cast<int>(k);
     line.outer = loops[k].outer;

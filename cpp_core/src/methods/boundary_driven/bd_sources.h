@@ -20,8 +20,12 @@ struct BdSources {
 // `loops` = face.trim_loops(deflection). Throws InvalidParameter for a loop index
 // out of range or an unusable extra curve, InvalidGeometry for a face with a
 // degenerate (zero-length) trim loop.
+// Each loop starts where its geometry says, not where the B-rep lists its
+// wire: at its B-rep vertex of least (u, v), or (start_shift k > 0) at the
+// k-th in that order (a loop without vertices: a third of the way round
+// per step), for a second try of a layout that failed.
 BdSources select_bd_sources(const SurfaceFace& face, const std::vector<TrimLoop>& loops,
-                            const BdSourceParams& params);
+                            const BdSourceParams& params, int start_shift = 0);
 
 }  // namespace tessella
 

@@ -187,10 +187,11 @@ void check_params(const SurfaceFace& face, const BoundaryDrivenParams& params) {
 
 // Stages 1-3: sources, field, curves. Returns the spacing they were traced at.
 double trace_stages(const SurfaceFace& face, const BoundaryDrivenParams& params,
-                    BoundaryDrivenResult& r) {
+                    BoundaryDrivenResult& r, int start_shift = 0) {
   const double ms = face.model_size();
   const double deflection = trim_deflection(face, params.trim_deflection);
-  const BdSources src = select_bd_sources(face, face.trim_loops(deflection), params.sources);
+  const BdSources src =
+      select_bd_sources(face, face.trim_loops(deflection), params.sources, start_shift);
   r.boundary = src.boundary;
   const double spacing = params.quadrangulate ? 2.0 * params.size : params.size;
 
@@ -292,10 +293,11 @@ void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, do
 }
 
 BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
-                                           const BoundaryDrivenParams& params) {
+                                           const BoundaryDrivenParams& params,
+                                           int start_shift = 0) {
   check_params(face, params);
   BoundaryDrivenResult r;
-  const double spacing = trace_stages(face, params, r);
+  const double spacing = trace_stages(face, params, r, start_shift);
   mesh_stages(face, params, spacing, nullptr, r);
   return r;
 }
@@ -314,6 +316,14 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
     // size that works (a quarter smaller each try, down to a quarter, within
     // max_panels) and say it. Only a failing call pays for the search.
     message.erase(tail);
+    // Where the seeds start along the loops decides the layout (which of two
+    // close curves is kept): two other starts at the same size first.
+    for (int shift : {1, 2}) {
+      try {
+        return build_boundary_driven(face, params, shift);
+      } catch (const GeometryFailure&) {
+      }
+    }
     for (double factor : {0.75, 0.56, 0.42, 0.32, 0.25}) {
       BoundaryDrivenParams smaller = params;
       smaller.size = params.size * factor;
