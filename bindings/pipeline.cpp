@@ -203,7 +203,8 @@ void bind_pipeline(py::module_& m) {
       .def_readonly("max_move", &PlanarizeReport::max_move)
       .def_readonly("iterations", &PlanarizeReport::iterations)
       .def_readonly("converged", &PlanarizeReport::converged)
-      .def_readonly("sliding_nodes", &PlanarizeReport::sliding_nodes);
+      .def_readonly("sliding_nodes", &PlanarizeReport::sliding_nodes)
+      .def_readonly("seconds", &PlanarizeReport::seconds);
   m.def(
       "planarize",
       [](const PanelizeResult& r, const PlanarizeParams& p, int samples, py::object progress) {

@@ -25,7 +25,7 @@ from . import _core
 REPORT_FIELDS = ("quads", "planar_before", "planar_after", "max_planarity_before",
                  "max_planarity_after", "max_node_deviation_before",
                  "max_node_deviation_after", "max_move", "iterations", "converged",
-                 "sliding_nodes")
+                 "sliding_nodes", "seconds")
 
 
 #: The planarize step as keywords of panelize / make_panelization (the step

@@ -166,6 +166,7 @@ def test_progress_and_cancel(domed_face):
         return True
 
     moved, rep = planarize(r, progress=progress)
+    assert rep["iterations"] > 0 and rep["seconds"] > 0
     assert any(stage == "planarizing" for _, stage in stages)
     assert all(0.0 <= f <= 1.0 for f, _ in stages)
     again, _ = planarize(r)

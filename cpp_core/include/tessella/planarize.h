@@ -48,6 +48,7 @@ struct PlanarizeReport {
   int iterations = 0;
   bool converged = false;  // every quad planar and every node in the band
   int sliding_nodes = 0;   // boundary nodes that slid along their trims
+  double seconds = 0;      // wall time of the step
 };
 
 // Distance (mm) between the diagonals of quad p (as skew lines).

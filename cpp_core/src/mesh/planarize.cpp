@@ -5,6 +5,7 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -101,6 +102,7 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
   require_in_range("closeness", params.closeness, 0.0, 1e6);
   require_in_range("fairness", params.fairness, 0.0, 1e6);
   require_in_range("max_iterations", params.max_iterations, 0, 100000);
+  const auto started = std::chrono::steady_clock::now();
   PlanarizeReport rep;
   PanelMesh out = mesh;
   // Thousands of projections close together: the span-cached evaluation.
@@ -335,6 +337,7 @@ PanelMesh planarize(const SurfaceFace& face, const PanelMesh& mesh, const Planar
     rep.max_move = std::max(rep.max_move, (out.xyz[v] - mesh.xyz[v]).norm());
   rep.converged =
       rep.planar_after == rep.quads && rep.max_node_deviation_after <= params.max_deviation;
+  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (report) *report = rep;
   return out;
 }
