@@ -252,7 +252,8 @@ void bind_pipeline(py::module_& m) {
       .def_readonly("shared_edges", &FaceSetResult::shared_edges)
       .def_readonly("shared_edge_nodes", &FaceSetResult::shared_edge_nodes)
       .def_readonly("shared_nodes_taken_over", &FaceSetResult::shared_nodes_taken_over)
-      .def_readonly("faces_traced_across", &FaceSetResult::faces_traced_across);
+      .def_readonly("faces_traced_across", &FaceSetResult::faces_traced_across)
+      .def_readonly("faces_traced_across_surfaces", &FaceSetResult::faces_traced_across_surfaces);
   m.def(
       "panelize_faces",
       [](std::shared_ptr<FaceSet> set, const std::string& method, const ParamValues& values,

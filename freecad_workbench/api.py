@@ -457,6 +457,7 @@ def _face_set_result(r, method, values, params, face_set):
     result.summary["shared_edge_nodes"] = r.shared_edge_nodes
     result.summary["shared_nodes_taken_over"] = r.shared_nodes_taken_over
     result.summary["faces_traced_across"] = r.faces_traced_across
+    result.summary["faces_traced_across_surfaces"] = r.faces_traced_across_surfaces
     return result
 
 

@@ -56,6 +56,9 @@ struct FaceSetResult {
   // boundary_driven: faces meshed from curves traced on the union of faces
   // lying on one surface (the curves run on across the edges between them).
   int faces_traced_across = 0;
+  // boundary_driven: faces on different surfaces, joined by smooth edges,
+  // meshed from curves traced across them (bd_across_surfaces.h).
+  int faces_traced_across_surfaces = 0;
 };
 
 // The pipeline on every face of `set` (faces side by side on `threads`

@@ -12,8 +12,10 @@
 #include "common/parallel_chunks.h"
 #include "faceset/face_set_impl.h"
 #include "faceset/shared_edge_nodes.h"
+#include "faceset/smooth_groups.h"
 #include "faceset/surface_groups.h"
 #include "methods/boundary_driven/bd_across_faces.h"
+#include "methods/boundary_driven/bd_across_surfaces.h"
 #include "pipeline/stages.h"
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
@@ -27,11 +29,14 @@ namespace {
 // the largest first (a big face claimed last would leave the other threads
 // idle); each face's result depends only on the face, so the order changes
 // nothing but the time.
+// `only`: the faces to do (all if empty).
 template <class Work>
-void for_each_face(const FaceSet& set, int threads, const Work& work) {
-  const std::size_t n = set.size();
-  std::vector<std::size_t> order(n);
-  for (std::size_t f = 0; f < n; ++f) order[f] = f;
+void for_each_face(const FaceSet& set, int threads, const Work& work,
+                   const std::vector<char>& only = {}) {
+  std::vector<std::size_t> order;
+  for (std::size_t f = 0; f < set.size(); ++f)
+    if (only.empty() || only[f]) order.push_back(f);
+  const std::size_t n = order.size();
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return set.face(a)->area() > set.face(b)->area();
   });
@@ -274,6 +279,95 @@ std::vector<std::shared_ptr<const BdSurfaceCurves>> curves_across_faces(const Fa
   return out;
 }
 
+// boundary_driven on faces of different surfaces that meet tangentially
+// (smooth_groups.h, bd_across_surfaces.h): each group's curves traced once
+// across its faces. Faces traced on one surface's union, and runs with
+// chosen source loops or extra curves, take no part.
+struct GroupCurves {
+  std::vector<BdGroupMember> members;
+  BdGroupCurves traced;
+  bool ok = false;
+};
+struct FaceInGroup {
+  std::shared_ptr<GroupCurves> group;  // null: the face traces on its own
+  std::size_t member = 0;
+};
+
+std::vector<FaceInGroup> curves_across_surfaces(
+    const FaceSet& set, const ParamValues& values,
+    const std::vector<std::shared_ptr<const BdSurfaceCurves>>& across, int threads) {
+  const std::size_t n = set.size();
+  std::vector<FaceInGroup> out(n);
+  const BoundaryDrivenParams params = boundary_driven_params(values);
+  if (n < 2 || !params.sources.loops.empty() || !params.sources.extra_curves.empty()) return out;
+  std::vector<char> eligible(n, 1);
+  std::vector<double> tolerance(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    eligible[f] = f < across.size() && across[f] ? 0 : 1;
+    tolerance[f] = bd_edge_tolerance(*set.face(f), params);
+  }
+  const SmoothLayout layout = smooth_layout(set.impl(), eligible, tolerance);
+  if (layout.edges.empty()) return out;
+  int groups = 0;
+  for (int g : layout.group) groups = std::max(groups, g + 1);
+  std::vector<std::shared_ptr<GroupCurves>> traced(static_cast<std::size_t>(groups));
+  for (auto& g : traced) g = std::make_shared<GroupCurves>();
+  // Members in face order, each with its smooth edges.
+  std::vector<std::size_t> member_of(n, 0);
+  for (std::size_t f = 0; f < n; ++f) {
+    if (layout.group[f] < 0) continue;
+    GroupCurves& g = *traced[static_cast<std::size_t>(layout.group[f])];
+    member_of[f] = g.members.size();
+    g.members.emplace_back();
+  }
+  for_each_face(set, threads, [&](std::size_t f) {
+    if (layout.group[f] < 0) return;
+    const SurfaceFace& face = *set.face(f);
+    const SurfaceFace::FastEvaluation fast(face);
+    GroupCurves& g = *traced[static_cast<std::size_t>(layout.group[f])];
+    try {
+      g.members[member_of[f]] = bd_group_member(face, params);
+    } catch (const std::exception&) {  // the face's own run reports it
+      g.members[member_of[f]].face = nullptr;
+    }
+  });
+  for (const SmoothEdge& e : layout.edges)
+    for (int side = 0; side < 2; ++side) {
+      const std::size_t f = static_cast<std::size_t>(e.faces[static_cast<std::size_t>(side)]);
+      const std::size_t o = static_cast<std::size_t>(e.faces[static_cast<std::size_t>(1 - side)]);
+      BdGroupMember& m = traced[static_cast<std::size_t>(layout.group[f])]->members[member_of[f]];
+      m.smooth.push_back(e.polyline);
+      m.smooth_to.push_back(static_cast<int>(member_of[o]));
+    }
+  // Each group traced by one thread (its faces evaluated there only).
+  ChunkQueue queue(traced.size(), 1);
+  run_chunks(queue, threads, [&](bool) {
+    std::size_t begin = 0, end = 0;
+    while (queue.next(begin, end))
+      for (std::size_t k = begin; k < end; ++k) {
+        GroupCurves& g = *traced[k];
+        bool complete = true;
+        for (const BdGroupMember& m : g.members) complete = complete && m.face;
+        if (!complete) continue;
+        // Span-cached evaluation on every member (scopes nest: closed in
+        // the reverse order).
+        std::vector<std::unique_ptr<SurfaceFace::FastEvaluation>> fast;
+        for (const BdGroupMember& m : g.members)
+          fast.push_back(std::make_unique<SurfaceFace::FastEvaluation>(*m.face));
+        try {
+          g.traced = trace_bd_group_curves(g.members, params);
+          g.ok = true;
+        } catch (const std::exception&) {  // each face then traces its own
+        }
+        while (!fast.empty()) fast.pop_back();
+      }
+  });
+  for (std::size_t f = 0; f < n; ++f)
+    if (layout.group[f] >= 0 && traced[static_cast<std::size_t>(layout.group[f])]->ok)
+      out[f] = {traced[static_cast<std::size_t>(layout.group[f])], member_of[f]};
+  return out;
+}
+
 // One more than for one face: a face also runs again when its join moved nodes.
 constexpr int kHardBoundRetries = 5;
 
@@ -301,6 +395,12 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     across = curves_across_faces(set, values, workers);
   }
   std::vector<char> traced_alone(n, 0);
+  std::vector<FaceInGroup> smooth_groups;
+  if (method == "boundary_driven") {
+    report_stage(0.0, "tracing curves across faces that join smoothly");
+    smooth_groups = curves_across_surfaces(set, values, across, workers);
+  }
+  std::vector<char> group_traced(n, 0);
   for (int attempt = 0;; ++attempt) {
     report_stage(0.0, "panelizing the faces");
     for_each_face(set, workers, [&](std::size_t f) {
@@ -319,6 +419,21 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
           done = true;
         } catch (const GeometryFailure&) {
           traced_alone[f] = 1;
+        }
+      }
+      if (!done && f < smooth_groups.size() && smooth_groups[f].group) {
+        // Likewise a face the group's curves leave without a valid mesh.
+        const GroupCurves& g = *smooth_groups[f].group;
+        const std::size_t m = smooth_groups[f].member;
+        try {
+          const BoundaryDrivenParams bp = boundary_driven_params(face_values[f]);
+          modelled[f] = run_method_with(face, decl, face_values[f], [&] {
+            return boundary_driven_on_group_curves(face, bp, g.members[m], g.traced.curves[m],
+                                                   g.traced.spacing);
+          });
+          done = true;
+          group_traced[f] = 1;
+        } catch (const GeometryFailure&) {
         }
       }
       if (!done) modelled[f] = run_method(face, decl, face_values[f]);
@@ -384,6 +499,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     out.shared_nodes_taken_over = shared.taken_over;
     for (std::size_t f = 0; f < across.size(); ++f)
       out.faces_traced_across += across[f] && !traced_alone[f] ? 1 : 0;
+    for (std::size_t f = 0; f < n; ++f) out.faces_traced_across_surfaces += group_traced[f];
     join(results, out);
     summarize_set(
         results, out,

@@ -21,6 +21,19 @@
 
 namespace tessella {
 
+// Seeds a caller dictates along the trims: on the boundary segments flagged
+// in `dictated` (per boundary polyline, per segment) no seeds are spaced;
+// curves start at `seeds` instead (faces traced as a group,
+// trace_bd_curves_across: the group's seeds along its free boundary).
+// `order` (if given): each seed's place in one sequence over all charts, in
+// which they are traced (a group's seeds in order along its boundary, as
+// one face traces its seeds loop by loop).
+struct BdSeedPlan {
+  std::vector<std::vector<char>> dictated;
+  std::vector<BdCurveEnd> seeds;  // boundary polyline index and arc length
+  std::vector<int> order;
+};
+
 struct BdCurveParams {
   double spacing = 0.0;          // mm between neighbouring parallel curves, > 0
   double step_fraction = 0.1;    // RK2 step in 3D = spacing * step_fraction, [0.01, 0.5]
@@ -39,5 +52,29 @@ void bd_field_grid_size(const SurfaceFace& face, double spacing, int& nu, int& n
 std::vector<BdCurve> trace_bd_curves(const SurfaceFace& face, const BdTensor& tensor,
                                      const std::vector<BdPolyline>& boundary,
                                      const BdCurveParams& params);
+
+// One face of a group of faces traced together (faces on different surfaces
+// joined by smooth edges, issue 14).
+struct BdChart {
+  const SurfaceFace* face = nullptr;
+  const std::vector<BdPolyline>* boundary = nullptr;  // its trims
+  // Per boundary polyline, per segment: the chart across it where the segment
+  // runs along a smooth edge to another face of the group, -1 elsewhere.
+  std::vector<std::vector<int>> across;
+  BdSeedPlan plan;  // its seeds along its trims
+};
+
+// The curves traced on the charts as on one face, except that a curve
+// reaching a smooth edge goes on into the face across it (from the nearest
+// point of that face's trim along the edge, in the field direction nearest
+// to its own): per chart, the pieces of the curves on it, each ending where
+// its curve crosses a trim (loop and arc length, as one face's curves end).
+// The smooth edges are no trims to the seeding: no curve starts on them or
+// beside them, and a curve does not join them. Each chart samples `tensor`
+// on its own grid; params.field must be null. On one chart with no smooth
+// edge and a plan dictating nothing, trace_bd_curves' curves.
+std::vector<std::vector<BdCurve>> trace_bd_curves_across(const std::vector<BdChart>& charts,
+                                                         const BdTensor& tensor,
+                                                         const BdCurveParams& params);
 
 }  // namespace tessella

@@ -72,6 +72,7 @@ struct HashedPoint {
   Vec2 uv;
   int line;
   double arc;
+  int chart = 0;  // the face uv belongs to (curves traced across faces)
 };
 
 class PointHash {

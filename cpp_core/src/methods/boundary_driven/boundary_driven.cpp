@@ -12,6 +12,7 @@
 #include "geometry/trim_deflection.h"
 #include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_across_faces.h"
+#include "methods/boundary_driven/bd_across_surfaces.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
@@ -396,6 +397,30 @@ PanelMesh boundary_driven_on_curves(const SurfaceFace& member, const BoundaryDri
     return true;
   };
   mesh_stages(member, params, traced.spacing, on_shared_edge, r);
+  return std::move(r.mesh);
+}
+
+}  // namespace tessella
+
+namespace tessella {
+
+PanelMesh boundary_driven_on_group_curves(const SurfaceFace& face,
+                                          const BoundaryDrivenParams& params,
+                                          const BdGroupMember& member, std::vector<BdCurve> curves,
+                                          double spacing) {
+  check_params(face, params);
+  BoundaryDrivenResult r;
+  r.boundary = member.boundary;
+  r.curves = std::move(curves);
+  // Nodes on the smooth edges stay where the curves cross them (the face
+  // across has a node at the same point).
+  const PinnedTest on_smooth_edge = [&face, &member](const Vec2& uv) {
+    const Vec3 p = face.point(uv.x(), uv.y());
+    for (const EdgeTrack& edge : member.smooth)
+      if (edge.near(p, member.tolerance)) return true;
+    return false;
+  };
+  mesh_stages(face, params, spacing, on_smooth_edge, r);
   return std::move(r.mesh);
 }
 
