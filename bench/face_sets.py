@@ -9,6 +9,9 @@ Prints:
    rods, rod length mean / variance, for iso_grid, equal_size_grid,
    boundary_driven and walking_agent; the share of shared-edge nodes whose rods on
    the two sides carry on within 20 degrees of one line (rows across the split).
+   Then the four faces each on a surface of its own (written to
+   examples/face_sets/british_museum_roof_subsurfaces.brep) at 1000 / 1500 /
+   2200 mm, boundary_driven and iso_grid, against the one face.
 2. A filleted box (26 trimmed faces: planes, cylinders, spheres) at about
    8,000 panels: seconds on 1 and 2 threads (best of --repeat), their ratio,
    the sum of the faces panelized one by one (the per-face overhead), and the
@@ -36,6 +39,7 @@ import freecad_workbench as tessella  # noqa: E402
 V = FreeCAD.Vector
 ROOF = os.path.join(ROOT, "examples", "british_museum_roof.brep")
 SPLIT = os.path.join(ROOT, "examples", "face_sets", "british_museum_roof_split.brep")
+SUB = os.path.join(ROOT, "examples", "face_sets", "british_museum_roof_subsurfaces.brep")
 
 
 def split_roof(face):
@@ -49,6 +53,22 @@ def split_roof(face):
     planes = [Part.Plane(c, V(1, 0, 0)).toShape(-big, big, -big, big),
               Part.Plane(c, V(0, 1, 0)).toShape(-big, big, -big, big)]
     return split_api.slice(face, planes, "Split")
+
+
+def sub_surfaces(pieces):
+    """The split roof's four faces, each on a B-spline surface of its own (its
+    piece of the roof's surface, `segment`ed to the face's range, the face's
+    wire projected onto it): the roof as a modeller or a STEP file gives it in
+    sub-surfaces, with no common (u,v)."""
+    faces = []
+    for f in pieces.Faces:
+        s = f.Surface.copy()
+        u0, u1, v0, v1 = f.ParameterRange
+        s.segment(u0, u1, v0, v1)
+        face = Part.Face(s, f.OuterWire)
+        face.fix(1e-7, 1e-7, 1e-3)
+        faces.append(face)
+    return Part.Compound(faces)
 
 
 def stats(r):
@@ -135,6 +155,24 @@ def main(argv=None):
         print(f"{method:18s} {'one':6s} {a[0]:7d} {a[1]:6d} {a[2]:9.1f} {a[3]:10.0f}")
         print(f"{'':18s} {'split':6s} {b[0]:7d} {b[1]:6d} {b[2]:9.1f} {b[3]:10.0f} "
               f"{100 * (b[0] - a[0]) / a[0]:+5.1f}% {100 * share:8.0f}% of {count}")
+
+    if not os.path.exists(SUB):
+        sub_surfaces(pieces).exportBrep(SUB)
+    sub = Part.read(SUB)
+    print(f"\nThe same roof in {len(sub.Faces)} sub-surfaces of their own "
+          f"({len({id(f.Surface) for f in sub.Faces})} surfaces; boundary_driven traces "
+          f"across them):")
+    for size in (1000.0, 1500.0, 2200.0):
+        for method, params in [("boundary_driven", {"size": size}),
+                               ("iso_grid", {"size": size})]:
+            one = tessella.panelize(roof, method=method, **params)
+            r = tessella.panelize_faces(sub, method=method, **params)
+            a, b = stats(one), stats(r)
+            share, count = carried_rows(sub, r)
+            print(f"{method:16s} {size:5.0f} one {a[0]:5d} sub {b[0]:5d} "
+                  f"{100 * (b[0] - a[0]) / a[0]:+5.1f}%  mean {100 * (b[2] / a[2] - 1):+5.1f}%  "
+                  f"var {100 * (b[3] / a[3] - 1):+6.1f}%  rows {100 * share:3.0f}% of {count}  "
+                  f"traced across {r.summary['faces_traced_across_surfaces']}")
 
     shape = filleted_box()
     size = math.sqrt(shape.Area / 8000)
