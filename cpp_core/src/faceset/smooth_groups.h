@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "faceset/face_set_impl.h"
-#include "methods/boundary_driven/bd_across_surfaces.h"
+#include "geometry/edge_track.h"
 #include "tessella/vec.h"
 
 namespace tessella {

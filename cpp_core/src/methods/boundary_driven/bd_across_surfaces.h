@@ -16,29 +16,13 @@
 
 #include <vector>
 
+#include "geometry/edge_track.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_tensor.h"
 #include "tessella/boundary_driven.h"
 #include "tessella/panel_mesh.h"
 
 namespace tessella {
-
-// A 3D polyline with boxes round runs of its segments, for "is p within d
-// of it" asked for every trim point of a face (an edge's polyline has up to
-// thousands of points).
-class EdgeTrack {
- public:
-  EdgeTrack() = default;
-  explicit EdgeTrack(std::vector<Vec3> points);
-  // Whether p lies within d of the polyline.
-  bool near(const Vec3& p, double d) const;
-  const std::vector<Vec3>& points() const { return points_; }
-
- private:
-  static constexpr std::size_t kRun = 32;  // segments per box
-  std::vector<Vec3> points_;
-  std::vector<Vec3> lo_, hi_;  // per run of kRun segments
-};
 
 // A face of a smooth group.
 struct BdGroupMember {

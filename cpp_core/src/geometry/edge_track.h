@@ -1,0 +1,27 @@
+// A 3D polyline (an edge sampled finely) with boxes round runs of its
+// segments, for "is this point within d of the edge" asked of many points
+// (every trim point of a face, every boundary vertex of a mesh).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "tessella/vec.h"
+
+namespace tessella {
+
+class EdgeTrack {
+ public:
+  EdgeTrack() = default;
+  explicit EdgeTrack(std::vector<Vec3> points);
+  // Whether p lies within d of the polyline.
+  bool near(const Vec3& p, double d) const;
+  const std::vector<Vec3>& points() const { return points_; }
+
+ private:
+  static constexpr std::size_t kRun = 32;  // segments per box
+  std::vector<Vec3> points_;
+  std::vector<Vec3> lo_, hi_;  // per run of kRun segments
+};
+
+}  // namespace tessella
