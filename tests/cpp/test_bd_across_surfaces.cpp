@@ -48,6 +48,12 @@ TEST(EdgeTrack, NearMeansWithinTheDistanceOfSomeSegment) {
   EXPECT_TRUE(t.near(Vec3(-0.5, 0, 0), 1.0));  // beyond the first end
   EXPECT_FALSE(t.near(Vec3(-1.5, 0, 0), 1.0));
   EXPECT_TRUE(t.near(Vec3(2000, 0, 0.99), 1.0));  // the last end
+  std::size_t seg = 0;
+  double along = 0;
+  ASSERT_TRUE(t.nearest(Vec3(1234.5, 0.5, 0), 1.0, seg, along));
+  EXPECT_EQ(seg, 123u);
+  EXPECT_NEAR(along, 0.45, 1e-12);
+  EXPECT_FALSE(t.nearest(Vec3(1234.5, 1.5, 0), 1.0, seg, along));
 }
 
 TEST(BdFreeBoundary, ASquareLessOneSideIsOneOpenRunOfThreeSides) {

@@ -12,6 +12,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "geometry/edge_track.h"
+
 namespace tessella {
 
 namespace {
@@ -62,6 +64,19 @@ class EdgeSide {
                      std::max({z0 - x.z(), 0.0, x.z() - z1}));
       if (out.norm() > tol) return false;
     }
+    // Where along the edge it may lie: its nearest chord of the edge's fine
+    // 3D polyline. Farther than that polyline strays from the curve, plus
+    // tol: not on the edge (for any (u,v) shift below). Else the projection
+    // searches the parameters of that chord and its neighbours only: a
+    // pcurve that ShapeFix approximated (hundreds of spans) made each
+    // projection over the whole edge cost more than the face's metrics.
+    if (!track_ready_) build_track(tol);
+    std::size_t seg = 0;
+    double along = 0;
+    if (!track_.nearest(x, tol + reach_, seg, along)) return false;
+    const double step = (last_ - first_) / double(track_.points().size() - 1);
+    const double lo = std::max(first_, first_ + (double(seg) - 1) * step);
+    const double hi = std::min(last_, first_ + (double(seg) + 2) * step);
     // On a periodic face the vertex may sit a period away from the curve.
     const double pu = face_.u_periodic() ? face_.u_period() : 0.0;
     const double pv = face_.v_periodic() ? face_.v_period() : 0.0;
@@ -78,8 +93,10 @@ class EdgeSide {
         };
         offer(first_);
         offer(last_);
+        offer(lo);
+        offer(hi);
         try {
-          Geom2dAPI_ProjectPointOnCurve projection(p, curve_, first_, last_);
+          Geom2dAPI_ProjectPointOnCurve projection(p, curve_, lo, hi);
           for (int i = 1; i <= projection.NbPoints(); ++i) offer(projection.Parameter(i));
         } catch (const Standard_Failure&) {
           // the ends only
@@ -113,6 +130,31 @@ class EdgeSide {
   }
 
  private:
+  // The edge's 3D polyline at uniform parameters, doubled until no chord's
+  // midpoint is farther than tol from the curve (64 to 4096 chords); reach_:
+  // how far the curve may stray from it (four times the largest midpoint
+  // distance found, plus tol).
+  void build_track(double tol) const {
+    std::vector<Vec3> line;
+    double sag = 0;
+    for (int n = 64; n <= 4096; n *= 2) {
+      line.clear();
+      sag = 0;
+      for (int k = 0; k <= n; ++k) line.push_back(xyz_at(first_ + (last_ - first_) * k / n));
+      for (int k = 0; k < n; ++k) {
+        const Vec3 mid = xyz_at(first_ + (last_ - first_) * (k + 0.5) / n);
+        sag = std::max(sag, (mid - 0.5 * (line[k] + line[k + 1])).norm());
+      }
+      if (sag <= tol) break;
+    }
+    track_ = EdgeTrack(std::move(line));
+    reach_ = 4 * sag + tol;
+    track_ready_ = true;
+  }
+  mutable bool track_ready_ = false;
+  mutable EdgeTrack track_;
+  mutable double reach_ = 0;
+
   Handle(Geom2d_Curve) curve_;
   double first_, last_;
   const SurfaceFace& face_;

@@ -31,4 +31,21 @@ bool EdgeTrack::near(const Vec3& p, double d) const {
   return false;
 }
 
+bool EdgeTrack::nearest(const Vec3& p, double d, std::size_t& segment, double& t) const {
+  double best = d * d;
+  bool found = false;
+  for (std::size_t r = 0; r < lo_.size(); ++r) {
+    const Vec3 out = (lo_[r] - p).cwiseMax(p - hi_[r]).cwiseMax(0.0);
+    if (out.squaredNorm() > best) continue;
+    const std::size_t first = r * kRun, last = std::min(first + kRun, points_.size() - 1);
+    for (std::size_t i = first; i < last; ++i) {
+      const Vec3 a = points_[i], e = points_[i + 1] - a;
+      const double f = std::clamp((p - a).dot(e) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
+      const double d2 = (a + f * e - p).squaredNorm();
+      if (d2 <= best) best = d2, segment = i, t = f, found = true;
+    }
+  }
+  return found;
+}
+
 }  // namespace tessella

@@ -16,6 +16,9 @@ class EdgeTrack {
   explicit EdgeTrack(std::vector<Vec3> points);
   // Whether p lies within d of the polyline.
   bool near(const Vec3& p, double d) const;
+  // The segment nearest to p if it lies within d (segment index and the
+  // fraction along it); false if none does.
+  bool nearest(const Vec3& p, double d, std::size_t& segment, double& t) const;
   const std::vector<Vec3>& points() const { return points_; }
 
  private:
