@@ -29,14 +29,11 @@ namespace {
 // the largest first (a big face claimed last would leave the other threads
 // idle); each face's result depends only on the face, so the order changes
 // nothing but the time.
-// `only`: the faces to do (all if empty).
 template <class Work>
-void for_each_face(const FaceSet& set, int threads, const Work& work,
-                   const std::vector<char>& only = {}) {
-  std::vector<std::size_t> order;
-  for (std::size_t f = 0; f < set.size(); ++f)
-    if (only.empty() || only[f]) order.push_back(f);
-  const std::size_t n = order.size();
+void for_each_face(const FaceSet& set, int threads, const Work& work) {
+  const std::size_t n = set.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t f = 0; f < n; ++f) order[f] = f;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return set.face(a)->area() > set.face(b)->area();
   });
