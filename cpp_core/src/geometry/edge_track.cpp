@@ -17,18 +17,9 @@ EdgeTrack::EdgeTrack(std::vector<Vec3> points) : points_(std::move(points)) {
 
 bool EdgeTrack::near(const Vec3& p, double d) const {
   if (points_.size() == 1) return (points_[0] - p).norm() <= d;
-  const double d2 = d * d;
-  for (std::size_t r = 0; r < lo_.size(); ++r) {
-    const Vec3 out = (lo_[r] - p).cwiseMax(p - hi_[r]).cwiseMax(0.0);
-    if (out.squaredNorm() > d2) continue;
-    const std::size_t first = r * kRun, last = std::min(first + kRun, points_.size() - 1);
-    for (std::size_t i = first; i < last; ++i) {
-      const Vec3 a = points_[i], e = points_[i + 1] - a;
-      const double t = std::clamp((p - a).dot(e) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
-      if ((a + t * e - p).squaredNorm() <= d2) return true;
-    }
-  }
-  return false;
+  std::size_t segment = 0;
+  double t = 0;
+  return nearest(p, d, segment, t);
 }
 
 bool EdgeTrack::nearest(const Vec3& p, double d, std::size_t& segment, double& t) const {
