@@ -56,6 +56,30 @@ TEST(EdgeTrack, NearMeansWithinTheDistanceOfSomeSegment) {
   EXPECT_FALSE(t.nearest(Vec3(1234.5, 1.5, 0), 1.0, seg, along));
 }
 
+TEST(EdgeTrack, SampleCurveDoublesUntilTheSagIsSmallEnough) {
+  // A circle of radius 1000: a chord of angle a sags 1000 (1 - cos(a / 2)).
+  const auto at = [](double t) { return Vec3(1000 * std::cos(t), 1000 * std::sin(t), 0); };
+  const double last = 3.0;
+  double sag = 0;
+  const std::vector<Vec3> line = sample_curve(at, 0.0, last, 0.05, 1 << 20, sag);
+  const int n = static_cast<int>(line.size()) - 1;
+  const double expected = [&](int chords) {
+    return 1000 * (1 - std::cos(0.5 * last / chords));
+  }(n);
+  EXPECT_NEAR(sag, expected, 1e-9);
+  EXPECT_LE(sag, 0.05);
+  EXPECT_GT(1000 * (1 - std::cos(0.5 * last / (n / 2))), 0.05);  // half as many would not do
+  EXPECT_EQ(n % 64, 0);
+  // The points are the curve's at uniform parameters, bit for bit.
+  for (int k = 0; k <= n; ++k) EXPECT_EQ(line[k], at(0.0 + last * k / n)) << k;
+  // Capped: 64 chords when no more are allowed.
+  EXPECT_EQ(sample_curve(at, 0.0, last, 1e-9, 64, sag).size(), 65u);
+  const std::vector<EdgeTrack> tracks{EdgeTrack({Vec3(0, 0, 0), Vec3(10, 0, 0)}),
+                                      EdgeTrack({Vec3(0, 5, 0), Vec3(10, 5, 0)})};
+  EXPECT_EQ(first_track_near(tracks, Vec3(5, 4.5, 0), 1.0), 1);
+  EXPECT_EQ(first_track_near(tracks, Vec3(5, 2.5, 0), 1.0), -1);
+}
+
 TEST(BdFreeBoundary, ASquareLessOneSideIsOneOpenRunOfThreeSides) {
   const SurfaceFace f = plate(0, 4000, 4000);
   const std::vector<BdPolyline> boundary = trims(f);

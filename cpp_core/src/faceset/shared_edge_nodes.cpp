@@ -135,18 +135,9 @@ class EdgeSide {
   // how far the curve may stray from it (four times the largest midpoint
   // distance found, plus tol).
   void build_track(double tol) const {
-    std::vector<Vec3> line;
     double sag = 0;
-    for (int n = 64; n <= 4096; n *= 2) {
-      line.clear();
-      sag = 0;
-      for (int k = 0; k <= n; ++k) line.push_back(xyz_at(first_ + (last_ - first_) * k / n));
-      for (int k = 0; k < n; ++k) {
-        const Vec3 mid = xyz_at(first_ + (last_ - first_) * (k + 0.5) / n);
-        sag = std::max(sag, (mid - 0.5 * (line[k] + line[k + 1])).norm());
-      }
-      if (sag <= tol) break;
-    }
+    std::vector<Vec3> line =
+        sample_curve([this](double t) { return xyz_at(t); }, first_, last_, tol, 4096, sag);
     track_ = EdgeTrack(std::move(line));
     reach_ = 4 * sag + tol;
     track_ready_ = true;

@@ -3,6 +3,7 @@
 #include <Geom2d_Curve.hxx>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "tessella/surface_face.h"
 
@@ -33,24 +34,6 @@ bool meets_tangentially(const SharedEdge& e, const SurfaceFace& a, const Surface
   return checked > 0;
 }
 
-// The edge in 3D at uniform parameters, doubled until no chord's midpoint is
-// farther than `max_sag` from the curve.
-std::vector<Vec3> edge_polyline(const SharedEdge& e, const SurfaceFace& face, double max_sag) {
-  std::vector<Vec3> line;
-  for (int n = 64; n <= 8192; n *= 2) {
-    line.clear();
-    for (int k = 0; k <= n; ++k)
-      line.push_back(edge_point(e, face, e.first + (e.last - e.first) * k / n));
-    double sag = 0;
-    for (int k = 0; k < n; ++k) {
-      const Vec3 mid = edge_point(e, face, e.first + (e.last - e.first) * (k + 0.5) / n);
-      sag = std::max(sag, (mid - 0.5 * (line[k] + line[k + 1])).norm());
-    }
-    if (sag <= max_sag) break;
-  }
-  return line;
-}
-
 }  // namespace
 
 SmoothLayout smooth_layout(const FaceSet::Impl& set, const std::vector<char>& eligible,
@@ -68,7 +51,10 @@ SmoothLayout smooth_layout(const FaceSet::Impl& set, const std::vector<char>& el
     if (!meets_tangentially(e, fa, fb)) continue;
     const double sag = 0.25 * std::min(tolerance[static_cast<std::size_t>(a)],
                                        tolerance[static_cast<std::size_t>(b)]);
-    out.edges.push_back({e.faces, EdgeTrack(edge_polyline(e, fa, sag))});
+    double found = 0;
+    std::vector<Vec3> line = sample_curve([&](double t) { return edge_point(e, fa, t); }, e.first,
+                                          e.last, sag, 8192, found);
+    out.edges.push_back({e.faces, EdgeTrack(std::move(line))});
     next[static_cast<std::size_t>(a)].push_back(b);
     next[static_cast<std::size_t>(b)].push_back(a);
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "tessella/vec.h"
@@ -26,5 +27,15 @@ class EdgeTrack {
   std::vector<Vec3> points_;
   std::vector<Vec3> lo_, hi_;  // per run of kRun segments
 };
+
+// The first of `tracks` that p lies within d of (-1: none).
+int first_track_near(const std::vector<EdgeTrack>& tracks, const Vec3& p, double d);
+
+// A curve `at`(t), t in [first, last], as a polyline at uniform parameters:
+// 64 chords, doubled (the midpoints kept) until no chord's midpoint lies
+// farther than max_sag from the chord, or up to max_chords. `sag`: the
+// largest such distance on the polyline returned.
+std::vector<Vec3> sample_curve(const std::function<Vec3(double)>& at, double first, double last,
+                               double max_sag, int max_chords, double& sag);
 
 }  // namespace tessella

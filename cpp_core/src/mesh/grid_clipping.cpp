@@ -22,6 +22,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "geometry/segment_closest.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/clip_to_box.h"
 #include "mesh/panel_model.h"
@@ -435,7 +436,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
         const Vec2 a = to_units(uv[k]);
         const Vec2 d = to_units(uv[(k + 1) % uv.size()]) - a;
         const Vec2 qs = to_units(q);
-        const double t = std::clamp((qs - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        const double t = closest_fraction(a, d, qs);
         const double dist = (a + t * d - qs).squaredNorm();
         if (dist < best) best = dist, best_loop = int(l);
       }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/segment_closest.h"
 #include "methods/boundary_driven/bd_geometry.h"
 
 namespace tessella {
@@ -27,7 +28,7 @@ BdCurveEnd end_on(const std::vector<BdPolyline>& boundary, const Vec2& uv, doubl
     const BdPolyline& line = boundary[k];
     for (int i = 0; i < line.segment_count(); ++i) {
       const Vec2 a = line.uv[i], d = line.seg_end_uv(i) - a;
-      const double t = std::clamp((uv - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+      const double t = closest_fraction(a, d, uv);
       const double dist = (a + t * d - uv).norm();
       if (dist <= best_d) best_d = dist, best.loop = static_cast<int>(k), best.s = line.s_at(i, t);
     }

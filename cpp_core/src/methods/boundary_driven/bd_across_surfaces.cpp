@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/segment_closest.h"
 #include "geometry/trim_deflection.h"
 #include "methods/boundary_driven/bd_sources.h"
 #include "tessella/errors.h"
@@ -27,11 +28,7 @@ BdGroupMember bd_group_member(const SurfaceFace& face, const BoundaryDrivenParam
 std::vector<BdPolyline> bd_free_boundary_runs(const std::vector<BdPolyline>& boundary,
                                               const std::vector<EdgeTrack>& skip,
                                               double tolerance) {
-  auto skipped = [&](const Vec3& p) {
-    for (const EdgeTrack& edge : skip)
-      if (edge.near(p, tolerance)) return true;
-    return false;
-  };
+  auto skipped = [&](const Vec3& p) { return first_track_near(skip, p, tolerance) >= 0; };
   std::vector<BdPolyline> runs;
   for (const BdPolyline& line : boundary) {
     const std::size_t n = line.xyz.size();
@@ -193,7 +190,7 @@ OnMember locate_on_members(const std::vector<BdGroupMember>& members,
       for (int i = 0; i < line.segment_count(); ++i) {
         if (across[m][k][static_cast<std::size_t>(i)] >= 0) continue;
         const Vec3 a = line.xyz[i], d = line.xyz[(i + 1) % line.xyz.size()] - a;
-        const double t = std::clamp((x - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        const double t = closest_fraction(a, d, x);
         const double dist = (a + t * d - x).norm();
         if (dist <= g.tolerance && dist < best_d) {
           best_d = dist;
@@ -226,15 +223,11 @@ BdGroupCurves trace_bd_group_curves(const std::vector<BdGroupMember>& members,
   std::vector<BdPolyline> all_runs;
   for (std::size_t m = 0; m < members.size(); ++m) {
     const BdGroupMember& g = members[m];
-    auto edge_at = [&](const Vec3& p) {
-      for (std::size_t e = 0; e < g.smooth.size(); ++e)
-        if (g.smooth[e].near(p, g.tolerance)) return static_cast<int>(e);
-      return -1;
-    };
     for (const BdPolyline& line : g.boundary) {
       const std::size_t n = line.xyz.size();
       std::vector<int> edge(n);
-      for (std::size_t i = 0; i < n; ++i) edge[i] = edge_at(line.xyz[i]);
+      for (std::size_t i = 0; i < n; ++i)
+        edge[i] = first_track_near(g.smooth, line.xyz[i], g.tolerance);
       std::vector<int> to(static_cast<std::size_t>(std::max(line.segment_count(), 0)), -1);
       for (std::size_t i = 0; i < to.size(); ++i) {
         const int a = edge[i], b = edge[(i + 1) % n];

@@ -5,6 +5,7 @@
 #include <deque>
 #include <limits>
 
+#include "geometry/segment_closest.h"
 #include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_geometry.h"
 #include "tessella/errors.h"
@@ -225,7 +226,7 @@ class Tracer {
       for (int i = 0; i < line.segment_count(); ++i) {
         if (ch.across_at(static_cast<int>(k), i) != from) continue;
         const Vec3 a = line.xyz[i], d = line.xyz[(i + 1) % line.xyz.size()] - a;
-        const double t = std::clamp((x - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        const double t = closest_fraction(a, d, x);
         const double dist = (a + t * d - x).squaredNorm();
         if (dist < best) {
           best = dist;

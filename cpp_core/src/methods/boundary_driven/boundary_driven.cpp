@@ -9,6 +9,7 @@
 #include <string>
 
 #include "analysis/coverage.h"
+#include "geometry/segment_closest.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_across_faces.h"
@@ -86,7 +87,7 @@ double arc_at(const BdPolyline& line, const Vec2& uv) {
   double best = std::numeric_limits<double>::infinity(), s = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 a = line.uv[i], d = line.uv[(i + 1) % n] - a;
-    const double t = std::clamp((uv - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+    const double t = closest_fraction(a, d, uv);
     const double dist = (a + t * d - uv).squaredNorm();
     if (dist < best) best = dist, s = line.arc[i] + t * (line.arc[i + 1] - line.arc[i]);
   }
@@ -391,7 +392,7 @@ PanelMesh boundary_driven_on_curves(const SurfaceFace& member, const BoundaryDri
     for (const BdPolyline& line : traced.boundary)
       for (int i = 0; i < line.segment_count(); ++i) {
         const Vec2 a = line.uv[i], d = line.seg_end_uv(i) - a;
-        const double t = std::clamp((uv - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        const double t = closest_fraction(a, d, uv);
         if ((a + t * d - uv).norm() <= traced.on_trim) return false;
       }
     return true;
@@ -399,10 +400,6 @@ PanelMesh boundary_driven_on_curves(const SurfaceFace& member, const BoundaryDri
   mesh_stages(member, params, traced.spacing, on_shared_edge, r);
   return std::move(r.mesh);
 }
-
-}  // namespace tessella
-
-namespace tessella {
 
 PanelMesh boundary_driven_on_group_curves(const SurfaceFace& face,
                                           const BoundaryDrivenParams& params,
@@ -415,10 +412,7 @@ PanelMesh boundary_driven_on_group_curves(const SurfaceFace& face,
   // Nodes on the smooth edges stay where the curves cross them (the face
   // across has a node at the same point).
   const PinnedTest on_smooth_edge = [&face, &member](const Vec2& uv) {
-    const Vec3 p = face.point(uv.x(), uv.y());
-    for (const EdgeTrack& edge : member.smooth)
-      if (edge.near(p, member.tolerance)) return true;
-    return false;
+    return first_track_near(member.smooth, face.point(uv.x(), uv.y()), member.tolerance) >= 0;
   };
   mesh_stages(face, params, spacing, on_smooth_edge, r);
   return std::move(r.mesh);
