@@ -156,6 +156,17 @@ def main(argv=None):
         print(f"{'':18s} {'split':6s} {b[0]:7d} {b[1]:6d} {b[2]:9.1f} {b[3]:10.0f} "
               f"{100 * (b[0] - a[0]) / a[0]:+5.1f}% {100 * share:8.0f}% of {count}")
 
+    print("\nwalking_agent on the split roof (its lines walked on the faces' union):")
+    for bound in (15.0, 60.0, 100.0):
+        one = tessella.panelize(roof, method="walking_agent", max_deviation=bound)
+        r = tessella.panelize_faces(pieces, method="walking_agent", max_deviation=bound)
+        a, b = stats(one), stats(r)
+        share, count = carried_rows(pieces, r)
+        print(f"  max_deviation {bound:5.0f} mm: one {a[0]:5d} split {b[0]:5d} "
+              f"{100 * (b[0] - a[0]) / a[0]:+5.1f}%  mean {100 * (b[2] / a[2] - 1):+5.1f}%  "
+              f"var {100 * (b[3] / a[3] - 1):+6.1f}%  rows {100 * share:3.0f}% of {count}  "
+              f"on the union {r.summary['faces_traced_across']}")
+
     if not os.path.exists(SUB):
         sub_surfaces(pieces).exportBrep(SUB)
     sub = Part.read(SUB)

@@ -2,13 +2,16 @@
 // gradient_descent, relaxed_grid.
 #include <gtest/gtest.h>
 
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <Geom_SphericalSurface.hxx>
 #include <algorithm>
 #include <cmath>
+#include <gp_Ax3.hxx>
 #include <set>
 
+#include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/panel_metrics.h"
-#include "mesh/panel_model.h"
 #include "tessella/relaxed_grid.h"
 #include "tessella/walking_agent.h"
 #include "test_faces.h"
@@ -275,4 +278,55 @@ TEST(SurfaceFace, CountsEvaluations) {
   EXPECT_EQ(f.evaluations(), 2u);
   f.reset_evaluations();
   EXPECT_EQ(f.evaluations(), 0u);
+}
+
+namespace {
+// A sphere zone from u0 to u1 (radians), latitudes -0.3 to 0.9.
+SurfaceFace sphere_zone(double u0, double u1) {
+  const Handle(Geom_SphericalSurface) s = new Geom_SphericalSurface(gp_Ax3(), 6000.0);
+  return SurfaceFace::from_brep_string(brep(BRepBuilderAPI_MakeFace(s, u0, u1, -0.3, 0.9, 1e-7)));
+}
+bool contains_value(const std::vector<double>& xs, double x, double tol) {
+  return std::any_of(xs.begin(), xs.end(), [&](double y) { return std::abs(x - y) <= tol; });
+}
+}  // namespace
+
+// Faces of one surface walk their lines on their union (issue 14): a cut
+// along an iso-line becomes a line, and a face cut from the union takes the
+// union's lines within its bounds, so its rows continue those of its
+// neighbour.
+TEST(WalkingAgent, FacesCutFromOneSurfaceShareTheUnionsLinesAndTheCutIsOne) {
+  const SurfaceFace whole = sphere_zone(0.0, 1.2);
+  const WalkingAgentParams p = agent(15.0);
+  const double cut = 0.5;
+  const WalkingAgentLines free = walking_agent_lines(whole, p);
+  EXPECT_FALSE(contains_value(free.u, cut, 1e-12));  // else the test proves nothing
+  const WalkingAgentLines lines = walking_agent_lines(whole, p, {{cut}, {}});
+  ASSERT_TRUE(contains_value(lines.u, cut, 0.0));
+  EXPECT_TRUE(std::is_sorted(lines.u.begin(), lines.u.end()));
+  EXPECT_EQ(lines.u.front(), 0.0);
+  EXPECT_EQ(lines.u.back(), 1.2);
+  // At most one line moved or added per pinned value: the others stay.
+  int kept = 0;
+  for (double x : free.u) kept += contains_value(lines.u, x, 0.0) ? 1 : 0;
+  EXPECT_GE(kept, static_cast<int>(free.u.size()) - 1);
+
+  for (const auto& [u0, u1] : {std::pair{0.0, cut}, std::pair{cut, 1.2}}) {
+    const SurfaceFace part = sphere_zone(u0, u1);
+    const PanelMesh m = walking_agent_on_lines(part, p, lines);
+    ASSERT_FALSE(m.panels.empty());
+    // Every union line within the part is a line of its panels' corners
+    // (a node at each of its crossings with the part's v = -0.3 edge).
+    for (double x : lines.u) {
+      if (x < u0 - 1e-12 || x > u1 + 1e-12) continue;
+      bool found = false;
+      for (std::size_t v = 0; v < m.xyz.size(); ++v)
+        found = found || (std::abs(m.uv[v].x() - x) <= 1e-9 && std::abs(m.uv[v].y() + 0.3) <= 1e-9);
+      EXPECT_TRUE(found) << "line u = " << x << " on [" << u0 << ", " << u1 << "]";
+    }
+    // The hard bound holds on the part as on any face.
+    const PanelMetrics metrics = measure_panels(part, m);
+    EXPECT_LE(max_of(metrics.deviation), 15.0);
+  }
+  EXPECT_THROW(walking_agent_on_lines(whole, p, {{0.0}, {-0.3, 0.9}}), InvalidParameter);
 }

@@ -53,8 +53,9 @@ struct FaceSetResult {
   // Nodes on shared edges, counted once; how many of them one face had and
   // the other took over (inserted into its outline or moved onto it).
   int shared_edge_nodes = 0, shared_nodes_taken_over = 0;
-  // boundary_driven: faces meshed from curves traced on the union of faces
-  // lying on one surface (the curves run on across the edges between them).
+  // Faces laid out on the union of faces lying on one surface, so that the
+  // layout runs on across the edges between them: boundary_driven's curves
+  // traced there, walking_agent's lines walked there.
   int faces_traced_across = 0;
   // boundary_driven: faces on different surfaces, joined by smooth edges,
   // meshed from curves traced across them (bd_across_surfaces.h).

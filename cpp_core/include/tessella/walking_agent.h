@@ -29,8 +29,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "tessella/grid_methods.h"
+#include "tessella/methods.h"
 #include "tessella/panel_mesh.h"
 
 namespace tessella {
@@ -83,6 +85,30 @@ struct WalkingAgentReport {
 
 PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& params,
                         WalkingAgentReport* report = nullptr);
+
+// Faces cut from one surface (a face set's faces on one surface, split as
+// seed 004 splits its roof) walk their lines once, on their union, so that
+// the rows run on across the cuts (issue 14): the lines of walking_agent's
+// layout on `face` (the agents' lines after the hard bound, or the iso
+// fallback's grid), then, on each face cut from it, the hard bound, the
+// lines stopping early and the folds from those lines (the ones within the
+// face's own bounds): no walk, no other share, no iso search of its own.
+struct WalkingAgentLines {
+  std::vector<double> u, v;  // increasing, from the bounds' minimum to their maximum
+};
+// `pinned`: values that must be lines (the faces' cuts along iso-lines of
+// the surface): the nearest line of the layout moves onto each (by at most
+// half a cell; one is added where the nearest is a bound), then the hard
+// bound runs again on the union. A cut that is a line costs no panels (a
+// panel across it would be cut in two) and the rows still carry on.
+WalkingAgentLines walking_agent_lines(const SurfaceFace& face, const WalkingAgentParams& params,
+                                      const WalkingAgentLines& pinned = {});
+PanelMesh walking_agent_on_lines(const SurfaceFace& face, const WalkingAgentParams& params,
+                                 const WalkingAgentLines& lines,
+                                 WalkingAgentReport* report = nullptr);
+
+// Parameters from values as the method declaration reads them (checked).
+WalkingAgentParams walking_agent_params(const ParamValues& values);
 
 // The gradient-descent rival: the next step from the previous two,
 //   step_a = max_deviation * (step_{a-1} + step_{a-2}) / (dev_{a-1} + dev_{a-2}),

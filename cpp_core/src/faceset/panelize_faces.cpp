@@ -20,6 +20,7 @@
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
 #include "tessella/progress.h"
+#include "tessella/walking_agent.h"
 
 namespace tessella {
 
@@ -276,6 +277,60 @@ std::vector<std::shared_ptr<const BdSurfaceCurves>> curves_across_faces(const Fa
   return out;
 }
 
+// walking_agent's lines walked once on each group of faces lying on one
+// surface, so its rows run on across the edges between those faces (each
+// face's own walk would space its lines over its own bounds); per face, the
+// lines it uses (null: the face walks its own).
+std::vector<std::shared_ptr<const WalkingAgentLines>> lines_across_faces(const FaceSet& set,
+                                                                         const ParamValues& values,
+                                                                         int threads) {
+  std::vector<std::shared_ptr<const WalkingAgentLines>> out(set.size());
+  if (set.size() < 2) return out;
+  const WalkingAgentParams params = walking_agent_params(values);
+  const std::vector<SurfaceGroup>& groups = surface_groups(set);
+  std::vector<std::shared_ptr<const WalkingAgentLines>> walked(groups.size());
+  // The cuts between a group's faces that are iso-lines of its surface
+  // become lines of its layout.
+  std::vector<WalkingAgentLines> pinned(groups.size());
+  std::vector<int> group_of(set.size(), -1);
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (int f : groups[g].members) group_of[static_cast<std::size_t>(f)] = static_cast<int>(g);
+  for (const SharedEdge& e : set.impl().shared) {
+    const int g = group_of[static_cast<std::size_t>(e.faces[0])];
+    if (g < 0 || g != group_of[static_cast<std::size_t>(e.faces[1])]) continue;
+    const UvBounds b = groups[static_cast<std::size_t>(g)].face->bounds();
+    double u0 = 0, v0 = 0;
+    bool iso_u = true, iso_v = true;
+    for (int k = 0; k <= 8; ++k) {
+      const gp_Pnt2d q = e.pcurve[0]->Value(e.first + (e.last - e.first) * k / 8.0);
+      if (k == 0) u0 = q.X(), v0 = q.Y();
+      iso_u = iso_u && std::abs(q.X() - u0) <= 1e-9 * (b.u_max - b.u_min);
+      iso_v = iso_v && std::abs(q.Y() - v0) <= 1e-9 * (b.v_max - b.v_min);
+    }
+    std::vector<double>& to = iso_u ? pinned[g].u : pinned[g].v;
+    const double x = iso_u ? u0 : v0;
+    const double eps = iso_u ? 1e-9 * (b.u_max - b.u_min) : 1e-9 * (b.v_max - b.v_min);
+    if (iso_u != iso_v &&
+        std::none_of(to.begin(), to.end(), [&](double y) { return std::abs(x - y) <= eps; }))
+      to.push_back(x);
+  }
+  ChunkQueue queue(groups.size(), 1);
+  run_chunks(queue, threads, [&](bool) {
+    std::size_t begin = 0, end = 0;
+    while (queue.next(begin, end))
+      for (std::size_t g = begin; g < end; ++g) {
+        try {
+          walked[g] = std::make_shared<const WalkingAgentLines>(
+              walking_agent_lines(*groups[g].face, params, pinned[g]));
+        } catch (const std::exception&) {  // each face then walks its own
+        }
+      }
+  });
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (int f : groups[g].members) out[static_cast<std::size_t>(f)] = walked[g];
+  return out;
+}
+
 // boundary_driven on faces of different surfaces that meet tangentially
 // (smooth_groups.h, bd_across_surfaces.h): each group's curves traced once
 // across its faces. Faces traced on one surface's union, and runs with
@@ -391,13 +446,18 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     report_stage(0.0, "tracing curves across faces of one surface");
     across = curves_across_faces(set, values, workers);
   }
-  std::vector<char> traced_alone(n, 0);
+  std::vector<char> traced_alone(n, 0), walked_alone(n, 0);
   std::vector<FaceInGroup> smooth_groups;
   if (method == "boundary_driven") {
     report_stage(0.0, "tracing curves across faces that join smoothly");
     smooth_groups = curves_across_surfaces(set, values, across, workers);
   }
   std::vector<char> group_traced(n, 0);
+  std::vector<std::shared_ptr<const WalkingAgentLines>> walked;
+  if (method == "walking_agent") {
+    report_stage(0.0, "walking the lines across faces of one surface");
+    walked = lines_across_faces(set, values, workers);
+  }
   for (int attempt = 0;; ++attempt) {
     report_stage(0.0, "panelizing the faces");
     for_each_face(set, workers, [&](std::size_t f) {
@@ -431,6 +491,20 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
           done = true;
           group_traced[f] = 1;
         } catch (const GeometryFailure&) {
+        }
+      }
+      if (f < walked.size() && walked[f]) {
+        // A face the union's lines leave over the bound after its refinement
+        // rounds walks its own.
+        try {
+          const WalkingAgentParams wp = walking_agent_params(face_values[f]);
+          modelled[f] = run_method_with(face, decl, face_values[f], [&] {
+            return walking_agent_on_lines(face, wp, *walked[f]);
+          });
+          done = true;
+          walked_alone[f] = 0;
+        } catch (const GeometryFailure&) {
+          walked_alone[f] = 1;
         }
       }
       if (!done) modelled[f] = run_method(face, decl, face_values[f]);
@@ -497,6 +571,8 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     for (std::size_t f = 0; f < across.size(); ++f)
       out.faces_traced_across += across[f] && !traced_alone[f] ? 1 : 0;
     for (std::size_t f = 0; f < n; ++f) out.faces_traced_across_surfaces += group_traced[f];
+    for (std::size_t f = 0; f < walked.size(); ++f)
+      out.faces_traced_across += walked[f] && !walked_alone[f] ? 1 : 0;
     join(results, out);
     summarize_set(
         results, out,

@@ -27,48 +27,50 @@ ParamDeclaration start() {
   return d;
 }
 
+MethodBuilder<WalkingAgentParams> walking_agent_builder() {
+  using P = WalkingAgentParams;
+  MethodBuilder<P> b("walking_agent", "Walking agent",
+                     "adaptive quads with a hard deviation bound (seed 000)");
+  b.param(&P::max_deviation,
+          max_deviation("No panel deviates more than this from the surface (required)"))
+      .param(&P::max_size,
+             decl("max_size", ParamKind::Real, "mm", 0.0, 1e9, "Max panel size (0: no limit)",
+                  "Longest panel edge (0 = no limit)", kGroup, "MaxSize"))
+      .param(&P::diagonal_deviation, decl("diagonal_deviation", ParamKind::Real, "mm", 0.0, 1e9,
+                                          "Diagonal bound (0: 2 x bound)",
+                                          "Bound of the diagonal walkers (0 = 2 x DeviationBound)",
+                                          kGroup, "DiagonalDeviation"))
+      .param(&P::sample_step, sample_step())
+      .param(&P::start, start())
+      .param(&P::max_refinements,
+             decl("max_refinements", ParamKind::Integer, "", 0, 1000, "Max refinements",
+                  "Rounds of the hard-bound refinement", kGroup, "MaxRefinements"))
+      .param(&P::edge_share,
+             decl("edge_share", ParamKind::Real, "", 0.0, 1.0, "Edge share (0: try 1, 0.7, 0.5)",
+                  "The agents' edge rule uses this share of DeviationBound (0 = try 1, 0.7, "
+                  "0.5 and keep the fewest panels)",
+                  kGroup, "EdgeShare"))
+      .param(&P::iso_fallback,
+             decl("iso_fallback", ParamKind::Boolean, "", 0, 1, "Iso grid fallback",
+                  "Where a uniform (u,v) grid holds the bound with fewer panels than the "
+                  "agents' lines (even curvature), keep the coarsest such grid",
+                  kGroup, "IsoFallback"))
+      .param(&P::local_lines,
+             decl("local_lines", ParamKind::Boolean, "", 0, 1, "Lines stop locally",
+                  "Lines stop where the surface no longer needs them: neighbouring cells merge "
+                  "wherever the merged panel holds the bound (five- or six-cornered panels "
+                  "where a line ends); off: the thesis' lines across the whole face",
+                  kGroup, "LocalLines"));
+  with_clip(b);
+  return b;
+}
+
 }  // namespace
 
 std::vector<MethodDeclaration> agent_methods() {
   std::vector<MethodDeclaration> out;
-  {
-    using P = WalkingAgentParams;
-    MethodBuilder<P> b("walking_agent", "Walking agent",
-                       "adaptive quads with a hard deviation bound (seed 000)");
-    b.param(&P::max_deviation,
-            max_deviation("No panel deviates more than this from the surface (required)"))
-        .param(&P::max_size,
-               decl("max_size", ParamKind::Real, "mm", 0.0, 1e9, "Max panel size (0: no limit)",
-                    "Longest panel edge (0 = no limit)", kGroup, "MaxSize"))
-        .param(&P::diagonal_deviation,
-               decl("diagonal_deviation", ParamKind::Real, "mm", 0.0, 1e9,
-                    "Diagonal bound (0: 2 x bound)",
-                    "Bound of the diagonal walkers (0 = 2 x DeviationBound)", kGroup,
-                    "DiagonalDeviation"))
-        .param(&P::sample_step, sample_step())
-        .param(&P::start, start())
-        .param(&P::max_refinements,
-               decl("max_refinements", ParamKind::Integer, "", 0, 1000, "Max refinements",
-                    "Rounds of the hard-bound refinement", kGroup, "MaxRefinements"))
-        .param(&P::edge_share,
-               decl("edge_share", ParamKind::Real, "", 0.0, 1.0, "Edge share (0: try 1, 0.7, 0.5)",
-                    "The agents' edge rule uses this share of DeviationBound (0 = try 1, 0.7, "
-                    "0.5 and keep the fewest panels)",
-                    kGroup, "EdgeShare"))
-        .param(&P::iso_fallback,
-               decl("iso_fallback", ParamKind::Boolean, "", 0, 1, "Iso grid fallback",
-                    "Where a uniform (u,v) grid holds the bound with fewer panels than the "
-                    "agents' lines (even curvature), keep the coarsest such grid",
-                    kGroup, "IsoFallback"))
-        .param(&P::local_lines,
-               decl("local_lines", ParamKind::Boolean, "", 0, 1, "Lines stop locally",
-                    "Lines stop where the surface no longer needs them: neighbouring cells merge "
-                    "wherever the merged panel holds the bound (five- or six-cornered panels "
-                    "where a line ends); off: the thesis' lines across the whole face",
-                    kGroup, "LocalLines"));
-    out.push_back(
-        with_clip(b).build([](const SurfaceFace& f, const P& p) { return walking_agent(f, p); }));
-  }
+  out.push_back(walking_agent_builder().build(
+      [](const SurfaceFace& f, const WalkingAgentParams& p) { return walking_agent(f, p); }));
   {
     using P = GradientDescentParams;
     MethodBuilder<P> b("gradient_descent", "Gradient descent",
@@ -108,3 +110,12 @@ std::vector<MethodDeclaration> agent_methods() {
 }
 
 }  // namespace tessella::declare
+
+namespace tessella {
+
+WalkingAgentParams walking_agent_params(const ParamValues& values) {
+  check_param_values(method_declaration("walking_agent"), values);
+  return declare::walking_agent_builder().filler()(values);
+}
+
+}  // namespace tessella

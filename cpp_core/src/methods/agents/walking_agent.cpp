@@ -530,8 +530,9 @@ bool is_valid_agent_start(const std::string& start) {
   }
 }
 
-PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& params,
-                        WalkingAgentReport* report) {
+namespace {
+
+void check_walking_agent(const SurfaceFace& face, const WalkingAgentParams& params) {
   check_common(face, params.max_deviation, params.sample_step);
   if (params.max_size != 0.0) require_in_range("max_size (mm)", params.max_size, 1e-3, 1e9);
   if (params.diagonal_deviation != 0.0) {
@@ -542,23 +543,129 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
   if (params.edge_share != 0.0) require_in_range("edge_share", params.edge_share, 0.1, 1.0);
   check_clip(params.clip);
   agents::parse_start(params.start);
+}
+
+// What the agents' runs share on one face: the gauge of the bound and the
+// test a merged panel must pass.
+struct AgentSetup {
+  AgentSetup(const SurfaceFace& face, const WalkingAgentParams& params)
+      : face(face),
+        params(params),
+        max_size(params.max_size > 0 ? params.max_size : 1e300),
+        gauge{face, kBoundMargin * params.max_deviation},
+        // A merged panel (lines stopped early) must hold the bound as it is: no fold.
+        holds([this](const std::vector<Vec3>& x, const std::vector<Vec2>& q, double longest) {
+          return longest <= max_size && polygon_estimate(gauge, x, q) <= gauge.limit;
+        }) {}
+  AgentSetup(const AgentSetup&) = delete;  // `holds` refers to this one
+  const SurfaceFace& face;
+  const WalkingAgentParams& params;
+  const double max_size;
+  const Gauge gauge;
+  const agents::OutlineCheck holds;
+};
+
+// 3. The hard bound on whole panels of the grid of `lines`: fold or insert
+// lines until none is over; then the lines stop early where they may and
+// the folds are applied. `lines` ends as the grid's lines.
+PanelMesh hard_bound(const AgentSetup& setup, Lines& lines, WalkingAgentReport& rep) {
+  const SurfaceFace& face = setup.face;
+  const WalkingAgentParams& params = setup.params;
+  const Gauge& gauge = setup.gauge;
+  // Panels a new line does not touch come back with the same corners: their
+  // deviation is remembered (keyed by the corner (u,v)s) instead of re-sampled.
+  std::map<std::vector<double>, double> known;
+  for (int round = 0;; ++round) {
+    PanelMesh mesh = clip_grid(face, lines.u, lines.v, params.clip);
+    std::vector<std::pair<std::size_t, int>> folds;
+    int added = 0;
+    double worst_kept = 0;
+    for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+      const std::vector<Vec2> q = panel_corner_uv(mesh, p);
+      std::vector<Vec3> x;
+      for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
+      std::vector<double> key;
+      key.reserve(2 * q.size());
+      for (const Vec2& c : q) key.push_back(c.x()), key.push_back(c.y());
+      auto hit = known.find(key);
+      double e;
+      if (hit != known.end()) {
+        e = hit->second;
+      } else {
+        // The estimate (surface point at the same (u,v)) is an upper bound;
+        // it adds a tangential offset where the parameterization is uneven.
+        // Samples over the limit are measured exactly (closest surface point).
+        e = polygon_estimate(gauge, x, q);
+        known.emplace(std::move(key), e);
+      }
+      const Verdict verdict = judge_panel(gauge, x, q, e);
+      if (verdict.ok) {
+        if (verdict.fold >= 0) folds.push_back({p, verdict.fold});
+        worst_kept = std::max(worst_kept, verdict.kept);
+        continue;
+      }
+      added += split_panel(face, lines, q, params.max_deviation);
+    }
+    rep.refinement_rounds = round;
+    if (added == 0) {
+      rep.grid_cells = static_cast<double>(lines.u.size() - 1) * (lines.v.size() - 1);
+      rep.grid_panels = static_cast<double>(mesh.panels.size() + folds.size());
+      if (params.local_lines)
+        rep.merged_cells = agents::stop_lines_early(mesh, lines.u, lines.v, folds, setup.holds);
+      apply_folds(mesh, folds);
+      rep.folds = static_cast<int>(folds.size());
+      rep.max_estimate = worst_kept;
+      return mesh;
+    }
+    rep.inserted_lines += added;
+    rep.bound_lines += added;
+    if (round >= params.max_refinements) {
+      throw GeometryFailure("walking_agent: panels still over max_deviation after " +
+                            std::to_string(params.max_refinements) +
+                            " refinement rounds; raise max_refinements or max_deviation");
+    }
+  }
+}
+
+// Each pinned value made a line: the nearest inner line moved onto it, or,
+// where the nearest is a bound or was moved already, a line added.
+void pin_lines(std::vector<double>& lines, std::vector<double> pinned) {
+  std::sort(pinned.begin(), pinned.end());
+  const double lo = lines.front(), hi = lines.back(), eps = 1e-9 * (hi - lo);
+  std::vector<char> moved(lines.size(), 0);
+  for (double c : pinned) {
+    if (!(c > lo + eps && c < hi - eps)) continue;
+    const auto at = std::lower_bound(lines.begin(), lines.end(), c);
+    std::size_t i = static_cast<std::size_t>(at - lines.begin());
+    if (i > 0 && (i == lines.size() || c - lines[i - 1] < lines[i] - c)) --i;
+    if (std::abs(lines[i] - c) <= eps) {
+      moved[i] = 1;
+      continue;
+    }
+    if (i == 0 || i + 1 == lines.size() || moved[i]) {
+      const std::size_t k = static_cast<std::size_t>(at - lines.begin());
+      lines.insert(lines.begin() + k, c);
+      moved.insert(moved.begin() + k, 1);
+      continue;
+    }
+    lines[i] = c;  // between its neighbours: c lies nearer to it than to them
+    moved[i] = 1;
+  }
+}
+
+// walking_agent; `final_lines` (if given): the lines of the layout kept.
+PanelMesh run_walking_agent(const SurfaceFace& face, const WalkingAgentParams& params,
+                            WalkingAgentReport* report, Lines* final_lines) {
+  check_walking_agent(face, params);
   // Hundreds of thousands of evaluations close together: keep the span cache.
   const SurfaceFace::FastEvaluation fast(face);
 
   const double bound = params.max_deviation;
-  const double max_size = params.max_size > 0 ? params.max_size : 1e300;
   const UvTrimClassifier trim = agents::agent_trim(face);
-  const double limit = kBoundMargin * bound;
-  const Gauge gauge{face, limit};
-  // A merged panel (lines stopped early) must hold the bound as it is: no fold.
-  // A merged panel (lines stopped early) must hold the bound as it is: no fold.
-  const agents::OutlineCheck holds = [&](const std::vector<Vec3>& x, const std::vector<Vec2>& q,
-                                         double longest) {
-    return longest <= max_size && polygon_estimate(gauge, x, q) <= gauge.limit;
-  };
+  const AgentSetup setup(face, params);
 
   // One run of the agents whose edge rule uses `share` x max_deviation.
-  auto attempt = [&](double share, WalkingAgentReport& rep) -> PanelMesh {
+  auto attempt = [&](double share, WalkingAgentReport& rep, Lines& lines) -> PanelMesh {
     const double edge_bound = share * bound;
     // Default diagonal bound 2 x max_deviation: where both principal
     // curvatures are equal the diagonal's sagitta is the sum of its two edges'
@@ -568,69 +675,17 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
     // doubles the lines: measured.) Whole panels are checked by the hard bound.
     const double diagonal = params.diagonal_deviation > 0 ? params.diagonal_deviation : 2 * bound;
     // 1. The edge agents (and their twins on every sample row) place the lines.
-    Lines lines = walk_lines(face, trim, params.sample_step, params.start,
-                             [&](RowAgents& a, double s0, double s1, double step) {
-                               return agents::walk(s0, s1, step, [&](double x, double y) {
-                                 const RowAgents::Probe p = a.probe(x, y);
-                                 return p.deviation <= edge_bound && p.length <= max_size;
-                               });
-                             });
+    lines = walk_lines(face, trim, params.sample_step, params.start,
+                       [&](RowAgents& a, double s0, double s1, double step) {
+                         return agents::walk(s0, s1, step, [&](double x, double y) {
+                           const RowAgents::Probe p = a.probe(x, y);
+                           return p.deviation <= edge_bound && p.length <= setup.max_size;
+                         });
+                       });
     // 2. The diagonal walkers.
     rep.inserted_lines += diagonal_walkers(face, trim, lines, diagonal, params.clip.max_panels);
-    // 3. The hard bound on whole panels: fold or insert lines until none is over.
-    // Panels a new line does not touch come back with the same corners: their
-    // deviation is remembered (keyed by the corner (u,v)s) instead of re-sampled.
-    std::map<std::vector<double>, double> known;
-    for (int round = 0;; ++round) {
-      PanelMesh mesh = clip_grid(face, lines.u, lines.v, params.clip);
-      std::vector<std::pair<std::size_t, int>> folds;
-      int added = 0;
-      double worst_kept = 0;
-      for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
-        const std::vector<Vec2> q = panel_corner_uv(mesh, p);
-        std::vector<Vec3> x;
-        for (int v : mesh.panels[p]) x.push_back(mesh.xyz[v]);
-        std::vector<double> key;
-        key.reserve(2 * q.size());
-        for (const Vec2& c : q) key.push_back(c.x()), key.push_back(c.y());
-        auto hit = known.find(key);
-        double e;
-        if (hit != known.end()) {
-          e = hit->second;
-        } else {
-          // The estimate (surface point at the same (u,v)) is an upper bound;
-          // it adds a tangential offset where the parameterization is uneven.
-          // Samples over the limit are measured exactly (closest surface point).
-          e = polygon_estimate(gauge, x, q);
-          known.emplace(std::move(key), e);
-        }
-        const Verdict verdict = judge_panel(gauge, x, q, e);
-        if (verdict.ok) {
-          if (verdict.fold >= 0) folds.push_back({p, verdict.fold});
-          worst_kept = std::max(worst_kept, verdict.kept);
-          continue;
-        }
-        added += split_panel(face, lines, q, bound);
-      }
-      rep.refinement_rounds = round;
-      if (added == 0) {
-        rep.grid_cells = static_cast<double>(lines.u.size() - 1) * (lines.v.size() - 1);
-        rep.grid_panels = static_cast<double>(mesh.panels.size() + folds.size());
-        if (params.local_lines)
-          rep.merged_cells = agents::stop_lines_early(mesh, lines.u, lines.v, folds, holds);
-        apply_folds(mesh, folds);
-        rep.folds = static_cast<int>(folds.size());
-        rep.max_estimate = worst_kept;
-        return mesh;
-      }
-      rep.inserted_lines += added;
-      rep.bound_lines += added;
-      if (round >= params.max_refinements) {
-        throw GeometryFailure("walking_agent: panels still over max_deviation after " +
-                              std::to_string(params.max_refinements) +
-                              " refinement rounds; raise max_refinements or max_deviation");
-      }
-    }
+    // 3. The hard bound.
+    return hard_bound(setup, lines, rep);
   };
 
   // The thesis' rule bounds each edge; a doubly curved panel then bends about
@@ -645,13 +700,15 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
     shares = {1.0, 0.7, 0.5};
   PanelMesh best;
   WalkingAgentReport best_rep;
+  Lines best_lines;
   bool have = false;
   std::exception_ptr failure;
   for (double share : shares) {
     WalkingAgentReport rep;
     PanelMesh mesh;
+    Lines lines;
     try {
-      mesh = attempt(share, rep);
+      mesh = attempt(share, rep, lines);
     } catch (const LimitExceeded&) {
       // Too many panels with this share: another share may fit under the cap.
       failure = std::current_exception();
@@ -665,6 +722,7 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
     if (!have || mesh.panels.size() < best.panels.size()) {
       best = std::move(mesh);
       best_rep = rep;
+      best_lines = std::move(lines);
       have = true;
     }
     // The hard bound added nothing: a smaller share only walks a tighter rule,
@@ -677,13 +735,64 @@ PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& param
     // Panels per cell before lines stopped early (merged cells would make
     // the iso search's cell budget several times too large).
     const double share = best_rep.grid_panels / best_rep.grid_cells;
-    if (std::optional<PanelMesh> iso =
-            coarsest_iso_grid(face, trim, gauge, params.clip, params.sample_step, max_size, best,
-                              share, params.local_lines, holds, best_rep))
+    if (std::optional<PanelMesh> iso = coarsest_iso_grid(
+            face, trim, setup.gauge, params.clip, params.sample_step, setup.max_size, best, share,
+            params.local_lines, setup.holds, best_rep)) {
       best = std::move(*iso);
+      best_lines = iso_lines(face.bounds(), best_rep.iso_u_count, best_rep.iso_v_count);
+    }
   }
   if (report) *report = best_rep;
+  if (final_lines) *final_lines = std::move(best_lines);
   return best;
+}
+
+// The lines strictly inside [lo, hi] (farther than eps from both), with lo
+// and hi as the first and last.
+std::vector<double> lines_within(const std::vector<double>& lines, double lo, double hi) {
+  const double eps = 1e-9 * (hi - lo);
+  std::vector<double> out{lo};
+  for (double x : lines)
+    if (x > lo + eps && x < hi - eps) out.push_back(x);
+  out.push_back(hi);
+  return out;
+}
+
+}  // namespace
+
+PanelMesh walking_agent(const SurfaceFace& face, const WalkingAgentParams& params,
+                        WalkingAgentReport* report) {
+  return run_walking_agent(face, params, report, nullptr);
+}
+
+WalkingAgentLines walking_agent_lines(const SurfaceFace& face, const WalkingAgentParams& params,
+                                      const WalkingAgentLines& pinned) {
+  Lines lines;
+  run_walking_agent(face, params, nullptr, &lines);
+  if (!pinned.u.empty() || !pinned.v.empty()) {
+    pin_lines(lines.u, pinned.u);
+    pin_lines(lines.v, pinned.v);
+    const SurfaceFace::FastEvaluation fast(face);
+    const AgentSetup setup(face, params);
+    WalkingAgentReport rep;
+    hard_bound(setup, lines, rep);
+  }
+  return {std::move(lines.u), std::move(lines.v)};
+}
+
+PanelMesh walking_agent_on_lines(const SurfaceFace& face, const WalkingAgentParams& params,
+                                 const WalkingAgentLines& given, WalkingAgentReport* report) {
+  check_walking_agent(face, params);
+  if (given.u.size() < 2 || given.v.size() < 2)
+    throw InvalidParameter("walking_agent_on_lines: at least two lines in u and in v");
+  const SurfaceFace::FastEvaluation fast(face);
+  const UvBounds b = face.bounds();
+  Lines lines{lines_within(given.u, b.u_min, b.u_max), lines_within(given.v, b.v_min, b.v_max)};
+  const AgentSetup setup(face, params);
+  WalkingAgentReport rep;
+  PanelMesh mesh = hard_bound(setup, lines, rep);
+  if (report) *report = rep;
+  return mesh;
 }
 
 PanelMesh gradient_descent(const SurfaceFace& face, const GradientDescentParams& params) {
