@@ -130,6 +130,18 @@ class PanelizeResult:
         return getattr(self._core, "face", None)
 
     @property
+    def face_index(self):
+        """The source face (0-based) of each panel: panel_face (rods: rod_face,
+        nodes: node_face)."""
+        return self.panel_face
+
+    @property
+    def node_face(self):
+        """The source face (0-based) of each node (self.nodes order; a node on a
+        shared edge: its first face)."""
+        return self.vertex_face[self.nodes] if len(self.vertex_face) else self.vertex_face
+
+    @property
     def panel_ids(self):
         """One ID per panel (panel order), from panel_id_format (see format_ids)."""
         return format_ids(self.panel_id_format, len(self.panels), "panel", self.panel_face)

@@ -469,6 +469,17 @@ def test_faces_of_an_object_by_name(shell):
         r = tessella.panelize_faces((obj, ["Face1", "Face3"]), method="iso_grid", size=1300.0)
         assert r.face_count == 2
         assert sorted(set(r.panel_face.tolist())) == [0, 1]
+        # Each panel's and node's face, checked against the faces themselves.
+        assert np.array_equal(r.face_index, r.panel_face)
+        faces = [shell.Faces[0], shell.Faces[2]]
+        tol = 1e-6 * shell.BoundBox.DiagonalLength
+        for k in range(0, len(r.panels), 7):
+            c = r.vertices[list(r.panels[k])].mean(axis=0)
+            d = [f.distToShape(Part.Vertex(V(*c)))[0] for f in faces]
+            assert int(np.argmin(d)) == r.face_index[k]
+        assert len(r.node_face) == len(r.nodes)
+        for n, f in zip(r.nodes[::5], r.node_face[::5]):
+            assert faces[int(f)].distToShape(Part.Vertex(V(*r.vertices[n])))[0] <= tol
     finally:
         FreeCAD.closeDocument(doc.Name)
 
