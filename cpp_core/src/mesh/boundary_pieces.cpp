@@ -367,10 +367,15 @@ class PieceModeller {
   // Bend lines for a panel of 4 or 5 nodes: of the node polygon's
   // triangulations whose diagonals run inside the panel, the one with the
   // smallest largest fold (ties: the first in node order, for determinism).
+  // Under a hard bound, the one with the smallest fold among those whose
+  // pieces hold it, if the smallest fold's do not: a pentagon of nodes has
+  // no trim point to refine, and one triangulation over the bound (128 mm
+  // against 100 on the roof's corner) made walking_agent walk the whole face
+  // again at a bound 24% tighter (+18% panels).
   bool choose_bends(const Draft& draft, const std::vector<int>& nodes, std::vector<Diagonal>& out) {
     const int k = static_cast<int>(nodes.size());
     auto x = [&](int i) { return original_[draft.vertices[nodes[i % k]]]; };
-    double best = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, std::vector<Diagonal>>> candidates;
     // Fans from each node: k = 4 gives the two diagonals, k = 5 all five
     // triangulations of a pentagon.
     for (int i = 0; i < (k == 4 ? 2 : k); ++i) {
@@ -388,9 +393,24 @@ class PieceModeller {
         const Vec3 n2 = triangle_normal(x(i), x(j + 1), x(j + 2));
         fold = std::max(fold, angle_between(n1, n2));
       }
-      if (fold < best) best = fold, out = diagonals;
+      candidates.emplace_back(fold, std::move(diagonals));
     }
-    return std::isfinite(best);
+    if (candidates.empty()) return false;
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    out = candidates.front().second;
+    if (params_.hard_bound && params_.max_deviation > 0 && candidates.size() > 1) {
+      std::vector<Vec3> xyz;
+      for (int v : draft.vertices) xyz.push_back(original_[v]);
+      for (const auto& [fold, diagonals] : candidates) {
+        (void)fold;
+        if (node_triangles_deviation(draft, xyz, diagonals) <= params_.max_deviation) {
+          out = diagonals;
+          break;
+        }
+      }
+    }
+    return true;
   }
 
   // The plane of one piece: through its three nodes, or fitted to its points
