@@ -1,12 +1,16 @@
 #include <gtest/gtest.h>
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepLib.hxx>
 #include <GCE2d_MakeSegment.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <cmath>
 #include <gp_Circ.hxx>
 #include <set>
@@ -395,4 +399,36 @@ TEST(IsoGrid, AHoleInOneCellOfAStretchedParameterizationDoesNotWrapTheNeighbour)
   EXPECT_NEAR(area, 1e6 - 200.0 * 200.0, 1e-6);
   // No panel repeats a vertex (wrapping around a neighbour welds its corners in).
   for (const auto& p : m.panels) EXPECT_EQ(std::set<int>(p.begin(), p.end()).size(), p.size());
+}
+
+// A trim that runs along a grid line a hair's breadth off it (here a plate's
+// bottom edge wiggling +-2e-7 mm about y = 0, as an approximated pcurve of a
+// face cut along an iso-line does) leaves the cells beside it whole: four
+// nodes each, no trim point on their side (before, the bottom row's outlines
+// carried the edge's points, some of them nodes, and were bent pieces).
+TEST(IsoGrid, ATrimAHairsBreadthOffAGridLineLeavesTheCellsBesideItWhole) {
+  TColgp_Array1OfPnt pts(1, 5);
+  for (int k = 0; k < 5; ++k)
+    pts.SetValue(k + 1, gp_Pnt(250.0 * k, k % 2 ? (k == 1 || k == 3 ? 2e-7 : -2e-7) : 0.0, 0));
+  pts.SetValue(3, gp_Pnt(500, -2e-7, 0));
+  GeomAPI_PointsToBSpline fit(pts, 3, 3, GeomAbs_C2, 1e-12);
+  BRepBuilderAPI_MakeWire wire;
+  wire.Add(BRepBuilderAPI_MakeEdge(fit.Curve()).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(1000, 0, 0), gp_Pnt(1000, 1000, 0)).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(1000, 1000, 0), gp_Pnt(0, 1000, 0)).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(0, 1000, 0), gp_Pnt(0, 0, 0)).Edge());
+  ASSERT_TRUE(wire.IsDone());
+  BRepBuilderAPI_MakeFace mk(gp_Pln(), wire.Wire());
+  ASSERT_TRUE(mk.IsDone());
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(mk.Face()));
+  const UvBounds b = f.bounds();
+  ASSERT_LT(b.v_min, -1e-7);  // the wiggle is off the bottom line
+  const PanelMesh m = iso_grid(f, counts(10, 10));
+  ASSERT_EQ(m.panels.size(), 100u);
+  for (std::size_t p = 0; p < m.panels.size(); ++p) {
+    EXPECT_EQ(m.panels[p].size(), 4u) << p;
+    for (int v : m.panels[p]) EXPECT_TRUE(is_node(m, v)) << p;
+  }
+  // The outline still follows the trim within the deflection.
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) EXPECT_GE(m.xyz[v].y(), b.v_min - 1e-12);
 }

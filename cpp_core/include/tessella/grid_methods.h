@@ -2,6 +2,9 @@
 // boundary. Both return a PanelMesh with rods built and slivers merged.
 #pragma once
 
+#include <vector>
+
+#include "tessella/methods.h"
 #include "tessella/panel_mesh.h"
 
 namespace tessella {
@@ -37,5 +40,21 @@ struct EqualSizeGridParams {
   GridClipParams clip;
 };
 PanelMesh equal_size_grid(const SurfaceFace& face, const EqualSizeGridParams& params);
+
+// The grids' lines (increasing, from the face's bounds' minimum to their
+// maximum), before the trim cut, and a grid of given lines cut by the trims
+// as both grids cut theirs: a face set continues a grid's lines across the
+// smooth edges between its faces on different surfaces (issue 14).
+struct GridLines {
+  std::vector<double> u, v;
+};
+GridLines iso_grid_lines(const SurfaceFace& face, const IsoGridParams& params);
+GridLines equal_size_grid_lines(const SurfaceFace& face, const EqualSizeGridParams& params);
+PanelMesh grid_on_lines(const SurfaceFace& face, const GridLines& lines,
+                        const GridClipParams& clip);
+
+// Parameters from values as the method declarations read them (checked).
+IsoGridParams iso_grid_params(const ParamValues& values);
+EqualSizeGridParams equal_size_grid_params(const ParamValues& values);
 
 }  // namespace tessella

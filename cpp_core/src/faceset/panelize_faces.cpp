@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <unordered_map>
 
 #include "common/parallel_chunks.h"
+#include "faceset/aligned_grid_lines.h"
 #include "faceset/face_set_impl.h"
 #include "faceset/shared_edge_nodes.h"
 #include "faceset/smooth_groups.h"
@@ -19,6 +21,7 @@
 #include "pipeline/stages.h"
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
+#include "tessella/grid_methods.h"
 #include "tessella/progress.h"
 #include "tessella/walking_agent.h"
 
@@ -331,6 +334,46 @@ std::vector<std::shared_ptr<const WalkingAgentLines>> lines_across_faces(const F
   return out;
 }
 
+// The grids' lines continued across the smooth iso edges between the faces
+// (aligned_grid_lines.h); per face, the lines it uses (null: its own). Not
+// for iso_grid by counts (the counts asked are each face's).
+std::vector<std::shared_ptr<const GridLines>> grid_lines_across(const FaceSet& set,
+                                                                const std::string& method,
+                                                                const ParamValues& values,
+                                                                int threads) {
+  const std::size_t n = set.size();
+  std::vector<std::shared_ptr<const GridLines>> out(n);
+  if (n < 2) return out;
+  std::function<GridLines(const SurfaceFace&)> lines_of;
+  if (method == "iso_grid") {
+    const IsoGridParams p = iso_grid_params(values);
+    if (p.u_count != 0 || p.v_count != 0) return out;
+    lines_of = [p](const SurfaceFace& f) { return iso_grid_lines(f, p); };
+  } else if (method == "equal_size_grid") {
+    const EqualSizeGridParams p = equal_size_grid_params(values);
+    lines_of = [p](const SurfaceFace& f) { return equal_size_grid_lines(f, p); };
+  } else {
+    return out;
+  }
+  report_stage(0.0, "continuing the grid lines across smooth edges");
+  std::vector<GridLines> own(n);
+  std::vector<char> failed(n, 0);
+  for_each_face(set, threads, [&](std::size_t f) {
+    const SurfaceFace::FastEvaluation fast(*set.face(f));
+    try {
+      own[f] = lines_of(*set.face(f));
+    } catch (const std::exception&) {  // the face's own run reports it
+      failed[f] = 1;
+    }
+  });
+  if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return out;
+  std::vector<char> aligned;
+  std::vector<GridLines> lines = align_grid_lines(set.impl(), std::move(own), &aligned);
+  for (std::size_t f = 0; f < n; ++f)
+    if (aligned[f]) out[f] = std::make_shared<const GridLines>(std::move(lines[f]));
+  return out;
+}
+
 // boundary_driven on faces of different surfaces that meet tangentially
 // (smooth_groups.h, bd_across_surfaces.h): each group's curves traced once
 // across its faces. Faces traced on one surface's union, and runs with
@@ -453,6 +496,8 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     smooth_groups = curves_across_surfaces(set, values, across, workers);
   }
   std::vector<char> group_traced(n, 0);
+  const std::vector<std::shared_ptr<const GridLines>> grid_lines =
+      grid_lines_across(set, method, values, workers);
   std::vector<std::shared_ptr<const WalkingAgentLines>> walked;
   if (method == "walking_agent") {
     report_stage(0.0, "walking the lines across faces of one surface");
@@ -506,6 +551,14 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
         } catch (const GeometryFailure&) {
           walked_alone[f] = 1;
         }
+      }
+      if (!done && f < grid_lines.size() && grid_lines[f]) {
+        const GridClipParams clip = method == "iso_grid"
+                                        ? iso_grid_params(face_values[f]).clip
+                                        : equal_size_grid_params(face_values[f]).clip;
+        modelled[f] = run_method_with(face, decl, face_values[f],
+                                      [&] { return grid_on_lines(face, *grid_lines[f], clip); });
+        done = true;
       }
       if (!done) modelled[f] = run_method(face, decl, face_values[f]);
       promote_hard_bound_trim_nodes(face, decl, face_values[f], modelled[f]);

@@ -18,8 +18,8 @@ Vec3 edge_point(const SharedEdge& e, const SurfaceFace& face, double t) {
   return face.point(q.X(), q.Y());
 }
 
-// Whether the normals of both faces agree (up to orientation: faces of an
-// unsewn compound may face either way) within kSmoothAngleDeg at 9 points.
+}  // namespace
+
 bool meets_tangentially(const SharedEdge& e, const SurfaceFace& a, const SurfaceFace& b) {
   const double cos_limit = std::cos(kSmoothAngleDeg * kPi / 180.0);
   int checked = 0;
@@ -33,8 +33,6 @@ bool meets_tangentially(const SharedEdge& e, const SurfaceFace& a, const Surface
   }
   return checked > 0;
 }
-
-}  // namespace
 
 SmoothLayout smooth_layout(const FaceSet::Impl& set, const std::vector<char>& eligible,
                            const std::vector<double>& tolerance) {

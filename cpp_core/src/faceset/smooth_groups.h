@@ -18,6 +18,11 @@ namespace tessella {
 // (sampled): the faces meet tangentially there.
 constexpr double kSmoothAngleDeg = 10.0;
 
+// Whether the normals of the edge's two faces agree (up to orientation:
+// faces of an unsewn compound may face either way) within kSmoothAngleDeg at
+// 9 points along it.
+bool meets_tangentially(const SharedEdge& e, const SurfaceFace& a, const SurfaceFace& b);
+
 struct SmoothEdge {
   std::array<int, 2> faces{};
   EdgeTrack polyline;  // the edge in 3D, within `tolerance` / 4 of its curve

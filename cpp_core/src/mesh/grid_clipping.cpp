@@ -15,6 +15,7 @@
 #include "mesh/grid_clipping.h"
 
 #include <algorithm>
+#include <array>
 #include <clipper.hpp>
 #include <cmath>
 #include <functional>
@@ -145,6 +146,70 @@ Path drop_axis_run_points(const Path& path,
   return cur;
 }
 
+// A trim that runs along a grid line a hair's breadth off it (a face cut
+// from its surface along an iso-line, its pcurve approximated: up to 2e-6
+// off on the British Museum roof in B-spline sub-surfaces) would cut every
+// cell beside it just inside its side: the cells' outlines then carry the
+// trim's points, some of which land on the line and become nodes (rows broke
+// there in a face set, at 63% of the cut's nodes). A point of a closed trim
+// polyline that lies, with both its neighbours, within `deflection` (mm, in
+// 3D by the surface's first derivative) of one grid line is put on it: the
+// polyline stays within twice the deflection of the trim, and the run is an
+// axis-parallel run (drop_axis_run_points). A trim corner where such a run
+// ends is put on the line too (the caller marks it a corner again).
+void snap_runs_onto_lines(Path& path, std::vector<Vec2>& uv, const std::vector<char>& corner,
+                          const std::vector<cInt>& X, const std::vector<cInt>& Y,
+                          const std::vector<double>& u_lines, const std::vector<double>& v_lines,
+                          const IntegerFrame& frame, const SurfaceFace& face, double deflection) {
+  const std::size_t n = path.size();
+  if (n < 3) return;
+  // Per point and direction (0: an x line, 1: a y line): the line it lies
+  // near, -1 if none.
+  std::vector<std::array<long, 2>> near(n, {-1, -1});
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 2; ++k) {
+      const std::vector<cInt>& L = k == 0 ? X : Y;
+      const cInt c = k == 0 ? path[i].X : path[i].Y;
+      const auto it = std::lower_bound(L.begin(), L.end(), c);
+      long best = -1;
+      cInt off = 0;
+      for (auto j : {it, it == L.begin() ? it : it - 1}) {
+        if (j == L.end()) continue;
+        const cInt d = c > *j ? c - *j : *j - c;
+        if (best < 0 || d < off) best = static_cast<long>(j - L.begin()), off = d;
+      }
+      if (best < 0) continue;
+      if (off == 0) {
+        near[i][static_cast<std::size_t>(k)] = best;
+        continue;
+      }
+      // Far in (u,v) (over 1e-6 of the span): no derivative needed.
+      if (static_cast<double>(off) > 1e-6 * kIntRange) continue;
+      const double duv = static_cast<double>(off) / (k == 0 ? frame.su : frame.sv);
+      const SurfacePoint d = face.derivatives(uv[i].x(), uv[i].y());
+      if (duv * (k == 0 ? d.du : d.dv).norm() <= deflection)
+        near[i][static_cast<std::size_t>(k)] = best;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = (i + n - 1) % n, b = (i + 1) % n;
+    for (int k = 0; k < 2; ++k) {
+      const long line = near[i][static_cast<std::size_t>(k)];
+      const bool before = near[a][static_cast<std::size_t>(k)] == line;
+      const bool after = near[b][static_cast<std::size_t>(k)] == line;
+      // A corner ends a run along the line on one side at least.
+      if (line < 0 || !(corner[i] ? before || after : before && after)) continue;
+      if (k == 0) {
+        path[i].X = X[static_cast<std::size_t>(line)];
+        uv[i].x() = u_lines[static_cast<std::size_t>(line)];
+      } else {
+        path[i].Y = Y[static_cast<std::size_t>(line)];
+        uv[i].y() = v_lines[static_cast<std::size_t>(line)];
+      }
+    }
+  }
+}
+
 // Cells whose closed rectangle meets a trim segment's bounding box.
 std::vector<char> cells_near_trim(const Paths& domain, const std::vector<cInt>& X,
                                   const std::vector<cInt>& Y) {
@@ -257,14 +322,27 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   std::unordered_map<IntPoint, char, PointHash, PointEq> trim_corner;
   for (const TrimLoop& loop : loops) {
     Path path;
+    std::vector<Vec2> path_uv;
+    std::vector<char> path_corner;
     for (std::size_t k = 0; k < loop.uv.size(); ++k) {
       const IntPoint p = frame.to_int(loop.uv[k]);
       if (loop.corner[k]) trim_corner[p] = 1;
       if (!path.empty() && p.X == path.back().X && p.Y == path.back().Y) continue;
       path.push_back(p);
-      exact_uv.emplace(p, loop.uv[k]);
+      path_uv.push_back(loop.uv[k]);
+      path_corner.push_back(trim_corner.count(p) ? 1 : 0);
     }
-    if (path.size() >= 3) domain.push_back(drop_axis_run_points(path, trim_corner));
+    snap_runs_onto_lines(path, path_uv, path_corner, X, Y, u_lines, v_lines, frame, face,
+                         deflection);
+    for (std::size_t k = 0; k < path.size(); ++k)
+      if (path_corner[k]) trim_corner[path[k]] = 1;
+    Path kept;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      if (!kept.empty() && path[k].X == kept.back().X && path[k].Y == kept.back().Y) continue;
+      kept.push_back(path[k]);
+      exact_uv.emplace(path[k], path_uv[k]);
+    }
+    if (kept.size() >= 3) domain.push_back(drop_axis_run_points(kept, trim_corner));
   }
 
   const std::size_t nu = X.size() - 1, nv = Y.size() - 1;

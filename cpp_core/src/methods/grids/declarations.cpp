@@ -4,44 +4,64 @@
 
 namespace tessella::declare {
 
+namespace {
+
+ParamDeclaration replacing_size(ParamDeclaration d) {
+  d.replaces = {"size"};
+  return d;
+}
+
+MethodBuilder<IsoGridParams> iso_grid_builder() {
+  MethodBuilder<IsoGridParams> b("iso_grid", "Iso-parameter grid",
+                                 "uniform in (u,v), cut by the trims");
+  b.param(&IsoGridParams::size,
+          decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size",
+               "Target panel edge length (iso_grid: counts from the mean iso-curve lengths, "
+               "when UCount and VCount are 0)",
+               "Panelization", "Size"))
+      .param(&IsoGridParams::u_count,
+             replacing_size(decl("u_count", ParamKind::Integer, "", 0, 1e6, "U count (0: use size)",
+                                 "Panels across u, with VCount, instead of Size (0 = use Size; "
+                                 "give either Size or the counts)",
+                                 "Panelization", "UCount")))
+      .param(&IsoGridParams::v_count,
+             replacing_size(decl("v_count", ParamKind::Integer, "", 0, 1e6, "V count (0: use size)",
+                                 "Panels across v, with UCount, instead of Size (0 = use Size; "
+                                 "give either Size or the counts)",
+                                 "Panelization", "VCount")));
+  with_clip(b);
+  return b;
+}
+
+MethodBuilder<EqualSizeGridParams> equal_size_grid_builder() {
+  MethodBuilder<EqualSizeGridParams> b("equal_size_grid", "Equal-size grid",
+                                       "grid lines spaced by arc length, cut by the trims");
+  b.param(
+      &EqualSizeGridParams::size,
+      decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size",
+           "Target panel edge length: grid lines spaced by arc length", "Panelization", "Size"));
+  with_clip(b);
+  return b;
+}
+
+}  // namespace
+
 std::vector<MethodDeclaration> grid_methods() {
-  std::vector<MethodDeclaration> out;
-  auto replacing_size = [](ParamDeclaration d) {
-    d.replaces = {"size"};
-    return d;
-  };
-  {
-    MethodBuilder<IsoGridParams> b("iso_grid", "Iso-parameter grid",
-                                   "uniform in (u,v), cut by the trims");
-    b.param(&IsoGridParams::size,
-            decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size",
-                 "Target panel edge length (iso_grid: counts from the mean iso-curve lengths, "
-                 "when UCount and VCount are 0)",
-                 "Panelization", "Size"))
-        .param(
-            &IsoGridParams::u_count,
-            replacing_size(decl("u_count", ParamKind::Integer, "", 0, 1e6, "U count (0: use size)",
-                                "Panels across u, with VCount, instead of Size (0 = use Size; give "
-                                "either Size or the counts)",
-                                "Panelization", "UCount")))
-        .param(
-            &IsoGridParams::v_count,
-            replacing_size(decl("v_count", ParamKind::Integer, "", 0, 1e6, "V count (0: use size)",
-                                "Panels across v, with UCount, instead of Size (0 = use Size; give "
-                                "either Size or the counts)",
-                                "Panelization", "VCount")));
-    out.push_back(with_clip(b).build(&iso_grid));
-  }
-  {
-    MethodBuilder<EqualSizeGridParams> b("equal_size_grid", "Equal-size grid",
-                                         "grid lines spaced by arc length, cut by the trims");
-    b.param(
-        &EqualSizeGridParams::size,
-        decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size",
-             "Target panel edge length: grid lines spaced by arc length", "Panelization", "Size"));
-    out.push_back(with_clip(b).build(&equal_size_grid));
-  }
-  return out;
+  return {iso_grid_builder().build(&iso_grid), equal_size_grid_builder().build(&equal_size_grid)};
 }
 
 }  // namespace tessella::declare
+
+namespace tessella {
+
+IsoGridParams iso_grid_params(const ParamValues& values) {
+  check_param_values(method_declaration("iso_grid"), values);
+  return declare::iso_grid_builder().filler()(values);
+}
+
+EqualSizeGridParams equal_size_grid_params(const ParamValues& values) {
+  check_param_values(method_declaration("equal_size_grid"), values);
+  return declare::equal_size_grid_builder().filler()(values);
+}
+
+}  // namespace tessella

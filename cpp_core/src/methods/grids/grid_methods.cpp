@@ -114,7 +114,7 @@ void check_size(double size) {
 
 }  // namespace
 
-PanelMesh iso_grid(const SurfaceFace& face, const IsoGridParams& params) {
+GridLines iso_grid_lines(const SurfaceFace& face, const IsoGridParams& params) {
   const bool by_size = params.size != 0.0;
   const bool by_count = params.u_count != 0 || params.v_count != 0;
   if (by_size && by_count) {
@@ -136,11 +136,14 @@ PanelMesh iso_grid(const SurfaceFace& face, const IsoGridParams& params) {
   }
   check_clip_params(params.clip, nu, nv);
   const UvBounds b = face.bounds();
-  return clip_grid(face, uniform_lines(b.u_min, b.u_max, nu), uniform_lines(b.v_min, b.v_max, nv),
-                   params.clip);
+  return {uniform_lines(b.u_min, b.u_max, nu), uniform_lines(b.v_min, b.v_max, nv)};
 }
 
-PanelMesh equal_size_grid(const SurfaceFace& face, const EqualSizeGridParams& params) {
+PanelMesh iso_grid(const SurfaceFace& face, const IsoGridParams& params) {
+  return grid_on_lines(face, iso_grid_lines(face, params), params.clip);
+}
+
+GridLines equal_size_grid_lines(const SurfaceFace& face, const EqualSizeGridParams& params) {
   if (params.size == 0.0) throw InvalidParameter("size (mm) is required for equal_size_grid");
   check_size(params.size);
   const std::vector<double> cu = cumulative_arc_length(face, true);
@@ -149,8 +152,20 @@ PanelMesh equal_size_grid(const SurfaceFace& face, const EqualSizeGridParams& pa
   const int nv = count_for_size(cv.back(), params.size, "v");
   check_clip_params(params.clip, nu, nv);
   const UvBounds b = face.bounds();
-  return clip_grid(face, arc_length_lines(b.u_min, b.u_max, cu, nu),
-                   arc_length_lines(b.v_min, b.v_max, cv, nv), params.clip);
+  return {arc_length_lines(b.u_min, b.u_max, cu, nu), arc_length_lines(b.v_min, b.v_max, cv, nv)};
+}
+
+PanelMesh equal_size_grid(const SurfaceFace& face, const EqualSizeGridParams& params) {
+  return grid_on_lines(face, equal_size_grid_lines(face, params), params.clip);
+}
+
+PanelMesh grid_on_lines(const SurfaceFace& face, const GridLines& lines,
+                        const GridClipParams& clip) {
+  if (lines.u.size() < 2 || lines.v.size() < 2)
+    throw InvalidParameter("grid_on_lines: at least two lines in u and in v");
+  check_clip_params(clip, static_cast<int>(lines.u.size()) - 1,
+                    static_cast<int>(lines.v.size()) - 1);
+  return clip_grid(face, lines.u, lines.v, clip);
 }
 
 }  // namespace tessella
