@@ -115,6 +115,16 @@ def carried_rows(shape, r, angle=20.0):
     return carried / max(1, len(on_edge)), len(on_edge)
 
 
+def against_one(one, r, shape, label):
+    """The set's panel count and rod statistics against the one face's, and
+    the rows carried across its shared edges."""
+    a, b = stats(one), stats(r)
+    share, count = carried_rows(shape, r)
+    return (f"one {a[0]:5d} {label} {b[0]:5d} {100 * (b[0] - a[0]) / a[0]:+5.1f}%  "
+            f"mean {100 * (b[2] / a[2] - 1):+5.1f}%  var {100 * (b[3] / a[3] - 1):+6.1f}%  "
+            f"rows {100 * share:3.0f}% of {count}")
+
+
 def filleted_box():
     box = Part.makeBox(6000, 4500, 3000)
     return Part.Shell(box.makeFillet(600, box.Edges).Faces)
@@ -160,11 +170,7 @@ def main(argv=None):
     for bound in (15.0, 60.0, 100.0):
         one = tessella.panelize(roof, method="walking_agent", max_deviation=bound)
         r = tessella.panelize_faces(pieces, method="walking_agent", max_deviation=bound)
-        a, b = stats(one), stats(r)
-        share, count = carried_rows(pieces, r)
-        print(f"  max_deviation {bound:5.0f} mm: one {a[0]:5d} split {b[0]:5d} "
-              f"{100 * (b[0] - a[0]) / a[0]:+5.1f}%  mean {100 * (b[2] / a[2] - 1):+5.1f}%  "
-              f"var {100 * (b[3] / a[3] - 1):+6.1f}%  rows {100 * share:3.0f}% of {count}  "
+        print(f"  max_deviation {bound:5.0f} mm: {against_one(one, r, pieces, 'split')}  "
               f"on the union {r.summary['faces_traced_across']}")
 
     if not os.path.exists(SUB):
@@ -177,11 +183,7 @@ def main(argv=None):
                                ("iso_grid", {"size": size})]:
             one = tessella.panelize(roof, method=method, **params)
             r = tessella.panelize_faces(sub, method=method, **params)
-            a, b = stats(one), stats(r)
-            share, count = carried_rows(sub, r)
-            print(f"{method:16s} {size:5.0f} one {a[0]:5d} sub {b[0]:5d} "
-                  f"{100 * (b[0] - a[0]) / a[0]:+5.1f}%  mean {100 * (b[2] / a[2] - 1):+5.1f}%  "
-                  f"var {100 * (b[3] / a[3] - 1):+6.1f}%  rows {100 * share:3.0f}% of {count}  "
+            print(f"{method:16s} {size:5.0f} {against_one(one, r, sub, 'sub')}  "
                   f"traced across {r.summary['faces_traced_across_surfaces']}")
 
     # The per-face overhead on sub-surfaces (ShapeFix's approximated pcurves).

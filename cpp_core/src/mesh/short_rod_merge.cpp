@@ -12,10 +12,12 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <utility>
 
+#include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/panel_metrics.h"
 #include "tessella/surface_face.h"
@@ -527,10 +529,19 @@ class Merger {
       sub.corner_uv.push_back(uv[p]);
     }
     if (sub.panels.empty()) return 0.0;
-    MetricsParams mp;
-    mp.samples = params_.samples;
-    const PanelMetrics pm = measure_panels(face_, sub, mp);
-    return *std::max_element(pm.deviation.begin(), pm.deviation.end());
+    // The deviation as measure_panels measures it (its model, its samples,
+    // in a span-cached scope as its calling thread opens one), without the
+    // other metrics, the rods and a progress stage for each candidate.
+    std::optional<SurfaceFace::FastEvaluation> fast;
+    if (!SurfaceFace::FastEvaluation::active(face_)) fast.emplace(face_, false);
+    double worst = 0;
+    for (std::size_t p = 0; p < sub.panels.size(); ++p) {
+      const double d = measure_panel_deviation(face_, xyz[p], uv[p], panel_model_triangles(sub, p),
+                                               params_.samples)
+                           .value;
+      if (p == 0 || d > worst) worst = d;
+    }
+    return worst;
   }
 
   bool valid() const { return valid_impl(); }
