@@ -111,6 +111,7 @@ bool has_pole(const SurfaceFace& face) {
 }  // namespace
 
 std::vector<GridLines> align_grid_lines(const FaceSet::Impl& set, std::vector<GridLines> own,
+                                        const std::vector<int>& surface,
                                         std::vector<char>* aligned) {
   const std::size_t n = set.faces.size();
   if (aligned) aligned->assign(n, 0);
@@ -127,6 +128,9 @@ std::vector<GridLines> align_grid_lines(const FaceSet::Impl& set, std::vector<Gr
   for (std::size_t e = 0; e < set.shared.size(); ++e) {
     const SharedEdge& s = set.shared[e];
     if (s.faces[0] == s.faces[1]) continue;
+    const int ga = static_cast<std::size_t>(s.faces[0]) < surface.size() ? surface[s.faces[0]] : -1;
+    const int gb = static_cast<std::size_t>(s.faces[1]) < surface.size() ? surface[s.faces[1]] : -1;
+    if (ga >= 0 && ga == gb) continue;
     const SurfaceFace& a = *set.faces[static_cast<std::size_t>(s.faces[0])];
     const SurfaceFace& b = *set.faces[static_cast<std::size_t>(s.faces[1])];
     const int ka = varying_coordinate(s, 0, a.bounds()), kb = varying_coordinate(s, 1, b.bounds());

@@ -368,7 +368,11 @@ std::vector<std::shared_ptr<const GridLines>> grid_lines_across(const FaceSet& s
   });
   if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return out;
   std::vector<char> aligned;
-  std::vector<GridLines> lines = align_grid_lines(set.impl(), std::move(own), &aligned);
+  std::vector<int> surface(n, -1);
+  const std::vector<SurfaceGroup>& groups = surface_groups(set);
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (int f : groups[g].members) surface[static_cast<std::size_t>(f)] = static_cast<int>(g);
+  std::vector<GridLines> lines = align_grid_lines(set.impl(), std::move(own), surface, &aligned);
   for (std::size_t f = 0; f < n; ++f)
     if (aligned[f]) out[f] = std::make_shared<const GridLines>(std::move(lines[f]));
   return out;
