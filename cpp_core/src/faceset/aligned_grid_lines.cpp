@@ -62,20 +62,25 @@ double parameter_at(const Handle(Geom2d_Curve) & c, int k, double first, double 
 }
 
 // `from`'s lines carried over into `to`'s lines `mine` (bounds lo, hi):
-// the carried values within the bounds, and `mine` beyond their span (each
+// the carried values within the bounds (none closer to a bound than a
+// quarter of `mine`'s spacing but on it), and `mine` beyond their span (each
 // at least half its spacing away from it), the bounds first and last.
 std::vector<double> merge_lines(std::vector<double> carried, const std::vector<double>& mine,
                                 double lo, double hi) {
   const double eps = 1e-9 * (hi - lo);
+  const double spacing = (hi - lo) / std::max<double>(1.0, double(mine.size()) - 1.0);
   std::vector<double> kept;
   for (double x : carried) {
     if (x < lo - eps || x > hi + eps) continue;
+    // A line a sliver's width inside a bound (the edge ending a little
+    // short of the face's corner) would make a column of slivers.
+    const bool at_bound = x - lo <= eps || hi - x <= eps;
+    if (!at_bound && (x - lo < 0.25 * spacing || hi - x < 0.25 * spacing)) continue;
     kept.push_back(std::clamp(x, lo, hi));
   }
   if (kept.empty()) return mine;
   std::sort(kept.begin(), kept.end());
   const double a = kept.front(), b = kept.back();
-  const double spacing = (hi - lo) / std::max<double>(1.0, double(mine.size()) - 1.0);
   for (double x : mine)
     if (x < a - 0.5 * spacing || x > b + 0.5 * spacing) kept.push_back(x);
   kept.push_back(lo);
