@@ -513,48 +513,41 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
       const SurfaceFace& face = *set.face(f);
       const SurfaceFace::FastEvaluation fast(face);
       face.reset_global_projections();
+      // The face's share of a layout made across faces (curves traced or
+      // lines walked on a union or a smooth group); false where it leaves
+      // the face without a valid mesh (a sliver between two curves, a bound
+      // its refinement rounds cannot meet): the face then runs on its own.
+      auto from_shared = [&](const std::function<PanelMesh()>& make) {
+        try {
+          modelled[f] = run_method_with(face, decl, face_values[f], make);
+          return true;
+        } catch (const GeometryFailure&) {
+          return false;
+        }
+      };
       bool done = false;
       if (f < across.size() && across[f]) {
-        // A face the union's curves leave without a valid mesh (a sliver of
-        // it between two curves) falls back to its own curves.
-        try {
-          const BoundaryDrivenParams bp = boundary_driven_params(face_values[f]);
-          modelled[f] = run_method_with(face, decl, face_values[f], [&] {
-            return boundary_driven_on_curves(face, bp, *across[f]);
-          });
-          done = true;
-        } catch (const GeometryFailure&) {
-          traced_alone[f] = 1;
-        }
+        done = from_shared([&] {
+          return boundary_driven_on_curves(face, boundary_driven_params(face_values[f]),
+                                           *across[f]);
+        });
+        if (!done) traced_alone[f] = 1;
       }
       if (!done && f < smooth_groups.size() && smooth_groups[f].group) {
-        // Likewise a face the group's curves leave without a valid mesh.
         const GroupCurves& g = *smooth_groups[f].group;
         const std::size_t m = smooth_groups[f].member;
-        try {
-          const BoundaryDrivenParams bp = boundary_driven_params(face_values[f]);
-          modelled[f] = run_method_with(face, decl, face_values[f], [&] {
-            return boundary_driven_on_group_curves(face, bp, g.members[m], g.traced.curves[m],
-                                                   g.traced.spacing);
-          });
-          done = true;
-          group_traced[f] = 1;
-        } catch (const GeometryFailure&) {
-        }
+        done = from_shared([&] {
+          return boundary_driven_on_group_curves(face, boundary_driven_params(face_values[f]),
+                                                 g.members[m], g.traced.curves[m],
+                                                 g.traced.spacing);
+        });
+        if (done) group_traced[f] = 1;
       }
-      if (f < walked.size() && walked[f]) {
-        // A face the union's lines leave over the bound after its refinement
-        // rounds walks its own.
-        try {
-          const WalkingAgentParams wp = walking_agent_params(face_values[f]);
-          modelled[f] = run_method_with(face, decl, face_values[f], [&] {
-            return walking_agent_on_lines(face, wp, *walked[f]);
-          });
-          done = true;
-          walked_alone[f] = 0;
-        } catch (const GeometryFailure&) {
-          walked_alone[f] = 1;
-        }
+      if (!done && f < walked.size() && walked[f]) {
+        done = from_shared([&] {
+          return walking_agent_on_lines(face, walking_agent_params(face_values[f]), *walked[f]);
+        });
+        walked_alone[f] = done ? 0 : 1;
       }
       if (!done && f < grid_lines.size() && grid_lines[f]) {
         const GridClipParams clip = method == "iso_grid"
