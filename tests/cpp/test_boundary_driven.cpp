@@ -428,6 +428,34 @@ TEST(BdRefine, QuadrangulationSplitsAnNGonIntoNQuadsKeepingItsArea) {
   EXPECT_NEAR(after, before, 1e-6);
 }
 
+// A strip 400 wide between a shared edge (x = 0) and a curve, its quads 600
+// long along the edge (shorter than short_shared_edge too), beside quads of
+// 1000 x 600: the strip is split along its length only (no node inside it,
+// x in (0, 400)), its neighbours in four. Until a side along the edge was
+// kept from going bare, the strip's quads had three bare sides and were cut
+// in four as well (nodes at x = 200: rods of half the strip's width).
+TEST(BdRefine, AStripAlongASharedEdgeIsSplitAlongItsLengthOnly) {
+  const SurfaceFace f = square_plate(2000);
+  BdNetwork net;
+  for (double y : {0.0, 600.0, 1200.0})
+    for (double x : {0.0, 400.0, 1400.0}) {
+      BdNode n;
+      n.uv = Vec2(x, y), n.xyz = f.point(x, y);
+      n.shared = x == 0.0;
+      net.nodes.push_back(n);
+    }
+  auto at = [](int col, int row) { return 3 * row + col; };
+  for (int row = 0; row < 2; ++row)
+    for (int col = 0; col < 2; ++col)
+      net.panels.push_back({at(col, row), at(col + 1, row), at(col + 1, row + 1), at(col, row + 1)});
+  quadrangulate(f, {}, net, 750.0);
+  EXPECT_EQ(net.panels.size(), 12u);  // 2 x 2 in the strip, 2 x 4 beside it
+  for (const BdNode& n : net.nodes) EXPECT_FALSE(n.uv.x() > 1 && n.uv.x() < 399) << n.uv.x();
+  double area = 0;
+  for (const auto& p : net.panels) area += polygon_area(net.nodes, p);
+  EXPECT_NEAR(area, 1400.0 * 1200.0, 1e-6);
+}
+
 TEST(BdRefine, SmoothingRestoresARegularGridAndKeepsTrimNodesOnTheTrim) {
   const SurfaceFace f = square_plate(300);
   const BdSources s = sources_of(f);

@@ -465,7 +465,7 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
       for (std::size_t i = 0; i < p.size(); ++i) {
         const BdNode& na = net.nodes[p[i]];
         const BdNode& nb = net.nodes[p[(i + 1) % p.size()]];
-        if ((na.shared || nb.shared) && (na.xyz - nb.xyz).norm() < short_shared_edge)
+        if (na.shared != nb.shared && (na.xyz - nb.xyz).norm() < short_shared_edge)
           bare.insert(key_of(p[i], p[(i + 1) % p.size()]));
       }
     // A panel that can keep its bare sides neither as a strip nor whole gives

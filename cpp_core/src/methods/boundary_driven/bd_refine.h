@@ -33,10 +33,13 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
 // projected onto the surface.
 // Face sets (`short_shared_edge` > 0): a network face cut by an edge shared
 // with another face is a strip between a curve and that edge; its sides
-// shorter than `short_shared_edge` with an end on the shared edge get no
-// midpoint, and such a quad is split across its length only (2 quads, not 4),
-// where its neighbours allow it (a panel keeps sides without a midpoint only as
-// a quad's opposite pair).
+// shorter than `short_shared_edge` with one end on the shared edge (across
+// the strip) get no midpoint, and such a quad is split across its length only
+// (2 quads, not 4), where its neighbours allow it (a panel keeps sides without
+// a midpoint only as a quad's opposite pair). A side along the edge (both
+// ends on it) keeps its midpoint however short: without, a strip's quad had
+// three bare sides, could not be split along, and gave every side of the
+// strip a midpoint (a row of quarter panels along the edge).
 void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& boundary, BdNetwork& net,
                    double short_shared_edge = 0.0);
 
