@@ -447,7 +447,8 @@ TEST(BdRefine, AStripAlongASharedEdgeIsSplitAlongItsLengthOnly) {
   auto at = [](int col, int row) { return 3 * row + col; };
   for (int row = 0; row < 2; ++row)
     for (int col = 0; col < 2; ++col)
-      net.panels.push_back({at(col, row), at(col + 1, row), at(col + 1, row + 1), at(col, row + 1)});
+      net.panels.push_back(
+          {at(col, row), at(col + 1, row), at(col + 1, row + 1), at(col, row + 1)});
   quadrangulate(f, {}, net, 750.0);
   EXPECT_EQ(net.panels.size(), 12u);  // 2 x 2 in the strip, 2 x 4 beside it
   for (const BdNode& n : net.nodes) EXPECT_FALSE(n.uv.x() > 1 && n.uv.x() < 399) << n.uv.x();
