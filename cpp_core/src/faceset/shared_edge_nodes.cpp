@@ -3,10 +3,12 @@
 #include <BndLib_Add2dCurve.hxx>
 #include <Bnd_Box.hxx>
 #include <Bnd_Box2d.hxx>
-#include <Geom2dAPI_ProjectPointOnCurve.hxx>
+#include <Geom2d_Curve.hxx>
 #include <Standard_Failure.hxx>
 #include <algorithm>
 #include <cmath>
+#include <gp_Pnt2d.hxx>
+#include <gp_Vec2d.hxx>
 #include <limits>
 #include <map>
 #include <unordered_map>
@@ -90,17 +92,39 @@ class EdgeSide {
         auto offer = [&](double s) {
           const double d = curve_->Value(s).Distance(p);
           if (d < best) best = d, at = s;
+          return d;
         };
         offer(first_);
         offer(last_);
-        offer(lo);
-        offer(hi);
-        try {
-          Geom2dAPI_ProjectPointOnCurve projection(p, curve_, lo, hi);
-          for (int i = 1; i <= projection.NbPoints(); ++i) offer(projection.Parameter(i));
-        } catch (const Standard_Failure&) {
-          // the ends only
+        // The nearest of a few samples over [lo, hi], then Newton on the
+        // squared distance within it (the interval is three chords of a
+        // polyline that follows the curve within tol: one minimum there).
+        // OCCT's projection sampled and located spans anew on every call.
+        // (Newton starts from the nearest sample inside: on a closed edge
+        // `first_` may be as near, on the other side of [lo, hi].)
+        constexpr int kSamples = 8;
+        double s = lo, nearest = std::numeric_limits<double>::infinity();
+        for (int i = 0; i <= kSamples; ++i) {
+          const double si = lo + (hi - lo) * i / kSamples;
+          const double d = offer(si);
+          if (d < nearest) nearest = d, s = si;
         }
+        try {
+          for (int it = 0; it < 12; ++it) {
+            gp_Pnt2d c;
+            gp_Vec2d d1, d2;
+            curve_->D2(s, c, d1, d2);
+            const gp_Vec2d r(p, c);
+            const double g = r.Dot(d1), h = d1.SquareMagnitude() + r.Dot(d2);
+            if (!(h > 0)) break;
+            const double next = std::clamp(s - g / h, lo, hi);
+            const double moved = std::abs(next - s);
+            s = next;
+            if (moved <= 1e-14 * (std::abs(last_ - first_) + 1)) break;
+          }
+        } catch (const Standard_Failure&) {  // no second derivative: the samples
+        }
+        offer(s);
         const double d3 = (xyz_at(at) - x).norm();
         if (d3 < best3d) best3d = d3, t = at;
       }
