@@ -40,6 +40,7 @@ V = FreeCAD.Vector
 ROOF = os.path.join(ROOT, "examples", "british_museum_roof.brep")
 SPLIT = os.path.join(ROOT, "examples", "face_sets", "british_museum_roof_split.brep")
 SUB = os.path.join(ROOT, "examples", "face_sets", "british_museum_roof_subsurfaces.brep")
+DIAGONALS = os.path.join(ROOT, "examples", "face_sets", "british_museum_roof_diagonals.brep")
 
 
 def split_roof(face):
@@ -52,6 +53,23 @@ def split_roof(face):
     big = 2 * bb.DiagonalLength
     planes = [Part.Plane(c, V(1, 0, 0)).toShape(-big, big, -big, big),
               Part.Plane(c, V(0, 1, 0)).toShape(-big, big, -big, big)]
+    return split_api.slice(face, planes, "Split")
+
+
+def split_roof_diagonals(face):
+    """The roof cut along the diagonals of its rectangular plan, as seed 004
+    divides it into four sub-surfaces (section 5, Fig. 39): vertical planes
+    through opposite corners of the plan; four faces sharing the cuts' edges."""
+    import BOPTools.SplitAPI as split_api
+
+    bb = face.BoundBox
+    big = 2 * bb.DiagonalLength
+    planes = []
+    for x0, y0, x1, y1 in ((bb.XMin, bb.YMin, bb.XMax, bb.YMax),
+                           (bb.XMin, bb.YMax, bb.XMax, bb.YMin)):
+        normal = V(-(y1 - y0), x1 - x0, 0)
+        normal.normalize()
+        planes.append(Part.Plane(V(x0, y0, 0), normal).toShape(-big, big, -big, big))
     return split_api.slice(face, planes, "Split")
 
 
@@ -125,6 +143,34 @@ def against_one(one, r, shape, label):
             f"rows {100 * share:3.0f}% of {count}")
 
 
+def cut_only(one, roof):
+    """The one face's rod count and length statistics if its rods were only cut
+    where they cross the plan's diagonals (a lower bound of what a split
+    must change: every rod crossing a cut becomes two)."""
+    bb = roof.BoundBox
+    lengths = []
+    cuts = []
+    for x0, y0, x1, y1 in ((bb.XMin, bb.YMin, bb.XMax, bb.YMax),
+                           (bb.XMin, bb.YMax, bb.XMax, bb.YMin)):
+        a = np.array([x0, y0])
+        t = np.array([x1 - x0, y1 - y0])
+        cuts.append((a, np.array([-t[1], t[0]]) / np.linalg.norm(t)))
+    for a_i, b_i in one.rods:
+        p, q = one.vertices[a_i], one.vertices[b_i]
+        ts = []
+        for a, n in cuts:
+            sp, sq = (p[:2] - a) @ n, (q[:2] - a) @ n
+            if sp * sq < 0:
+                ts.append(sp / (sp - sq))
+        ts = [0.0] + sorted(ts) + [1.0]
+        for t0, t1 in zip(ts, ts[1:]):
+            lengths.append((t1 - t0) * float(np.linalg.norm(q - p)))
+    base = stats(one)
+    lengths = np.array(lengths)
+    return (f"rods {100 * (len(lengths) / base[1] - 1):+5.1f}%  mean "
+            f"{100 * (lengths.mean() / base[2] - 1):+5.1f}%  var {100 * (lengths.var() / base[3] - 1):+6.1f}%")
+
+
 def filleted_box():
     box = Part.makeBox(6000, 4500, 3000)
     return Part.Shell(box.makeFillet(600, box.Edges).Faces)
@@ -176,6 +222,21 @@ def main(argv=None):
         print(f"{method:18s} {'one':6s} {a[0]:7d} {a[1]:6d} {a[2]:9.1f} {a[3]:10.0f}")
         print(f"{'':18s} {'split':6s} {b[0]:7d} {b[1]:6d} {b[2]:9.1f} {b[3]:10.0f} "
               f"{100 * (b[0] - a[0]) / a[0]:+5.1f}% {100 * share:8.0f}% of {count}")
+
+    if not os.path.exists(DIAGONALS):
+        split_roof_diagonals(roof).exportBrep(DIAGONALS)
+    diagonals = Part.read(DIAGONALS)
+    print(f"\nThe roof split along its plan's diagonals, as seed 004 splits it "
+          f"({len(diagonals.Faces)} faces):")
+    for method, params in [("iso_grid", {"size": args.size}),
+                           ("equal_size_grid", {"size": args.size}),
+                           ("boundary_driven", {"size": args.size}),
+                           ("walking_agent", {"max_deviation": 30.0})]:
+        one = tessella.panelize(roof, method=method, **params)
+        r = tessella.panelize_faces(diagonals, method=method, **params)
+        print(f"  {method:16s} {against_one(one, r, diagonals, 'diagonals')}")
+        print(f"  {'':16s} the one face's rods cut at the diagonals (no other change): "
+              f"{cut_only(one, roof)}")
 
     print("\nwalking_agent on the split roof (its lines walked on the faces' union):")
     for bound in (15.0, 60.0, 100.0):

@@ -10,6 +10,7 @@
 
 #include "mesh/grid_clipping.h"
 #include "mesh/panel_model.h"
+#include "mesh/pinned_lines.h"
 #include "methods/agents/agent_walk.h"
 #include "methods/agents/local_lines.h"
 #include "tessella/errors.h"
@@ -624,32 +625,6 @@ PanelMesh hard_bound(const AgentSetup& setup, Lines& lines, WalkingAgentReport& 
                             std::to_string(params.max_refinements) +
                             " refinement rounds; raise max_refinements or max_deviation");
     }
-  }
-}
-
-// Each pinned value made a line: the nearest inner line moved onto it, or,
-// where the nearest is a bound or was moved already, a line added.
-void pin_lines(std::vector<double>& lines, std::vector<double> pinned) {
-  std::sort(pinned.begin(), pinned.end());
-  const double lo = lines.front(), hi = lines.back(), eps = 1e-9 * (hi - lo);
-  std::vector<char> moved(lines.size(), 0);
-  for (double c : pinned) {
-    if (!(c > lo + eps && c < hi - eps)) continue;
-    const auto at = std::lower_bound(lines.begin(), lines.end(), c);
-    std::size_t i = static_cast<std::size_t>(at - lines.begin());
-    if (i > 0 && (i == lines.size() || c - lines[i - 1] < lines[i] - c)) --i;
-    if (std::abs(lines[i] - c) <= eps) {
-      moved[i] = 1;
-      continue;
-    }
-    if (i == 0 || i + 1 == lines.size() || moved[i]) {
-      const std::size_t k = static_cast<std::size_t>(at - lines.begin());
-      lines.insert(lines.begin() + k, c);
-      moved.insert(moved.begin() + k, 1);
-      continue;
-    }
-    lines[i] = c;  // between its neighbours: c lies nearer to it than to them
-    moved[i] = 1;
   }
 }
 
