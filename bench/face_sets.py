@@ -4,12 +4,15 @@
 
 Prints:
 1. The British Museum roof (examples/british_museum_roof.brep) against the
-   same roof split into four sub-surfaces through the court's centre (as seed
-   004 splits it; written to examples/face_sets/british_museum_roof_split.brep): panels,
+   same roof split into four faces through the court's centre (along
+   iso-lines of its surface; written to examples/face_sets/british_museum_roof_split.brep): panels,
    rods, rod length mean / variance, for iso_grid, equal_size_grid,
    boundary_driven and walking_agent; the share of shared-edge nodes whose rods on
    the two sides carry on within 20 degrees of one line (rows across the split).
-   Then the four faces each on a surface of its own (written to
+   Then the roof split along its plan's diagonals, as seed 004 divides it
+   (examples/face_sets/british_museum_roof_diagonals.brep), the same figures
+   and, as a reference, the one face's rods cut where they cross the
+   diagonals (the change a split makes by cutting alone). Then the four faces each on a surface of its own (written to
    examples/face_sets/british_museum_roof_subsurfaces.brep) at 1000 / 1500 /
    2200 mm, boundary_driven and iso_grid, against the one face.
 2. A filleted box (26 trimmed faces: planes, cylinders, spheres) at about
