@@ -357,14 +357,23 @@ def test_grid_rows_run_on_across_the_roofs_diagonal_split(method):
     assert count >= 100 and share >= 0.5, (share, count)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "open defect (stop 39): where a diagonal meets the drum at an acute angle, "
-    "the shared edge's end vertex is missing from one face's outline after the "
-    "join (a vertex of that face 9.9 mm off its trim instead), so the segment "
-    "there bounds panels of one face only"))
-def test_the_roofs_diagonal_split_conforms():
+@pytest.mark.parametrize("method, params", [
+    ("iso_grid", {"size": 1500.0}),
+    ("equal_size_grid", {"size": 1500.0}),
+    ("walking_agent", {"max_deviation": 30.0}),
+    pytest.param("boundary_driven", {"size": 1500.0}, marks=pytest.mark.xfail(strict=True, reason=(
+        "open defect (stop 39): near where a diagonal meets the drum a node of one face "
+        "on the diagonal is missing from the other's outline (its piece between two "
+        "nodes on the straight edge has no area and is dropped, it seems)"))),
+])
+def test_the_roofs_diagonal_split_conforms(method, params):
+    """Where a diagonal meets the drum, the shared edge's end is a B-rep vertex
+    that the grids' and walking_agent's own layout may leave a trim point of
+    one face (no node): its boundary piece, modelled flat between its nodes,
+    moved it 9.9 mm off the trim, and the segment there bounded panels of one
+    face only. The join now makes an outline vertex at an edge end a node."""
     roof, pieces = roof_and_diagonal_split()
-    r = tessella.panelize_faces(pieces, method="iso_grid", size=1500.0)
+    r = tessella.panelize_faces(pieces, method=method, **params)
     assert check_conforming(pieces, r) > 40
 
 

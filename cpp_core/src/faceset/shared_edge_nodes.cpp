@@ -252,13 +252,28 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
       int side, vertex;
       Vec3 xyz;
     };
+    // Nodes, and an outline vertex at an end of the edge even where its
+    // face's method left it a trim point (a B-rep vertex where the edge
+    // meets a free trim): the other face may have a node there, and a trim
+    // point's boundary piece, modelled flat between its nodes, moved it off
+    // the trim (the roof split along its diagonals, where a diagonal meets
+    // the drum: 9.9 mm, and a segment of the edge bounded panels of one face
+    // only).
     std::vector<Entry> entries;
-    for (int s = 0; s < 2; ++s)
+    for (int s = 0; s < 2; ++s) {
+      const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
+      const Vec3 ends[2] = {side[static_cast<std::size_t>(s)].xyz_at(e.first),
+                            side[static_cast<std::size_t>(s)].xyz_at(e.last)};
+      auto at_an_end = [&](int v) {
+        const Vec3& x = m.xyz[static_cast<std::size_t>(v)];
+        return (x - ends[0]).norm() <= tol || (x - ends[1]).norm() <= tol;
+      };
       for (const OnEdge& o : on[static_cast<std::size_t>(s)])
-        if (is_node(*mesh[static_cast<std::size_t>(s)], o.vertex))
+        if (is_node(m, o.vertex) || at_an_end(o.vertex))
           entries.push_back(
               {o.t, s, o.vertex,
                mesh[static_cast<std::size_t>(s)]->xyz[static_cast<std::size_t>(o.vertex)]});
+    }
     std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
       return a.t < b.t || (a.t == b.t && a.side < b.side);
     });
