@@ -214,10 +214,10 @@ def main(argv=None):
           f"(size {args.size:.0f} mm)")
     print(f"{'method':18s} {'':6s} {'panels':>7s} {'rods':>6s} {'rod mean':>9s} "
           f"{'rod var':>10s} {'diff':>6s} {'rows 20deg':>10s}")
-    for method, params in [("iso_grid", {"size": args.size}),
-                           ("equal_size_grid", {"size": args.size}),
-                           ("boundary_driven", {"size": args.size}),
-                           ("walking_agent", {"max_deviation": 30.0})]:
+    # The four tiling methods at the roof's size (walking_agent at its bound).
+    methods = [("iso_grid", {"size": args.size}), ("equal_size_grid", {"size": args.size}),
+               ("boundary_driven", {"size": args.size}), ("walking_agent", {"max_deviation": 30.0})]
+    for method, params in methods:
         one = tessella.panelize(roof, method=method, **params)
         split = tessella.panelize_faces(pieces, method=method, **params)
         a, b = stats(one), stats(split)
@@ -231,10 +231,7 @@ def main(argv=None):
     diagonals = Part.read(DIAGONALS)
     print(f"\nThe roof split along its plan's diagonals, as seed 004 splits it "
           f"({len(diagonals.Faces)} faces):")
-    for method, params in [("iso_grid", {"size": args.size}),
-                           ("equal_size_grid", {"size": args.size}),
-                           ("boundary_driven", {"size": args.size}),
-                           ("walking_agent", {"max_deviation": 30.0})]:
+    for method, params in methods:
         one = tessella.panelize(roof, method=method, **params)
         r = tessella.panelize_faces(diagonals, method=method, **params)
         print(f"  {method:16s} {against_one(one, r, diagonals, 'diagonals')}")

@@ -7,6 +7,7 @@
 #include <deque>
 
 #include "faceset/smooth_groups.h"
+#include "mesh/pinned_lines.h"
 
 namespace tessella {
 
@@ -86,15 +87,7 @@ std::vector<double> merge_lines(std::vector<double> carried, const std::vector<d
   kept.push_back(lo);
   kept.push_back(hi);
   std::sort(kept.begin(), kept.end());
-  std::vector<double> out;
-  for (double x : kept)
-    if (out.empty() || x - out.back() > eps) out.push_back(x);
-  out.front() = lo;
-  if (hi - out.back() <= eps)
-    out.back() = hi;
-  else
-    out.push_back(hi);
-  return out;
+  return increasing_lines(kept, lo, hi);
 }
 
 // Whether the face's (u,v) has a pole on its boundary (a trim stretch

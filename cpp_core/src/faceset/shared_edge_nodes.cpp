@@ -258,7 +258,8 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
     // point's boundary piece, modelled flat between its nodes, moved it off
     // the trim (the roof split along its diagonals, where a diagonal meets
     // the drum: 9.9 mm, and a segment of the edge bounded panels of one face
-    // only).
+    // only). In 3D: such a vertex is located a hair inside the edge's
+    // parameter range, farther than at_end allows.
     std::vector<Entry> entries;
     for (int s = 0; s < 2; ++s) {
       const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];

@@ -44,4 +44,17 @@ std::vector<double> lines_covering(const std::vector<double>& lines, double lo, 
   return out;
 }
 
+std::vector<double> increasing_lines(const std::vector<double>& sorted, double lo, double hi) {
+  const double eps = 1e-9 * (hi - lo);
+  std::vector<double> out;
+  for (double x : sorted)
+    if (out.empty() || x - out.back() > eps) out.push_back(x);
+  out.front() = lo;
+  if (hi - out.back() <= eps)
+    out.back() = hi;
+  else
+    out.push_back(hi);
+  return out;
+}
+
 }  // namespace tessella

@@ -74,16 +74,7 @@ Lines walk_lines(const SurfaceFace& face, const UvTrimClassifier& trim, double s
       std::sort(nodes.begin(), nodes.end());
     }
     // Keep strictly increasing lines; the ends exactly on the bounds.
-    std::vector<double> kept;
-    const double eps = 1e-9 * (hi - lo);
-    for (double x : nodes)
-      if (kept.empty() || x - kept.back() > eps) kept.push_back(x);
-    kept.front() = lo;
-    if (hi - kept.back() <= eps)
-      kept.back() = hi;
-    else
-      kept.push_back(hi);
-    (dir == 0 ? lines.u : lines.v) = std::move(kept);
+    (dir == 0 ? lines.u : lines.v) = increasing_lines(nodes, lo, hi);
   }
   return lines;
 }
