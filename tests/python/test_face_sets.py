@@ -357,6 +357,58 @@ def test_grid_rows_run_on_across_the_roofs_diagonal_split(method):
     assert count >= 100 and share >= 0.5, (share, count)
 
 
+def wavy_face_with_a_hole_split_along_diagonals():
+    """Not a bundled example: the tests' wavy B-spline surface with a round
+    hole, cut along the diagonals of its plan (as seed 004 cuts the roof):
+    four faces of one surface, cuts that are no iso-lines, each ending on
+    the hole."""
+    import sys
+    sys.path.append("/usr/share/freecad/Mod/Part")
+    import BOPTools.SplitAPI as split_api
+
+    surf, _, _ = wavy_surface()
+    whole = surf.toShape()
+    bb = whole.BoundBox
+    c = bb.Center
+    hole = Part.makeCylinder(0.22 * min(bb.XLength, bb.YLength), bb.ZLength + 10000.0,
+                             V(c.x, c.y, bb.ZMin - 5000.0))
+    face = whole.cut(hole).Faces[0]
+    big = 2 * bb.DiagonalLength
+    planes = []
+    for x0, y0, x1, y1 in ((bb.XMin, bb.YMin, bb.XMax, bb.YMax),
+                           (bb.XMin, bb.YMax, bb.XMax, bb.YMin)):
+        normal = V(-(y1 - y0), x1 - x0, 0)
+        normal.normalize()
+        planes.append(Part.Plane(V(x0, y0, 0), normal).toShape(-big, big, -big, big))
+    return face, split_api.slice(face, planes, "Split")
+
+
+@pytest.mark.parametrize("method, params", [
+    ("iso_grid", {"size": 800.0}),
+    ("walking_agent", {"max_deviation": 20.0}),
+])
+def test_a_holed_face_split_along_its_diagonals(method, params):
+    """The diagonal split's fixes on a face that is not the roof: the faces
+    conform where the cuts meet the hole, iso_grid's rows carry on across
+    the cuts (lines made on the union), walking_agent walks the union's lines
+    and holds its bound with about the one face's panels (each cut cell is
+    two)."""
+    face, pieces = wavy_face_with_a_hole_split_along_diagonals()
+    assert len(pieces.Faces) == 4
+    r = tessella.panelize_faces(pieces, method=method, **params)
+    one = tessella.panelize(face, method=method, **params)
+    assert check_conforming(pieces, r) > 20
+    assert abs(r.metrics["panel_area"].sum() / pieces.Area - 1) < 5e-3
+    if method == "iso_grid":
+        share, count = rows_carried(pieces, r)
+        assert count >= 20 and share >= 0.5, (share, count)
+        assert len(r.panels) <= 1.15 * len(one.panels), (len(r.panels), len(one.panels))
+    else:
+        assert r.summary["faces_traced_across"] == 4
+        assert r.metrics["panel_deviation"].max() <= params["max_deviation"]
+        assert len(r.panels) <= 1.25 * len(one.panels), (len(r.panels), len(one.panels))
+
+
 @pytest.mark.parametrize("method, params", [
     ("iso_grid", {"size": 1500.0}),
     ("equal_size_grid", {"size": 1500.0}),
