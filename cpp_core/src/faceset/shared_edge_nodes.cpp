@@ -484,9 +484,24 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
           // its middle corner (not its second: a crossing snapped onto the
           // curve may lie just past the next trim point); node to node, the
           // shorter way round a closed edge.
+          // Inner corners that stand for the run's end nodes say nothing:
+          // several curves ending at one edge end leave coincident vertices
+          // there (located a hair apart), and a run [end, its twin, node]
+          // went "up" from the end by the twin and skipped the nodes between
+          // (boundary_driven, the roof split along its diagonals, at the drum).
+          auto stands_for = [&](int v) {
+            const auto r = replace.find(v);
+            return r != replace.end() ? r->second : v;
+          };
+          std::vector<double> inner;
+          for (std::size_t k = 1; k < len; ++k) {
+            const int v = panel[(i + k) % n];
+            if (stands_for(v) != stands_for(a) && stands_for(v) != stands_for(b))
+              inner.push_back(t_of[static_cast<std::size_t>(s)][v]);
+          }
           bool up = tb > ta;
-          if (len >= 2) {
-            const double tm = t_of[static_cast<std::size_t>(s)][panel[(i + len / 2) % n]];
+          if (!inner.empty()) {
+            const double tm = inner[(inner.size() + 1) / 2 - 1];  // the run's middle
             up = e.closed ? ahead(ta, tm, true) < ahead(ta, tb, true) : tm > ta;
           } else if (e.closed) {
             up = ahead(ta, tb, true) < 0.5 * span;
