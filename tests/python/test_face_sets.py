@@ -95,6 +95,10 @@ def check_conforming(shape, r):
     assert worst <= tol, worst
     rods = {tuple(sorted(map(int, rod))) for rod in r.rods}
     assert len(rods) == len(r.rods)
+    # No panel with a corner twice (a trim point left where a node of the
+    # other face came to sit, merged with it when the faces were joined).
+    repeated = [k for k, p in enumerate(r.panels) if len(set(map(int, p))) < len(p)]
+    assert not repeated, f"{len(repeated)} panels repeat a corner, e.g. {list(r.panels[repeated[0]])}"
     # Panel sides by their node ends, with the faces using them.
     side_faces = {}
     for k, panel in enumerate(r.panels):
@@ -414,6 +418,8 @@ def test_a_holed_face_split_along_its_diagonals(method, params):
     ("equal_size_grid", {"size": 1500.0}),
     ("walking_agent", {"max_deviation": 30.0}),
     ("boundary_driven", {"size": 1500.0}),
+    # a grid corner on a diagonal: a node of one face, a trim point of the other
+    ("iso_grid", {"size": 900.0}),
 ])
 def test_the_roofs_diagonal_split_conforms(method, params):
     """Where a diagonal meets the drum, the shared edge's end is a B-rep vertex

@@ -385,6 +385,24 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
         set_node(m, mine);
         t_of[static_cast<std::size_t>(s)][mine] = n.t;
       }
+      // A trim point of this side where a node now sits (the other side's
+      // node, or one of its own moved there) is that node: left a vertex of
+      // its own, the outline ran node, trim point, node at one position
+      // (iso_grid on the roof split along its diagonals at 900 mm: a grid
+      // corner on a diagonal, a node of face 2 and a trim point of face 3,
+      // whose node 180 mm away merged onto it).
+      std::vector<char> stands(m.vertex_count(), 0);  // a node's vertex on this side
+      for (const EdgeNode& n : nodes)
+        stands[static_cast<std::size_t>(n.vertex[static_cast<std::size_t>(s)])] = 1;
+      for (const OnEdge& o : on[static_cast<std::size_t>(s)]) {
+        if (stands[static_cast<std::size_t>(o.vertex)] || replace.count(o.vertex)) continue;
+        const Vec3& x = m.xyz[static_cast<std::size_t>(o.vertex)];
+        for (const EdgeNode& n : nodes)
+          if ((n.xyz - x).norm() <= tol) {
+            replace[o.vertex] = n.vertex[static_cast<std::size_t>(s)];
+            break;
+          }
+      }
       const auto& use = uses[static_cast<std::size_t>(s)];
       auto on_edge = [&](int v) { return t_of[static_cast<std::size_t>(s)].count(v) != 0; };
       // An outline side along the edge: both ends on it, on the mesh boundary,
