@@ -284,10 +284,14 @@ std::vector<std::shared_ptr<const BdSurfaceCurves>> curves_across_faces(const Fa
 // `lines` with `extra` added (each direction increasing, no value twice).
 WalkingAgentLines with_lines(const WalkingAgentLines& lines, const WalkingAgentLines& extra) {
   WalkingAgentLines out = lines;
+  // Without near duplicates: a panel's middle may be a line another panel's
+  // middle made, but for the last bits, and the grid's integer frame then
+  // found two equal lines ("grid u lines must be strictly increasing").
   auto add = [](std::vector<double>& to, const std::vector<double>& more) {
+    const double lo = to.front(), hi = to.back();
     to.insert(to.end(), more.begin(), more.end());
     std::sort(to.begin(), to.end());
-    to.erase(std::unique(to.begin(), to.end()), to.end());
+    to = increasing_lines(to, lo, hi);
   };
   add(out.u, extra.u);
   add(out.v, extra.v);

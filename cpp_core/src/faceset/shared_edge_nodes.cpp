@@ -284,31 +284,57 @@ SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<Pane
              std::abs(t - e.last) <= 1e-9 * std::abs(span);
     };
     std::vector<EdgeNode> nodes;
+    // First the entries that coincide (within tol) become one group each;
+    // then a group of one side only joins a neighbouring group of the other
+    // side only closer than `join`, the nearest pairs first. (Joining
+    // greedily along the edge paired each vertex of one face with the next
+    // of the other where both had a row of vertices, one of them an extra
+    // line's: the pairs that coincided came apart and two nodes sat at one
+    // position; walking_agent on the centre split at 12 mm.)
     std::vector<std::vector<const Entry*>> members;
-    auto joins = [&](const std::vector<const Entry*>& group, const Entry& x) {
-      const double d = (x.xyz - group.front()->xyz).norm();
-      if (d <= tol) return true;
-      if (d > join) return false;
-      for (const Entry* y : group)
-        if (y->side == x.side) return false;
-      return true;
-    };
     for (const Entry& x : entries) {
-      if (!members.empty() && joins(members.back(), x)) {
+      if (!members.empty() && (x.xyz - members.back().front()->xyz).norm() <= tol)
         members.back().push_back(&x);
-        continue;
-      }
-      members.push_back({&x});
+      else
+        members.push_back({&x});
     }
     // A closed edge: the last group may be the first one again (its two ends).
-    auto groups_join = [&](const std::vector<const Entry*>& a, const std::vector<const Entry*>& b) {
-      for (const Entry* x : b)
-        if (!joins(a, *x)) return false;
-      return true;
-    };
-    if (e.closed && members.size() > 1 && groups_join(members.front(), members.back())) {
+    if (e.closed && members.size() > 1 &&
+        std::all_of(members.back().begin(), members.back().end(), [&](const Entry* x) {
+          return (x->xyz - members.front().front()->xyz).norm() <= tol;
+        })) {
       for (const Entry* x : members.back()) members.front().push_back(x);
       members.pop_back();
+    }
+    auto one_side = [](const std::vector<const Entry*>& g) {
+      for (const Entry* x : g)
+        if (x->side != g.front()->side) return -1;
+      return g.front()->side;
+    };
+    const std::size_t groups = members.size();
+    std::vector<std::pair<double, std::size_t>> pairs;  // (distance, first of the pair)
+    for (std::size_t k = 0; k + 1 < groups + (e.closed && groups > 2 ? 1 : 0); ++k) {
+      const auto& g0 = members[k];
+      const auto& g1 = members[(k + 1) % groups];
+      const int s0 = one_side(g0), s1 = one_side(g1);
+      if (s0 < 0 || s1 < 0 || s0 == s1) continue;
+      const double d = (g0.front()->xyz - g1.front()->xyz).norm();
+      if (d <= join) pairs.push_back({d, k});
+    }
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<char> paired(groups, 0), gone(groups, 0);
+    for (const auto& [d, k] : pairs) {
+      const std::size_t k1 = (k + 1) % groups;
+      if (paired[k] || paired[k1]) continue;
+      paired[k] = paired[k1] = 1;
+      for (const Entry* x : members[k1]) members[k].push_back(x);
+      gone[k1] = 1;
+    }
+    {
+      std::vector<std::vector<const Entry*>> kept;
+      for (std::size_t k = 0; k < groups; ++k)
+        if (!gone[k]) kept.push_back(std::move(members[k]));
+      members = std::move(kept);
     }
     for (const auto& group : members) {
       const Entry* pick = group.front();
