@@ -128,3 +128,49 @@ TEST(BoundaryPieces, APentagonOfNodesIsBentWithinAHardBoundWhenATriangulationHol
   }
   EXPECT_EQ(found, 3);  // the search found pentagons to test
 }
+
+// A panel of more nodes than it can be bent along is split by a new rod
+// between two nodes; where several nodes lie in a row along one straight
+// side (a shared edge the join filled with the other face's nodes), the
+// most even split ran along that side and cut off a part of no area: a
+// piece through three nodes in a line, its plane tilted any way (12.6 mm
+// against walking_agent's 12 on the roof split along its diagonals).
+TEST(BoundaryPieces, ASplitNeverCutsOffASliverAlongARowOfNodes) {
+  const SurfaceFace face = sphere_face(kR);
+  // Six nodes along the bottom side (bowed out by 1e-7: the chords between
+  // them run just inside), then two corners high above.
+  std::vector<Vec2> uv;
+  for (int k = 0; k <= 5; ++k) {
+    const double s = k / 5.0;
+    uv.emplace_back(0.9 + 0.2 * s, 0.15 - 1e-7 * std::sin(kPi * s));
+  }
+  uv.emplace_back(1.1, 0.45);
+  uv.emplace_back(0.9, 0.45);
+  auto area = [](const std::vector<Vec2>& q) {
+    double twice = 0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      const Vec2& a = q[i];
+      const Vec2& b = q[(i + 1) % q.size()];
+      twice += a.x() * b.y() - a.y() * b.x();
+    }
+    return 0.5 * std::abs(twice);
+  };
+  const double whole = area(uv);
+  PanelMesh mesh;
+  mesh.uv = uv;
+  for (const Vec2& q : uv) mesh.xyz.push_back(face.point(q.x(), q.y()));
+  mesh.panels = {{0, 1, 2, 3, 4, 5, 6, 7}};
+  mesh.is_node.assign(uv.size(), 1);
+  BoundaryPiecesParams params;
+  const BoundaryPiecesReport report = model_boundary_pieces(face, mesh, params);
+  EXPECT_GE(report.split, 1);
+  ASSERT_GE(mesh.panels.size(), 2u);
+  double total = 0;
+  for (const auto& panel : mesh.panels) {
+    std::vector<Vec2> q;
+    for (int v : panel) q.push_back(mesh.uv[static_cast<std::size_t>(v)]);
+    EXPECT_GT(area(q), 0.05 * whole) << "a sliver of " << panel.size() << " corners";
+    total += area(q);
+  }
+  EXPECT_NEAR(total, whole, 1e-9 * whole);
+}

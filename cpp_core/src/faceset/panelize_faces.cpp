@@ -664,14 +664,30 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
         // 2,880 panels instead of 2,726. The last try still tightens.
         if (f < walked.size() && walked[f] && !walked_alone[f] && attempt + 1 < kHardBoundRetries) {
           const Modelled& m = modelled[f];
+          const WalkingAgentLines now = with_lines(*walked[f], extra_lines[f]);
+          // The panel's middle; where a line runs there already (a panel
+          // whose corners lie on lines either side of its middle one: a
+          // wedge where a diagonal meets the roof's edge), its quarters.
+          auto add = [](const std::vector<double>& lines, std::vector<double>& to, double lo,
+                        double hi) {
+            const double eps = 1e-9 * (lines.back() - lines.front());
+            const double mid = 0.5 * (lo + hi);
+            const auto it = std::lower_bound(lines.begin(), lines.end(), mid - eps);
+            if (it == lines.end() || *it > mid + eps) {
+              to.push_back(mid);
+              return;
+            }
+            to.push_back(0.75 * lo + 0.25 * hi);
+            to.push_back(0.25 * lo + 0.75 * hi);
+          };
           for (std::size_t k = 0; k < m.metrics.deviation.size(); ++k) {
             if (!(m.metrics.deviation[k] > bound)) continue;
             Vec2 lo = m.mesh.uv[static_cast<std::size_t>(m.mesh.panels[k][0])], hi = lo;
             for (int v : m.mesh.panels[k])
               lo = lo.cwiseMin(m.mesh.uv[static_cast<std::size_t>(v)]),
               hi = hi.cwiseMax(m.mesh.uv[static_cast<std::size_t>(v)]);
-            extra_lines[f].u.push_back(0.5 * (lo.x() + hi.x()));
-            extra_lines[f].v.push_back(0.5 * (lo.y() + hi.y()));
+            add(now.u, extra_lines[f].u, lo.x(), hi.x());
+            add(now.v, extra_lines[f].v, lo.y(), hi.y());
           }
           continue;
         }
