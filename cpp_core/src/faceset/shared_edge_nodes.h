@@ -1,9 +1,12 @@
 // Makes the meshes of a face set agree along the edges two faces share: after
 // each face's method (and its short rods), before the metrics. Per shared
-// edge, the nodes both faces have on it are merged into one list (nodes closer
-// than `merge_distance` along the edge become one: an edge end first, else the
-// lower face's), each face takes every node of that list (inserted into its
-// outline or moved onto it), and its outline runs straight from node to node
+// edge, the nodes both faces have on it are merged into one list (coincident
+// nodes become one; then a node of one face and the nearest neighbouring node
+// of the other closer than `merge_distance` along the edge become one, where
+// an edge end is, else where the lower face's is; a trim point where a node
+// comes to sit is that node), each face takes every node of that list
+// (inserted into its outline or moved onto it), and its outline runs straight
+// from node to node
 // there (the trim points between are dropped): both faces then have the same
 // nodes and the same straight segments along the edge, with identical 3D
 // positions, and no T-junction.
