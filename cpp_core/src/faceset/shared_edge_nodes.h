@@ -6,10 +6,9 @@
 // an edge end is, else where the lower face's is; a trim point where a node
 // comes to sit is that node), each face takes every node of that list
 // (inserted into its outline or moved onto it), and its outline runs straight
-// from node to node
-// there (the trim points between are dropped): both faces then have the same
-// nodes and the same straight segments along the edge, with identical 3D
-// positions, and no T-junction.
+// from node to node there (the trim points between are dropped): both faces
+// then have the same nodes and the same straight segments along the edge,
+// with identical 3D positions, and no T-junction.
 #pragma once
 
 #include <vector>
