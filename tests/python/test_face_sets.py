@@ -463,6 +463,20 @@ def test_walking_agent_split_roofs_conform_at_other_bounds(example, bound):
     assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 5e-3
 
 
+@pytest.mark.parametrize("bound", [8.0, 16.0, 40.0])
+def test_walking_agent_on_faces_not_bundled_conforms_across_bounds(bound):
+    """The join and the bound, as swept on the split roofs, on shapes built
+    here: the wavy face with a hole cut along its diagonals, and the split
+    B-spline shell (each face refines on its own; the faces' rows along a
+    split only partly coincide)."""
+    _, pieces = wavy_face_with_a_hole_split_along_diagonals()
+    for shape in (pieces, split_bspline_shell()):
+        r = tessella.panelize_faces(shape, method="walking_agent", max_deviation=bound)
+        assert check_conforming(shape, r) >= 15
+        assert r.metrics["panel_deviation"].max() <= bound
+        assert abs(r.metrics["panel_area"].sum() / shape.Area - 1) < 5e-3
+
+
 @pytest.mark.parametrize("size", [391.0, 248.0])
 def test_boundary_driven_on_a_periodic_side_next_to_its_top(size):
     """boundary_driven on the cylinder's side (periodic, seam) joined to its
