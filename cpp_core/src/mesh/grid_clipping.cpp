@@ -22,6 +22,7 @@
 #include <limits>
 #include <map>
 #include <unordered_map>
+#include <utility>
 
 #include "geometry/segment_closest.h"
 #include "geometry/trim_deflection.h"
@@ -69,6 +70,82 @@ struct IntegerFrame {
   }
   cInt u_to_int(double u) const { return static_cast<cInt>(std::llround((u - u0) * su)); }
   cInt v_to_int(double v) const { return static_cast<cInt>(std::llround((v - v0) * sv)); }
+};
+
+// The trim polylines' segments (integer units) bucketed on a uniform grid:
+// a crossing looks for the segment it lies on among the few whose box,
+// widened by the reach, holds it, not along the whole trim (that scan was
+// most of clip_grid's own time on a finely sampled trim).
+class NearTrimSegments {
+ public:
+  NearTrimSegments(const std::vector<TrimLoop>& loops, const IntegerFrame& frame, double reach)
+      : reach_(reach) {
+    const Vec2 origin(frame.u0, frame.v0), scale(frame.su, frame.sv);
+    lo_ = Vec2::Constant(std::numeric_limits<double>::infinity());
+    Vec2 hi = -lo_;
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      const auto& uv = loops[l].uv;
+      for (std::size_t k = 0; k < uv.size(); ++k) {
+        const Vec2 a = (uv[k] - origin).cwiseProduct(scale);
+        const Vec2 b = (uv[(k + 1) % uv.size()] - origin).cwiseProduct(scale);
+        segments_.push_back({a, b - a, static_cast<int>(l)});
+        lo_ = lo_.cwiseMin(a), hi = hi.cwiseMax(a);
+      }
+    }
+    if (segments_.empty()) return;
+    // Twice the reach around each box: a point the distance test accepts lies
+    // well inside it whatever the rounding.
+    const double margin = 2 * reach_;
+    lo_ -= Vec2::Constant(margin), hi += Vec2::Constant(margin);
+    side_ = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(segments_.size())))));
+    cell_ = (hi - lo_) / side_;
+    cell_ = cell_.cwiseMax(Vec2::Constant(1.0));
+    buckets_.resize(static_cast<std::size_t>(side_) * side_);
+    for (std::size_t s = 0; s < segments_.size(); ++s) {
+      const Vec2 a = segments_[s].a, b = a + segments_[s].d;
+      const auto [i0, j0] = bucket(a.cwiseMin(b) - Vec2::Constant(margin));
+      const auto [i1, j1] = bucket(a.cwiseMax(b) + Vec2::Constant(margin));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+          buckets_[static_cast<std::size_t>(j) * side_ + i].push_back(static_cast<int>(s));
+    }
+  }
+
+  // The loop of the segment nearest q (units; the first in loop order among
+  // equally near ones, as a scan of every segment finds it) if it is within
+  // the reach, else -1.
+  int nearest_loop(const Vec2& q) const {
+    if (segments_.empty()) return -1;
+    const auto [i, j] = bucket(q);
+    double best = std::numeric_limits<double>::infinity();
+    int best_loop = -1;
+    for (int s : buckets_[static_cast<std::size_t>(j) * side_ + i]) {  // ascending order
+      const Segment& g = segments_[static_cast<std::size_t>(s)];
+      const double t = closest_fraction(g.a, g.d, q);
+      const double dist = (g.a + t * g.d - q).squaredNorm();
+      if (dist < best) best = dist, best_loop = g.loop;
+    }
+    return best <= reach_ * reach_ ? best_loop : -1;
+  }
+
+ private:
+  struct Segment {
+    Vec2 a, d;
+    int loop;
+  };
+  std::pair<int, int> bucket(const Vec2& p) const {
+    auto index = [&](double x, double lo, double cell) {
+      const double f = std::floor((x - lo) / cell);
+      return static_cast<int>(std::clamp(f, 0.0, double(side_ - 1)));
+    };
+    return {index(p.x(), lo_.x(), cell_.x()), index(p.y(), lo_.y(), cell_.y())};
+  }
+
+  double reach_;
+  std::vector<Segment> segments_;
+  Vec2 lo_ = Vec2::Zero(), cell_ = Vec2::Ones();
+  int side_ = 1;
+  std::vector<std::vector<int>> buckets_;
 };
 
 Path rectangle(cInt x0, cInt y0, cInt x1, cInt y1) {
@@ -498,28 +575,16 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   // hole's split line also ends on a grid line away from any trim, and moving
   // that point to the nearest trim would drag both halves' corners (and the
   // neighbour's T-junction) across other panels.
+  // In integer units, where the crossings were rounded.
   const Vec2 origin(frame.u0, frame.v0), scale(frame.su, frame.sv);
-  auto to_units = [&](const Vec2& x) { return Vec2((x - origin).cwiseProduct(scale)); };
+  const NearTrimSegments trim_segments(loops, frame, kOnTrimUnits);
   for (std::size_t v = 0; v < int_points.size(); ++v) {
     const IntPoint& p = int_points[v];
     const bool grid_node = x_line.count(p.X) && y_line.count(p.Y);
     if (grid_node || exact_uv.count(p)) continue;
     const Vec2 q = mesh.uv[v];
-    int best_loop = -1;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t l = 0; l < loops.size(); ++l) {
-      const auto& uv = loops[l].uv;
-      for (std::size_t k = 0; k < uv.size(); ++k) {
-        // In integer units, where the crossings were rounded.
-        const Vec2 a = to_units(uv[k]);
-        const Vec2 d = to_units(uv[(k + 1) % uv.size()]) - a;
-        const Vec2 qs = to_units(q);
-        const double t = closest_fraction(a, d, qs);
-        const double dist = (a + t * d - qs).squaredNorm();
-        if (dist < best) best = dist, best_loop = int(l);
-      }
-    }
-    if (best_loop < 0 || best > kOnTrimUnits * kOnTrimUnits) continue;
+    const int best_loop = trim_segments.nearest_loop((q - origin).cwiseProduct(scale));
+    if (best_loop < 0) continue;
     const Vec2 snapped = face.snap_to_trim(best_loop, q);
     mesh.uv[v] = snapped;
     mesh.xyz[v] = face.point(snapped.x(), snapped.y());
