@@ -3,6 +3,8 @@
 // thread reaches the caller, and the global projection is counted.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -81,6 +83,66 @@ TEST(MetricsThreads, WorkerThreadsFollowTheParameterThenTheEnvironment) {
   EXPECT_EQ(worker_threads(2), 2);
   unsetenv("TESSELLA_THREADS");
   EXPECT_GE(worker_threads(0), 1);
+}
+
+TEST(MetricsThreads, ABudgetCapsEveryLoopAndANestedLoopRunsOnOneThread) {
+  setenv("TESSELLA_THREADS", "4", 1);
+  {
+    const ThreadBudget budget(2);
+    EXPECT_EQ(worker_threads(0), 2);
+    EXPECT_EQ(worker_threads(3), 2);  // even an explicit request
+    {
+      const ThreadBudget wider(8);  // a budget never widens the one around it
+      EXPECT_EQ(worker_threads(0), 2);
+    }
+    // Inside a loop on two threads every worker's own loops get one thread;
+    // a loop on one thread passes its caller's budget on.
+    std::atomic<int> nested_max{0};
+    ChunkQueue two(2, 1);
+    run_chunks(two, 2, [&](bool) {
+      std::size_t b = 0, e = 0;
+      while (two.next(b, e)) nested_max = std::max(nested_max.load(), worker_threads(0));
+    });
+    EXPECT_EQ(nested_max.load(), 1);
+    int inside_one = 0;
+    ChunkQueue one(1, 1);
+    run_chunks(one, 2, [&](bool) {
+      std::size_t b = 0, e = 0;
+      while (one.next(b, e)) inside_one = worker_threads(0);
+    });
+    EXPECT_EQ(inside_one, 2);
+  }
+  EXPECT_EQ(worker_threads(0), 4);  // the budget ends with its scope
+  unsetenv("TESSELLA_THREADS");
+}
+
+TEST(MetricsThreads, TheGridIsCutIdenticallyOnOneAndTwoThreads) {
+  // clip_grid cuts the two halves of its top split on two threads.
+  for (const char* name : {"trimmed_bspline_holes", "vault_openings"}) {
+    SCOPED_TRACE(name);
+    const auto face = example(name);
+    IsoGridParams g;
+    g.u_count = 41;
+    g.v_count = 37;
+    PanelMesh a, b;
+    {
+      const ThreadBudget budget(1);
+      a = iso_grid(*face, g);
+    }
+    {
+      const ThreadBudget budget(2);
+      b = iso_grid(*face, g);
+    }
+    ASSERT_GT(a.panels.size(), 500u);
+    EXPECT_EQ(a.panels, b.panels);
+    ASSERT_EQ(a.uv.size(), b.uv.size());
+    for (std::size_t v = 0; v < a.uv.size(); ++v) {
+      ASSERT_EQ(a.uv[v], b.uv[v]);
+      ASSERT_EQ(a.xyz[v], b.xyz[v]);
+    }
+    EXPECT_EQ(a.is_node, b.is_node);
+    EXPECT_EQ(a.rods, b.rods);
+  }
 }
 
 TEST(MetricsThreads, AFailureOnAnyThreadReachesTheCaller) {

@@ -10,7 +10,10 @@
 
 namespace tessella {
 
-int worker_threads(int requested) {
+namespace {
+thread_local int tls_budget = 0;
+
+int unlimited_threads(int requested) {
   if (requested > 0) return requested;
   if (const char* env = std::getenv("TESSELLA_THREADS")) {
     const int n = std::atoi(env);
@@ -18,6 +21,18 @@ int worker_threads(int requested) {
   }
   const unsigned hw = std::thread::hardware_concurrency();
   return hw > 0 ? static_cast<int>(hw) : 1;
+}
+}  // namespace
+
+ThreadBudget::ThreadBudget(int threads) : previous_(tls_budget) {
+  if (threads > 0) tls_budget = tls_budget > 0 ? std::min(tls_budget, threads) : threads;
+}
+ThreadBudget::~ThreadBudget() { tls_budget = previous_; }
+int ThreadBudget::current() { return tls_budget; }
+
+int worker_threads(int requested) {
+  const int n = unlimited_threads(requested);
+  return tls_budget > 0 ? std::min(n, tls_budget) : n;
 }
 
 bool ChunkQueue::next(std::size_t& begin, std::size_t& end) {
@@ -40,7 +55,10 @@ void run_chunks(ChunkQueue& queue, int threads, const std::function<void(bool)>&
       std::max<std::size_t>(1, std::min<std::size_t>(std::max(threads, 1), queue.chunks()));
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  // Each worker of a loop on several threads runs nested loops on its own.
+  const int inner = n > 1 ? 1 : tls_budget;
   auto guarded = [&](bool calling) {
+    const ThreadBudget budget(inner);
     try {
       worker(calling);
     } catch (...) {

@@ -11,8 +11,25 @@
 namespace tessella {
 
 // Threads for a parallel loop: `requested` if > 0, else the environment
-// variable TESSELLA_THREADS if set (> 0), else std::thread::hardware_concurrency().
+// variable TESSELLA_THREADS if set (> 0), else std::thread::hardware_concurrency();
+// never more than the current thread's budget (below).
 int worker_threads(int requested = 0);
+
+// The most threads a parallel loop started on this thread may use while the
+// object lives (0: no limit). run_chunks gives each of its workers a budget
+// of 1 when it runs on several threads, so a loop nested in another (a
+// method's own loop inside a face set's faces) does not start more.
+class ThreadBudget {
+ public:
+  explicit ThreadBudget(int threads);
+  ~ThreadBudget();
+  ThreadBudget(const ThreadBudget&) = delete;
+  ThreadBudget& operator=(const ThreadBudget&) = delete;
+  static int current();
+
+ private:
+  int previous_;
+};
 
 class ChunkQueue {
  public:

@@ -550,6 +550,8 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
                              std::to_string(n) + " are selected)");
   }
   const auto started = std::chrono::steady_clock::now();
+  // Every loop inside (a face's own method and metrics) keeps to `threads`.
+  const ThreadBudget budget(threads);
   const int workers = worker_threads(threads);
   std::vector<ParamValues> face_values(n, values);
   std::vector<Modelled> modelled(n);

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <clipper.hpp>
 #include <cmath>
 #include <functional>
@@ -24,6 +25,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "common/parallel_chunks.h"
 #include "geometry/segment_closest.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/clip_to_box.h"
@@ -453,36 +455,51 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
            near_sum[j1 * (nu + 1) + i0] + near_sum[j0 * (nu + 1) + i0];
   };
   const std::size_t near_total = near_in(0, nu, 0, nv);
-  std::size_t near_done = 0;
+  std::atomic<std::size_t> near_done{0};
   const cInt y_lo = Y.front() - 1, y_hi = Y.back() + 1;
   const auto cut = clip_to_box;
+  // The halves of the top split go to two threads where there are two: each
+  // cell's polygons come from the same operations on either (only integer
+  // Clipper calls; each half writes its own cells), so the mesh is the same.
+  const int threads = worker_threads();
   // Recursion depth ~ log2(cells): bounded, no deep stack.
-  std::function<void(const Paths&, std::size_t, std::size_t, std::size_t, std::size_t)> part =
-      [&](const Paths& piece, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) {
+  std::function<void(const Paths&, std::size_t, std::size_t, std::size_t, std::size_t, bool)>
+      part = [&](const Paths& piece, std::size_t i0, std::size_t i1, std::size_t j0,
+                 std::size_t j1, bool top) {
         if (near_in(i0, i1, j0, j1) == 0) return;
         if (i1 - i0 == 1 && j1 - j0 == 1) {
           clip_cell(piece, X[i0], Y[j0], X[i1], Y[j1], 0, cell_polys[j0 * nu + i0]);
-          if (++near_done % 64 == 0)
-            report_progress(double(near_done) / double(near_total), "cutting the grid by the trim");
+          const std::size_t done = ++near_done;
+          if (done % 64 == 0)  // (a no-op off the calling thread: no sink there)
+            report_progress(double(done) / double(near_total), "cutting the grid by the trim");
           return;
         }
         const bool split_u = i1 - i0 >= j1 - j0;
         const std::size_t mid = split_u ? (i0 + i1) / 2 : (j0 + j1) / 2;
-        for (int half = 0; half < 2; ++half) {
+        auto half_part = [&](int half) {
           const std::size_t a0 = split_u ? (half ? mid : i0) : i0;
           const std::size_t a1 = split_u ? (half ? i1 : mid) : i1;
           const std::size_t b0 = split_u ? j0 : (half ? mid : j0);
           const std::size_t b1 = split_u ? j1 : (half ? j1 : mid);
-          if (near_in(a0, a1, b0, b1) == 0) continue;
+          if (near_in(a0, a1, b0, b1) == 0) return;
           part(cut(piece, ClipperLib::pftNonZero,
                    rectangle(X[a0], b0 == 0 ? y_lo : Y[b0], X[a1], b1 == nv ? y_hi : Y[b1])),
-               a0, a1, b0, b1);
+               a0, a1, b0, b1, false);
+        };
+        if (top && threads > 1) {
+          ChunkQueue halves(2, 1);
+          run_chunks(halves, 2, [&](bool) {
+            std::size_t begin = 0, end = 0;
+            while (halves.next(begin, end)) half_part(static_cast<int>(begin));
+          });
+          return;
         }
+        for (int half = 0; half < 2; ++half) half_part(half);
       };
   // The domain's loops count by parity; Clipper's output (holes turning the
   // other way) by winding from here on.
   part(cut(domain, ClipperLib::pftEvenOdd, rectangle(X.front(), y_lo, X.back(), y_hi)), 0, nu, 0,
-       nv);
+       nv, true);
 
   // Weld vertices by integer point; exact (u,v) where the point is a grid line
   // or a trim loop vertex.
