@@ -78,6 +78,10 @@ void bind_analysis(py::module_& m) {
         return classify_panels(points, p);
       },
       py::arg("panels"), py::arg("params"));
+  m.def(
+      "classify_mesh_panels",
+      [](const PanelMesh& mesh, const PanelClassParams& p) { return classify_panels(mesh, p); },
+      py::arg("mesh"), py::arg("params"));
 
   // Panel families (tessella/panel_families.h): panels as (k,3) corner arrays.
   py::class_<PanelFamilyParams>(m, "PanelFamilyParams")

@@ -488,9 +488,9 @@ def _result(r, method, values, params):
         "rod_length": np.asarray(m.rod_length),
         "node_valence": np.asarray(r.valence)[node_index],
     }
-    from .panel_classes import classify
+    from .panel_classes import classify_mesh
 
-    classes = classify(mesh.xyz, mesh.panels)
+    classes = classify_mesh(mesh)
     metrics["panel_warp"] = classes.warp
     summary = dict(r.summary)
     # At the defaults (flat within 1 mm, cold-bent within 1% of the diagonal).

@@ -39,6 +39,7 @@ from ._core import (  # noqa: E402,F401
     panel_families,
     PanelClassParams,
     classify_panels,
+    classify_mesh_panels,
     panel_distance,
     flat_panel_types,
     mesh_panel_types,

@@ -57,6 +57,20 @@ class PanelClasses:
 def classify(vertices, panels, flat_tolerance=FLAT_TOLERANCE, cold_bend_ratio=COLD_BEND_RATIO,
              cold_bend_warp=0.0):
     """PanelClasses of panels given as vertex index lists into `vertices` (n,3)."""
+    p = _params(flat_tolerance, cold_bend_ratio, cold_bend_warp)
+    xyz = np.asarray(vertices, dtype=float).reshape(-1, 3)
+    return _classes(core.classify_panels([xyz[list(panel)] for panel in panels], p), p)
+
+
+def classify_mesh(mesh, flat_tolerance=FLAT_TOLERANCE, cold_bend_ratio=COLD_BEND_RATIO,
+                  cold_bend_warp=0.0):
+    """classify() of a core PanelMesh's panels, without copying them into
+    Python first (a result's own panels: 7,800 of them took 12 ms that way)."""
+    p = _params(flat_tolerance, cold_bend_ratio, cold_bend_warp)
+    return _classes(core.classify_mesh_panels(mesh, p), p)
+
+
+def _params(flat_tolerance, cold_bend_ratio, cold_bend_warp):
     from .fabrication import _check_number
 
     # Numbers here; their ranges are the core's (classify_panels checks them).
@@ -64,8 +78,10 @@ def classify(vertices, panels, flat_tolerance=FLAT_TOLERANCE, cold_bend_ratio=CO
     p.flat_tolerance = _check_number("flat_tolerance (mm)", flat_tolerance, -1e300, 1e300)
     p.cold_bend_ratio = _check_number("cold_bend_ratio", cold_bend_ratio, -1e300, 1e300)
     p.cold_bend_warp = _check_number("cold_bend_warp (mm)", cold_bend_warp, -1e300, 1e300)
-    xyz = np.asarray(vertices, dtype=float).reshape(-1, 3)
-    c = core.classify_panels([xyz[list(panel)] for panel in panels], p)
+    return p
+
+
+def _classes(c, p):
     return PanelClasses(np.asarray(c.label, dtype=np.int64), np.asarray(c.warp),
                         np.asarray(c.limit), p.flat_tolerance, p.cold_bend_ratio,
                         p.cold_bend_warp)

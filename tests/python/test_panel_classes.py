@@ -73,6 +73,9 @@ def test_classes_add_up_and_planarize_makes_panels_flat(dome):
     counts = r.summary["panel_classes"]
     assert sum(counts.values()) == len(r.panels)
     assert counts == tessella.panel_classes(r).counts
+    # The result classifies its own mesh in the core (classify_mesh); the
+    # same figures as from its vertices and panels, bit for bit.
+    assert np.array_equal(r.metrics["panel_warp"], tessella.panel_classes(r).warp)
     # The warp recomputed from the vertices for the quads.
     quads = [k for k, p in enumerate(r.panels) if len(p) == 4]
     for k in quads[::50]:

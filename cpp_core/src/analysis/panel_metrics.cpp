@@ -671,6 +671,10 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
   QuadPoint best = grid.best;
   std::vector<const QuadPoint*> seeds = grid_peaks(grid, best.probe.distance);
   if (seeds.size() > kMaxAscents) seeds.resize(kMaxAscents);
+  // A quad whose largest sample is a verified foot point within the slack
+  // lies on its face (a plane's quad): its "peaks" are rounding noise, and
+  // ascents on them climbed nothing (up to 8 a quad).
+  if (best.probe.reliable && !(best.probe.distance > probe.slack())) seeds.clear();
   std::vector<QuadPoint> tops;
   for (const QuadPoint* seed : seeds) {
     // An ascent on a wrong sheet (a foot point that later surface points
