@@ -575,6 +575,10 @@ QuadGrid probe_grid(const PanelModel& model, const Prober& probe, const QuadDist
     for (; next < order.size(); ++next) {
       const GridSample& g = grid[order[next]];
       if (g.bound + probe.slack() <= kSeedShare * largest()) break;
+      // A sample whose bound is within the slack lies on the face: once one
+      // is probed, the others of a quad lying on its face (a plane's) add
+      // only rounding noise (81 probes a quad).
+      if (g.bound <= probe.slack() && !out.probed.empty()) break;
       out.slot[order[next]] = int(out.probed.size());
       out.probed.push_back(dist.of(g.z, g.x, probe(g.x, g.q, g.q, &g.s_q)));
       probed_at.push_back(order[next]);
@@ -816,12 +820,15 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
   const TopPieces start(tris.empty() ? 1 : tris.size());
   TopPieces pieces = start;
   double top = 0;
+  bool any_probed = false;
   for (;;) {
     for (; !by_bound.empty(); by_bound.pop()) {
       const std::size_t k = by_bound.top();
       if (grid_bound[k] + probe.slack() < pieces.cut_off(top)) break;
+      if (grid_bound[k] <= probe.slack() && any_probed) break;  // on the face (as for quads)
       grid[k].probe = probe(grid_x[k], grid_q[k], grid_q[k], &grid_s[k]);
       probed[k] = 1;
+      any_probed = true;
       top = std::max(top, grid[k].probe.distance);
       pieces.offer(grid[k].tri, grid[k].probe.distance);
     }
@@ -836,7 +843,8 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
       top = std::max(top, grid[k].probe.distance);
       pieces.offer(grid[k].tri, grid[k].probe.distance);
     }
-    if (by_bound.empty() || grid_bound[by_bound.top()] + probe.slack() < pieces.cut_off(top))
+    if (by_bound.empty() || grid_bound[by_bound.top()] + probe.slack() < pieces.cut_off(top) ||
+        (grid_bound[by_bound.top()] <= probe.slack() && any_probed))
       break;
   }
   // Refine around the largest samples of distinct places (at most three, at
@@ -861,7 +869,10 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
         distinct = false;
     if (distinct) seeds.push_back(s);
   }
-  if (best.probe.distance > 0) {
+  // (No refinement where the largest sample lies on the face, as for quads:
+  // it would climb rounding noise.)
+  const bool on_face = best.probe.reliable && !(best.probe.distance > probe.slack());
+  if (best.probe.distance > 0 && !on_face) {
     std::vector<Sample> tops;
     for (const Sample& s : seeds)
       tops.push_back(refine(model, probe, s, 0.5 * step[s.tri < 0 ? 0 : s.tri]));
