@@ -3,6 +3,7 @@
 // metrics and boundary pieces side by side, then the faces joined into one
 // mesh. Each face is computed by one thread from its own copy of the
 // geometry, so the result does not depend on the thread count.
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -81,15 +82,31 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
   // the dent test of a quad, flattening).
   const bool keep_corner_uv =
       faces.size() > 1 || (!faces.empty() && !faces[0].mesh.corner_uv.empty());
+  // Each face's vertices' box, widened by the tolerance: a vertex outside
+  // every other face's box meets no vertex of theirs, and is neither looked
+  // up nor indexed (the 27 lookups a vertex were half the join's time; on a
+  // shell most vertices lie inside one face only).
+  std::vector<Eigen::AlignedBox3d> boxes(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (const Vec3& x : faces[f].mesh.xyz) boxes[f].extend(x);
+    if (!boxes[f].isEmpty()) boxes[f].extend(boxes[f].min() - Vec3::Constant(2 * tol));
+    if (!boxes[f].isEmpty()) boxes[f].extend(boxes[f].max() + Vec3::Constant(2 * tol));
+  }
+  auto near_another = [&](std::size_t f, const Vec3& x) {
+    for (std::size_t g = 0; g < boxes.size(); ++g)
+      if (g != f && boxes[g].contains(x)) return true;
+    return false;
+  };
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const PanelizeResult& r = faces[f];
     const PanelMesh& fm = r.mesh;
     std::vector<int> index(fm.vertex_count());
     for (std::size_t v = 0; v < fm.vertex_count(); ++v) {
+      const bool shared = near_another(f, fm.xyz[v]);
       // The vertex of an earlier face at (about) this position, if any.
-      const Cell key = cell(fm.xyz[v]);
+      const Cell key = shared ? cell(fm.xyz[v]) : Cell{0, 0, 0};
       int found = -1;
-      for (long long dx = -1; dx <= 1 && found < 0; ++dx)
+      for (long long dx = -1; shared && dx <= 1 && found < 0; ++dx)
         for (long long dy = -1; dy <= 1 && found < 0; ++dy)
           for (long long dz = -1; dz <= 1 && found < 0; ++dz) {
             const auto it = grid.find({key[0] + dx, key[1] + dy, key[2] + dz});
@@ -107,7 +124,7 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
         continue;
       }
       index[v] = static_cast<int>(m.xyz.size());
-      grid[key].push_back(index[v]);
+      if (shared) grid[key].push_back(index[v]);
       m.uv.push_back(fm.uv[v]);
       m.xyz.push_back(fm.xyz[v]);
       m.is_node.push_back(is_node(fm, static_cast<int>(v)) ? 1 : 0);
