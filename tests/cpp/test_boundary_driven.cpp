@@ -9,6 +9,7 @@
 #include <gp_Circ.hxx>
 #include <set>
 
+#include "common/parallel_chunks.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
 #include "methods/boundary_driven/bd_refine.h"
@@ -174,6 +175,28 @@ TEST(BdTensor, GridSamplingAgreesWithTheExactField) {
 }
 
 // ---------------------------------------------------------------- stage 3
+TEST(BdTensor, GridSamplingIsIdenticalOnOneAndTwoThreads) {
+  // Rows of the grid go to every core inside a span-cached scope.
+  const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
+  const BdSources s = sources_of(f);
+  BdTensorParams tp;
+  tp.sample_spacing = 25;
+  const BdTensor t = build_bd_tensor(f, s.sources, tp);
+  const SurfaceFace::FastEvaluation fast(f);
+  BdTensorGrid one, two;
+  {
+    const ThreadBudget budget(1);
+    one = sample_bd_tensor(t, f, 97, 83);
+  }
+  {
+    const ThreadBudget budget(2);
+    two = sample_bd_tensor(t, f, 97, 83);
+  }
+  ASSERT_EQ(one.c4s4.size(), 97u * 83u);
+  ASSERT_EQ(one.c4s4.size(), two.c4s4.size());
+  for (std::size_t k = 0; k < one.c4s4.size(); ++k) ASSERT_EQ(one.c4s4[k], two.c4s4[k]) << k;
+}
+
 TEST(BdCurves, SquarePlateGivesStraightEvenlySpacedLinesEndingOnTheTrim) {
   const SurfaceFace f = square_plate(1000);
   const BdSources s = sources_of(f);
