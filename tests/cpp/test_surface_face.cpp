@@ -79,6 +79,36 @@ TEST(SurfaceFace, TrimLoopChordsStayWithinTheDeflection) {
   }
 }
 
+TEST(SurfaceFace, TrimLoopsAskedAgainAreTheSameAndFollowTheDeflection) {
+  // The (u,v) loops are kept per deflection; a second call (and a call in a
+  // span-cached scope) gives the loops a fresh face gives, bit for bit, and
+  // another deflection its own loops.
+  const SurfaceFace f = cylinder_face(1000, 500);
+  const SurfaceFace fresh = cylinder_face(1000, 500);
+  auto same = [](const std::vector<TrimLoop>& a, const std::vector<TrimLoop>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t l = 0; l < a.size(); ++l)
+      if (a[l].uv != b[l].uv || a[l].xyz != b[l].xyz || a[l].corner != b[l].corner ||
+          a[l].outer != b[l].outer)
+        return false;
+    return true;
+  };
+  const std::vector<TrimLoop> first = f.trim_loops(1.0);
+  EXPECT_TRUE(same(first, f.trim_loops(1.0)));
+  EXPECT_TRUE(same(first, fresh.trim_loops(1.0)));
+  {
+    const SurfaceFace::FastEvaluation fast(f);
+    const SurfaceFace::FastEvaluation fast_fresh(fresh);
+    EXPECT_TRUE(same(f.trim_loops(1.0), fresh.trim_loops(1.0)));
+  }
+  const std::vector<TrimLoop> finer = f.trim_loops(0.01);
+  std::size_t coarse_points = 0, fine_points = 0;
+  for (const TrimLoop& l : first) coarse_points += l.uv.size();
+  for (const TrimLoop& l : finer) fine_points += l.uv.size();
+  EXPECT_GT(fine_points, 5 * coarse_points);
+  EXPECT_TRUE(same(finer, fresh.trim_loops(0.01)));
+}
+
 TEST(SurfaceFace, NewtonProjectionMatchesTheSphereInClosedForm) {
   const SurfaceFace f = sphere_face(3000);
   const Vec3 points[] = {

@@ -154,6 +154,8 @@ class SurfaceFace {
  private:
   struct Impl;
   explicit SurfaceFace(std::unique_ptr<Impl> impl);
+  // trim_loops without the points in space (uv, corners, outer; sampled anew).
+  std::vector<TrimLoop> trim_loops_uv(double deflection) const;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -26,6 +26,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <optional>
 
@@ -102,6 +103,8 @@ struct SurfaceFace::Impl {
   // snap_to_trim's projections, per wire (explorer order) and edge, built
   // on first use and shared under the mutex.
   mutable std::mutex trim_mutex;
+  // trim_loops' (u,v) loops (no points in space) by deflection, under trim_mutex.
+  mutable std::map<double, std::vector<TrimLoop>> trim_loops_uv;
   mutable std::vector<std::vector<std::unique_ptr<PcurveProjection>>> trim_projections;
   void count(std::uint64_t n = 1) const {
     if (Objects* o = scope())
@@ -333,6 +336,31 @@ Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
 
 std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
   require_in_range("trim deflection", deflection, 1e-12 * impl_->model_size, impl_->model_size);
+  // The loops in (u,v) come from OCCT's sampling of the edges alone, the same
+  // for every call: kept per deflection (the pipeline's stages asked for the
+  // same loops several times, 2-3% of panelize). Their points in space are
+  // evaluated on each call, in the caller's evaluation scope, as before.
+  std::vector<TrimLoop> loops;
+  bool known = false;
+  {
+    const std::lock_guard<std::mutex> lock(impl_->trim_mutex);
+    const auto it = impl_->trim_loops_uv.find(deflection);
+    if (it != impl_->trim_loops_uv.end()) loops = it->second, known = true;
+  }
+  if (!known) {
+    loops = trim_loops_uv(deflection);
+    const std::lock_guard<std::mutex> lock(impl_->trim_mutex);
+    if (impl_->trim_loops_uv.size() >= 16) impl_->trim_loops_uv.clear();  // a bound, rarely hit
+    impl_->trim_loops_uv.emplace(deflection, loops);
+  }
+  for (TrimLoop& loop : loops) {
+    loop.xyz.reserve(loop.uv.size());
+    for (const Vec2& q : loop.uv) loop.xyz.push_back(point(q.x(), q.y()));
+  }
+  return loops;
+}
+
+std::vector<TrimLoop> SurfaceFace::trim_loops_uv(double deflection) const {
   const TopoDS_Wire outer = BRepTools::OuterWire(impl_->face);
   std::vector<TrimLoop> loops;
   try {
@@ -404,8 +432,6 @@ std::vector<TrimLoop> SurfaceFace::trim_loops(double deflection) const {
       }
       loop.uv = std::move(clean);
       loop.corner = std::move(corner);
-      loop.xyz.reserve(loop.uv.size());
-      for (const Vec2& q : loop.uv) loop.xyz.push_back(point(q.x(), q.y()));
       loops.push_back(std::move(loop));
     }
   } catch (const Standard_Failure& e) {
