@@ -43,11 +43,16 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
 // (u,v) (projection starts), `tris` its flat triangles (empty: the bilinear
 // patch of a quad). A grid of `samples` per edge direction (at least 2: the
 // edge midpoints; each triangle as many as its size asks), projected in order
-// of a cheap upper bound down to 70% of the largest distance found. On a
-// bilinear quad: where neighbouring samples near the top disagree with their
-// own gradients (the distance is creased, its nearest surface point jumping
-// from one sheet to another, or it varies faster than the grid) a grid three
-// times as fine; then from every local maximum of the grid within 70% of the
+// of a cheap upper bound down to 70% of the largest distance found (flat
+// pieces: also down to the third largest of the pieces' own largest, below
+// which no sample can be the largest or one of the three seeds; samples whose
+// bound is within 1e-9 of the model size lie on the face: after the first, not
+// projected). On a bilinear quad: where neighbouring samples near the top
+// disagree with their own gradients (the distance is creased, its nearest
+// surface point jumping from one sheet to another, or it varies faster than
+// the grid; two samples on the face agree) a grid three times as fine; then,
+// unless the largest sample lies on the face, from every local maximum of the
+// grid within 70% of the
 // largest (at most 8) a Newton ascent on the distance (its gradient from the
 // foot point, a rank-one Hessian update, borders held; to 1e-6 in s, t),
 // restarted if its top turns out to lie on a wrong sheet, and where it stops
