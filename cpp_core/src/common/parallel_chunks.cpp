@@ -28,7 +28,6 @@ ThreadBudget::ThreadBudget(int threads) : previous_(tls_budget) {
   if (threads > 0) tls_budget = tls_budget > 0 ? std::min(tls_budget, threads) : threads;
 }
 ThreadBudget::~ThreadBudget() { tls_budget = previous_; }
-int ThreadBudget::current() { return tls_budget; }
 
 int worker_threads(int requested) {
   const int n = unlimited_threads(requested);

@@ -25,7 +25,6 @@ class ThreadBudget {
   ~ThreadBudget();
   ThreadBudget(const ThreadBudget&) = delete;
   ThreadBudget& operator=(const ThreadBudget&) = delete;
-  static int current();
 
  private:
   int previous_;
