@@ -156,12 +156,19 @@ TEST(BdTensor, InverseDistanceWeightingOfDoubledAnglesEq1And2) {
               0.0, 1e-9);
 }
 
+namespace {
+// The field of a plate's boundary, sampled every 25 mm.
+BdTensor plate_field(const SurfaceFace& f) {
+  BdTensorParams tp;
+  tp.sample_spacing = 25;
+  return build_bd_tensor(f, sources_of(f).sources, tp);
+}
+}  // namespace
+
 TEST(BdTensor, GridSamplingAgreesWithTheExactField) {
   const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
   const BdSources s = sources_of(f);
-  BdTensorParams tp;
-  tp.sample_spacing = 25;
-  const BdTensor t = build_bd_tensor(f, s.sources, tp);
+  const BdTensor t = plate_field(f);
   const BdTensorGrid g = sample_bd_tensor(t, f, 201, 201);
   double worst = 0;
   for (double x = 37; x < 1000; x += 91)
@@ -174,14 +181,10 @@ TEST(BdTensor, GridSamplingAgreesWithTheExactField) {
   EXPECT_THROW(build_bd_tensor(f, s.sources, BdTensorParams{0.1, 25}), InvalidParameter);
 }
 
-// ---------------------------------------------------------------- stage 3
 TEST(BdTensor, GridSamplingIsIdenticalOnOneAndTwoThreads) {
   // Rows of the grid go to every core inside a span-cached scope.
   const SurfaceFace f = plate_with_square_hole(1000, 400, 600);
-  const BdSources s = sources_of(f);
-  BdTensorParams tp;
-  tp.sample_spacing = 25;
-  const BdTensor t = build_bd_tensor(f, s.sources, tp);
+  const BdTensor t = plate_field(f);
   const SurfaceFace::FastEvaluation fast(f);
   BdTensorGrid one, two;
   {
@@ -197,6 +200,7 @@ TEST(BdTensor, GridSamplingIsIdenticalOnOneAndTwoThreads) {
   for (std::size_t k = 0; k < one.c4s4.size(); ++k) ASSERT_EQ(one.c4s4[k], two.c4s4[k]) << k;
 }
 
+// ---------------------------------------------------------------- stage 3
 TEST(BdCurves, SquarePlateGivesStraightEvenlySpacedLinesEndingOnTheTrim) {
   const SurfaceFace f = square_plate(1000);
   const BdSources s = sources_of(f);
