@@ -463,9 +463,9 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   // Clipper calls; each half writes its own cells), so the mesh is the same.
   const int threads = worker_threads();
   // Recursion depth ~ log2(cells): bounded, no deep stack.
-  std::function<void(const Paths&, std::size_t, std::size_t, std::size_t, std::size_t, bool)>
-      part = [&](const Paths& piece, std::size_t i0, std::size_t i1, std::size_t j0,
-                 std::size_t j1, bool top) {
+  std::function<void(const Paths&, std::size_t, std::size_t, std::size_t, std::size_t, bool)> part =
+      [&](const Paths& piece, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
+          bool top) {
         if (near_in(i0, i1, j0, j1) == 0) return;
         if (i1 - i0 == 1 && j1 - j0 == 1) {
           clip_cell(piece, X[i0], Y[j0], X[i1], Y[j1], 0, cell_polys[j0 * nu + i0]);
