@@ -21,25 +21,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Indices of `values`, largest first, equal values in index order: the order
-// of a stable sort of the indices, without its indirect comparisons (a
-// boundary panel sorts ~1,000 samples; that sort was 4% of panelize). A NaN
+// Indices of `values`, largest first, equal values in index order (the order
+// of a stable sort of the indices, without its indirect comparisons), taken
+// lazily from a heap: a boundary panel's cut-off stops after a few dozen of
+// its ~1,000 samples, so sorting them all (5% of panelize) is wasted. A NaN
 // counts as +infinity (such a sample is probed first, never skipped).
-std::vector<std::size_t> largest_first(const std::vector<double>& values) {
-  std::vector<std::pair<double, std::size_t>> keyed(values.size());
-  for (std::size_t k = 0; k < values.size(); ++k)
-    keyed[k] = {std::isnan(values[k]) ? std::numeric_limits<double>::infinity() : values[k], k};
-  std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
-    return x.first > y.first || (x.first == y.first && x.second < y.second);
-  });
-  std::vector<std::size_t> order(keyed.size());
-  for (std::size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
-  return order;
-}
-
-// The same order, taken lazily from a heap: a boundary panel's cut-off stops
-// after a few dozen of its ~1,000 samples, so sorting them all (5% of
-// panelize) is wasted.
 class LargestFirst {
  public:
   explicit LargestFirst(const std::vector<double>& values) : heap_(values.size()) {
@@ -62,6 +48,14 @@ class LargestFirst {
   }
   std::vector<std::pair<double, std::size_t>> heap_;
 };
+
+// The whole order at once.
+std::vector<std::size_t> largest_first(const std::vector<double>& values) {
+  std::vector<std::size_t> order;
+  order.reserve(values.size());
+  for (LargestFirst heap(values); !heap.empty(); heap.pop()) order.push_back(heap.top());
+  return order;
+}
 
 double mean_edge(const std::vector<Vec3>& p) {
   double sum = 0;
