@@ -133,13 +133,19 @@ class Prober {
   // `known_s_q`: S(q) if cheap_bound already evaluated it.
   Probe operator()(const Vec3& x, const Vec2& start, const Vec2& q,
                    const Vec3* known_s_q = nullptr) const {
+    const Probe p = peek(x, start, q, known_s_q);
+    remember(p.foot, p.point);
+    return p;
+  }
+  // The same probe, its foot point not remembered: a look that leaves the
+  // probes after it exactly as they would have been without it.
+  Probe peek(const Vec3& x, const Vec2& start, const Vec2& q,
+             const Vec3* known_s_q = nullptr) const {
     Probe p = project(x, start);
     const Vec3 s_q = known_s_q ? *known_s_q : face_.point(q.x(), q.y());
     const double at_q = (s_q - x).norm();
     if (at_q + tiny_ < p.distance) p = {at_q, false, q, s_q};
-    p = tighten(x, p);
-    remember(p.foot, p.point);
-    return p;
+    return tighten(x, p);
   }
 
   // A converged Newton run can stop at a foot point on the wrong sheet of a
@@ -400,6 +406,17 @@ class QuadDistance {
     with_gradient(out, x);
     return out;
   }
+  // at(z) from z's own parameters, its foot point not remembered (Prober::peek).
+  QuadPoint peek(const Vec2& z) const {
+    Vec3 x;
+    Vec2 q;
+    model_.at(-1, z.x(), z.y(), x, q);
+    QuadPoint out;
+    out.z = z;
+    out.probe = probe_.peek(x, q, q);
+    with_gradient(out, x);
+    return out;
+  }
   // A grid sample already probed at x.
   QuadPoint of(const Vec2& z, const Vec3& x, const Probe& pr) const {
     QuadPoint out;
@@ -619,17 +636,33 @@ std::vector<const QuadPoint*> grid_peaks(const QuadGrid& g, double largest) {
   return peaks;
 }
 
-// Whether the distance is rough at the grid's scale near its top: two
+// Where the distance may be rough at the grid's scale near its top: pairs of
 // neighbouring samples within kSeedShare of the largest whose values the
-// trapezoid rule on their gradients does not connect within 0.5% of the
-// largest (for a smooth distance the mismatch is O(h^3)), or one without a
-// foot point. The distance is then creased (the nearest surface point jumps
-// from one sheet of the surface to another) or varies faster than the grid:
-// its peaks can lie between the samples and 30% above them (MAT.brep).
+// trapezoid rule on their gradients does not connect within kRoughShare of
+// the largest (for a smooth distance the mismatch is O(h^3)), and whether
+// one of them has no foot point. The distance is then creased (the nearest
+// surface point jumps from one sheet of the surface to another) or varies
+// faster than the grid: its peaks can lie between the samples and 30% above
+// them (MAT.brep).
 // Two samples on the surface (verified foot points within `on_surface`, no
 // gradient there) connect: a quad lying on its face (a plane's) took the
 // fine pass for nothing, 9 times the probes (61% of a filleted box's quads).
-bool rough(const QuadGrid& g, double on_surface) {
+constexpr double kRoughShare = 0.005;
+
+struct GridEdge {
+  const QuadPoint* from;
+  const QuadPoint* to;
+  int direction;  // 0: s, 1: t
+};
+
+struct Roughness {
+  bool footless = false;        // a sample near the top without a foot point
+  std::vector<GridEdge> edges;  // pairs the trapezoid rule does not connect
+  bool rough() const { return footless || !edges.empty(); }
+};
+
+Roughness roughness(const QuadGrid& g, double on_surface) {
+  Roughness out;
   auto touching = [&](const QuadPoint* x) {
     return x->probe.reliable && !(x->probe.distance > on_surface);
   };
@@ -644,25 +677,72 @@ bool rough(const QuadGrid& g, double on_surface) {
         if (!o) continue;
         if (std::max(p->probe.distance, o->probe.distance) < kSeedShare * largest) continue;
         if (touching(p) && touching(o)) continue;
-        if (!p->has_grad || !o->has_grad) return true;
+        if (!p->has_grad || !o->has_grad) {
+          out.footless = true;
+          return out;
+        }
         const double predicted = 0.5 * (p->grad[d] + o->grad[d]) * h;
-        if (std::abs(o->probe.distance - p->probe.distance - predicted) > 0.005 * largest)
-          return true;
+        if (std::abs(o->probe.distance - p->probe.distance - predicted) > kRoughShare * largest)
+          out.edges.push_back({p, o, d});
       }
     }
-  return false;
+  return out;
+}
+
+// A distance smooth at the panel's scale can still fail the trapezoid test:
+// one that rises and falls once across the panel (a 1.4 m panel over half a
+// hill of a terrain) has a mismatch of about 1% of its peak at 8 steps a
+// side, and took the 3x finer pass (9 times the probes, 75% of the time on
+// such a face) to find the same peaks (every terrain panel within 3e-10
+// relative without it, bench/no_cliff.py). So before that pass, each
+// failing pair is looked at once more, at its midpoint: a smooth distance
+// passes there, at half the step, with a mismatch 8 times smaller and the
+// cubic through the pair's values and slopes predicting the midpoint's value
+// and slope to O(h^4); a crease between the pair does not. With the bounds
+// below (shares of the test's kRoughShare x largest: the trapezoid rule on
+// each half within 1/2, the cubic's value and slope, times half a step,
+// within 1/16), no kink of a piecewise linear distance that failed the test
+// passes, for any position of the kink within the pair (checked over 999
+// positions and slope jumps up to 400 x the test's bound), while a distance
+// of up to three quarters of a sine wave across the panel does.
+// The midpoints are peeks (their feet not remembered), so where they find a
+// crease the fine pass runs exactly as it did without them. More than
+// kMaxMidpoints failing pairs: the fine pass at once (a rough top).
+constexpr int kMaxMidpoints = 16;
+
+bool smooth_at_half_step(const QuadDistance& dist, const Roughness& r, int n, double largest) {
+  if (r.footless || r.edges.size() > std::size_t(kMaxMidpoints)) return false;
+  const double h = 1.0 / n, bound = kRoughShare * largest;
+  for (const GridEdge& e : r.edges) {
+    const QuadPoint mid = dist.peek(0.5 * (e.from->z + e.to->z));
+    if (!mid.has_grad) return false;
+    const int d = e.direction;
+    const double d0 = e.from->probe.distance, d1 = e.to->probe.distance, dm = mid.probe.distance;
+    // Slopes per unit of the pair's own parameter (0 at `from`, 1 at `to`).
+    const double g0 = e.from->grad[d] * h, g1 = e.to->grad[d] * h, gm = mid.grad[d] * h;
+    const double first_half = dm - d0 - 0.25 * (g0 + gm);
+    const double second_half = d1 - dm - 0.25 * (gm + g1);
+    const double cubic_value = 0.5 * (d0 + d1) + 0.125 * (g0 - g1);
+    const double cubic_slope = 1.5 * (d1 - d0) - 0.25 * (g0 + g1);
+    if (std::abs(first_half) > 0.5 * bound || std::abs(second_half) > 0.5 * bound ||
+        std::abs(dm - cubic_value) > bound / 16 || 0.5 * std::abs(gm - cubic_slope) > bound / 16)
+      return false;
+  }
+  return true;
 }
 
 // measure_panel_deviation for the bilinear quad (no pieces): a grid pass;
-// where the distance is rough near its top, a second pass three times as
-// fine; from each peak of the finest grid an ascent, a pattern search that
-// follows a ridge the ascent's quadratic model cannot, and, where the top
-// still sits on a crease, a 5 x 5 exploration around it (and again from
-// its best point).
+// where the distance is rough near its top (and not smooth at half the step
+// where the grid found it rough), a second pass three times as fine; from
+// each peak of the finest grid an ascent, a pattern search that follows a
+// ridge the ascent's quadratic model cannot, and, where the top still sits
+// on a crease, a 5 x 5 exploration around it (and again from its best point).
 PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& probe, int n) {
   const QuadDistance dist(model, probe);
   QuadGrid grid = probe_grid(model, probe, dist, n, 0.0);
-  if (rough(grid, probe.slack())) {
+  const Roughness roughness_at_grid = roughness(grid, probe.slack());
+  if (roughness_at_grid.rough() &&
+      !smooth_at_half_step(dist, roughness_at_grid, n, grid.best.probe.distance)) {
     QuadGrid fine = probe_grid(model, probe, dist, 3 * n, grid.best.probe.distance);
     if (fine.best.probe.distance < grid.best.probe.distance) fine.best = grid.best;
     grid = std::move(fine);
