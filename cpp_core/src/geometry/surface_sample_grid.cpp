@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -48,28 +49,54 @@ Vec2 SurfaceSampleGrid::uv_of(int i, int j) const {
   return {u, v};
 }
 
-std::vector<std::pair<double, std::size_t>> SurfaceSampleGrid::blocks_by_distance(
-    const Vec3& p) const {
-  const std::size_t blocks = box_lo_.size();
-  std::vector<std::pair<double, std::size_t>> order(blocks);
-  for (std::size_t b = 0; b < blocks; ++b) {
-    // Squared distance from p to the block's box: no sample in it is nearer.
-    const Vec3 d = (box_lo_[b] - p).cwiseMax(p - box_hi_[b]).cwiseMax(Vec3::Zero());
-    order[b] = {d.squaredNorm(), b};
+// The blocks in order of the squared distance from p to their box (then of
+// their index), taken from a heap as far as a search goes: a search stops at
+// the first block farther than its answer, a few dozen of the terrain's 4,225
+// blocks, whose full sort was half of the time of a rough terrain's metrics.
+// Blocks once taken are kept, so a second pass goes through the same order.
+class SurfaceSampleGrid::BlocksByDistance {
+ public:
+  BlocksByDistance(const SurfaceSampleGrid& grid, const Vec3& p) {
+    const std::size_t blocks = grid.box_lo_.size();
+    heap_.resize(blocks);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      // Squared distance from p to the block's box: no sample in it is nearer.
+      const Vec3 d = (grid.box_lo_[b] - p).cwiseMax(p - grid.box_hi_[b]).cwiseMax(Vec3::Zero());
+      heap_[b] = {d.squaredNorm(), b};
+    }
+    std::make_heap(heap_.begin(), heap_.end(), std::greater<>());
+    taken_.reserve(64);
   }
-  std::sort(order.begin(), order.end());
-  return order;
-}
+  // The k-th block in order (k at most one past the last taken); false past
+  // the last block.
+  bool at(std::size_t k, std::pair<double, std::size_t>& out) {
+    if (k == taken_.size()) {
+      if (heap_.empty()) return false;
+      std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
+      taken_.push_back(heap_.back());
+      heap_.pop_back();
+    }
+    out = taken_[k];
+    return true;
+  }
+
+ private:
+  std::vector<std::pair<double, std::size_t>> heap_;   // not yet taken, a min-heap
+  std::vector<std::pair<double, std::size_t>> taken_;  // taken, in order
+};
 
 SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p) const {
-  return nearest_in(blocks_by_distance(p), p);
+  BlocksByDistance order(*this, p);
+  return nearest_in(order, p);
 }
 
-SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest_in(
-    const std::vector<std::pair<double, std::size_t>>& order, const Vec3& p) const {
+SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest_in(BlocksByDistance& order,
+                                                        const Vec3& p) const {
   double best = std::numeric_limits<double>::infinity();
   std::size_t best_index = 0;
-  for (const auto& [bound, b] : order) {
+  std::pair<double, std::size_t> next;
+  for (std::size_t k = 0; order.at(k, next); ++k) {
+    const auto& [bound, b] = next;
     if (bound > best) break;
     const int bi = static_cast<int>(b % bu_), bj = static_cast<int>(b / bu_);
     for (int j = bj * kBlock; j < std::min(nv_ + 1, bj * kBlock + kBlock); ++j)
@@ -88,7 +115,7 @@ SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest_in(
 
 std::vector<SurfaceSampleGrid::Sample> SurfaceSampleGrid::candidates(const Vec3& p,
                                                                      int count) const {
-  const auto order = blocks_by_distance(p);  // sorted once, for both passes
+  BlocksByDistance order(*this, p);  // one order for both passes
   const Sample first = nearest_in(order, p);
   const double limit = first.distance + 2.0 * reach_;
   const double limit_sq = limit * limit;
@@ -96,7 +123,9 @@ std::vector<SurfaceSampleGrid::Sample> SurfaceSampleGrid::candidates(const Vec3&
     return (points_[static_cast<std::size_t>(j) * (nu_ + 1) + i] - p).squaredNorm();
   };
   std::vector<std::pair<double, std::size_t>> found;  // (squared distance, sample index)
-  for (const auto& [bound, b] : order) {
+  std::pair<double, std::size_t> next;
+  for (std::size_t k = 0; order.at(k, next); ++k) {
+    const auto& [bound, b] = next;
     if (bound > limit_sq) break;
     const int bi = static_cast<int>(b % bu_), bj = static_cast<int>(b / bu_);
     for (int j = bj * kBlock; j < std::min(nv_ + 1, bj * kBlock + kBlock); ++j)

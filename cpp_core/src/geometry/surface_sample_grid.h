@@ -46,10 +46,9 @@ class SurfaceSampleGrid {
   std::vector<Vec3> box_lo_, box_hi_;  // per block
   double reach_ = 0;                   // largest half diagonal of a grid cell in 3D
   Vec2 uv_of(int i, int j) const;
-  // Blocks sorted by the squared distance from p to their box.
-  std::vector<std::pair<double, std::size_t>> blocks_by_distance(const Vec3& p) const;
-  // The nearest sample, visiting the blocks in that order.
-  Sample nearest_in(const std::vector<std::pair<double, std::size_t>>& order, const Vec3& p) const;
+  class BlocksByDistance;
+  // The nearest sample, visiting the blocks in order of their box distance.
+  Sample nearest_in(BlocksByDistance& order, const Vec3& p) const;
 };
 
 }  // namespace tessella
