@@ -14,7 +14,7 @@ DEB_PACKAGES := g++ make cmake freecad freecad-python3 \
 
 # Only for `make bench` (the Gmsh comparison; SciPy's MILP solver checks the
 # families' cover against the optimum), never for the build or the tests.
-BENCH_PACKAGES := python3-gmsh python3-scipy
+BENCH_PACKAGES := python3-gmsh python3-scipy occt-misc
 
 .PHONY: all deps bench-deps build test test-cpp test-python test-gui demo bench screenshots install uninstall format clean
 

@@ -50,6 +50,17 @@ def terrain_face(nu, nv, extent=100000.0):
     return s.toShape().Faces[0]
 
 
+def refined_face(face, nu, nv):
+    """The same surface as face's (a B-spline) with simple knots inserted
+    until it has nu x nv poles: the same shape, many more poles and spans."""
+    s = face.Surface.copy()
+    for n_have, n_want, insert in ((s.NbUPoles, nu, s.insertUKnot), (s.NbVPoles, nv, s.insertVKnot)):
+        extra = n_want - n_have
+        for k in range(extra):
+            insert((k + 0.5) / (extra + 1), 1, 1e-12)
+    return s.toShape().Faces[0]
+
+
 def _approx_surface(fn, nu, nv):
     """A bicubic B-spline through fn(s, t) sampled on an nu x nv grid, s, t in [0,1]."""
     pts = [[fn(i / (nu - 1), j / (nv - 1)) for j in range(nv)] for i in range(nu)]
