@@ -10,6 +10,7 @@
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -59,6 +60,76 @@ TEST(SurfaceSampleGrid, NearestSampleIsTheBruteForceOne) {
         best = std::min(best, (eval(u, v) - p).norm());
       }
     EXPECT_NEAR(grid.nearest(p).distance, best, 1e-9 * best) << k;
+  }
+}
+
+// A grid of 38 x 33 blocks in 5 x 5 groups, which a search visits near p
+// only: the nearest sample (its uv too, ties to the first in grid order) and
+// the candidates (local minima of the samples' distance within the nearest
+// plus twice the largest half cell diagonal, nearest first) are exactly the
+// brute-force ones, over all samples, for points near, on and far from it.
+TEST(SurfaceSampleGrid, NearestAndCandidatesAreTheBruteForceOnesOnABigGrid) {
+  const Handle(Geom_BSplineSurface) s = wavy_surface();
+  const UvBounds r{0, 37, 0, 37};
+  const int nu = 300, nv = 260;
+  auto eval = [&](double u, double v) {
+    const gp_Pnt p = s->Value(u, v);
+    return Vec3(p.X(), p.Y(), p.Z());
+  };
+  const SurfaceSampleGrid grid(r, nu, nv, eval);
+  // The grid's own parameters: steps of (max - min) / n from min, the last
+  // sample on max.
+  auto uv_of = [&](int i, int j) {
+    return Vec2(i == nu ? 37.0 : 37.0 / nu * i, j == nv ? 37.0 : 37.0 / nv * j);
+  };
+  std::vector<Vec3> pts;
+  for (int j = 0; j <= nv; ++j)
+    for (int i = 0; i <= nu; ++i) pts.push_back(eval(uv_of(i, j).x(), uv_of(i, j).y()));
+  auto at = [&](int i, int j) -> const Vec3& { return pts[std::size_t(j) * (nu + 1) + i]; };
+  double reach = 0;
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i)
+      reach = std::max(reach, 0.5 * std::max((at(i + 1, j + 1) - at(i, j)).norm(),
+                                             (at(i, j + 1) - at(i + 1, j)).norm()));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> xy(-2000.0, 12000.0), z(-2000.0, 2000.0);
+  for (int k = 0; k < 60; ++k) {
+    // Every third point on the surface (a sample's own position: distance 0).
+    const Vec3 p = k % 3 == 0 ? at(int(rng() % (nu + 1)), int(rng() % (nv + 1)))
+                              : Vec3(xy(rng), xy(rng), z(rng));
+    double best = std::numeric_limits<double>::infinity();
+    int bi = 0, bj = 0;
+    for (int j = 0; j <= nv; ++j)
+      for (int i = 0; i <= nu; ++i) {
+        const double d = (at(i, j) - p).squaredNorm();
+        if (d < best) best = d, bi = i, bj = j;
+      }
+    const SurfaceSampleGrid::Sample nearest = grid.nearest(p);
+    EXPECT_EQ(nearest.distance, std::sqrt(best)) << k;
+    EXPECT_EQ(nearest.uv, uv_of(bi, bj)) << k;
+    const double limit = std::sqrt(best) + 2.0 * reach;
+    std::vector<std::pair<double, int>> minima;  // (squared distance, sample index)
+    for (int j = 0; j <= nv; ++j)
+      for (int i = 0; i <= nu; ++i) {
+        const double d = (at(i, j) - p).squaredNorm();
+        if (d > limit * limit) continue;
+        bool minimum = true;
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di)
+            if ((di || dj) && i + di >= 0 && j + dj >= 0 && i + di <= nu && j + dj <= nv &&
+                (at(i + di, j + dj) - p).squaredNorm() < d)
+              minimum = false;
+        if (minimum) minima.push_back({d, j * (nu + 1) + i});
+      }
+    std::sort(minima.begin(), minima.end());
+    std::vector<Vec2> expected{uv_of(bi, bj)};
+    for (const auto& [d, index] : minima) {
+      const Vec2 uv = uv_of(index % (nu + 1), index / (nu + 1));
+      if (expected.size() < 8 && uv != expected.front()) expected.push_back(uv);
+    }
+    const std::vector<SurfaceSampleGrid::Sample> found = grid.candidates(p, 8);
+    ASSERT_EQ(found.size(), expected.size()) << k;
+    for (std::size_t c = 0; c < found.size(); ++c) EXPECT_EQ(found[c].uv, expected[c]) << k;
   }
 }
 

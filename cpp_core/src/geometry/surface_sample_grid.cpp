@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -30,6 +29,17 @@ SurfaceSampleGrid::SurfaceSampleGrid(const UvBounds& range, int nu, int nv,
       box_lo_[b] = box_lo_[b].cwiseMin(q);
       box_hi_[b] = box_hi_[b].cwiseMax(q);
     }
+  gu_ = (bu_ + kGroup - 1) / kGroup;
+  gv_ = (bv_ + kGroup - 1) / kGroup;
+  group_lo_.assign(static_cast<std::size_t>(gu_) * gv_, Vec3(inf, inf, inf));
+  group_hi_.assign(static_cast<std::size_t>(gu_) * gv_, Vec3(-inf, -inf, -inf));
+  for (int j = 0; j < bv_; ++j)
+    for (int i = 0; i < bu_; ++i) {
+      const std::size_t g = static_cast<std::size_t>(j / kGroup) * gu_ + i / kGroup;
+      const std::size_t b = static_cast<std::size_t>(j) * bu_ + i;
+      group_lo_[g] = group_lo_[g].cwiseMin(box_lo_[b]);
+      group_hi_[g] = group_hi_[g].cwiseMax(box_hi_[b]);
+    }
   // The surface bends between samples; the half diagonal is the reach of
   // the cell's corners to first order, which the margin of candidates() takes
   // twice over.
@@ -49,64 +59,67 @@ Vec2 SurfaceSampleGrid::uv_of(int i, int j) const {
   return {u, v};
 }
 
-// The blocks in order of the squared distance from p to their box (then of
-// their index), taken from a heap as far as a search goes: a search stops at
-// the first block farther than its answer, a few dozen of the terrain's 4,225
-// blocks, whose full sort was half of the time of a rough terrain's metrics.
-// Blocks once taken are kept, so a second pass goes through the same order.
-class SurfaceSampleGrid::BlocksByDistance {
- public:
-  BlocksByDistance(const SurfaceSampleGrid& grid, const Vec3& p) {
-    const std::size_t blocks = grid.box_lo_.size();
-    heap_.resize(blocks);
-    for (std::size_t b = 0; b < blocks; ++b) {
-      // Squared distance from p to the block's box: no sample in it is nearer.
-      const Vec3 d = (grid.box_lo_[b] - p).cwiseMax(p - grid.box_hi_[b]).cwiseMax(Vec3::Zero());
-      heap_[b] = {d.squaredNorm(), b};
-    }
-    std::make_heap(heap_.begin(), heap_.end(), std::greater<>());
-    taken_.reserve(64);
-  }
-  // The k-th block in order (k at most one past the last taken); false past
-  // the last block.
-  bool at(std::size_t k, std::pair<double, std::size_t>& out) {
-    if (k == taken_.size()) {
-      if (heap_.empty()) return false;
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
-      taken_.push_back(heap_.back());
-      heap_.pop_back();
-    }
-    out = taken_[k];
-    return true;
-  }
+namespace {
+// Squared distance from p to the box [lo, hi]: no point in it is nearer.
+double box_distance_sq(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  return (lo - p).cwiseMax(p - hi).cwiseMax(Vec3::Zero()).squaredNorm();
+}
+}  // namespace
 
- private:
-  std::vector<std::pair<double, std::size_t>> heap_;   // not yet taken, a min-heap
-  std::vector<std::pair<double, std::size_t>> taken_;  // taken, in order
-};
-
-SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p) const {
-  BlocksByDistance order(*this, p);
-  return nearest_in(order, p);
+// Two levels, so a search looks at the boxes near p only: the terrain's grid
+// has 4,225 blocks, and sorting all of them on every call was half of the
+// time of its metrics. Which blocks are visited does not depend on the
+// order beyond what the limit excludes: a block is skipped only when its box
+// is farther than the limit, and the limit only shrinks, so every sample
+// within the final limit is visited (the answers are the same as visiting
+// all blocks in sorted order).
+template <class Limit, class Visit>
+void SurfaceSampleGrid::blocks_within(const Vec3& p, const Limit& limit, const Visit& visit) const {
+  std::vector<std::pair<double, std::size_t>> groups(group_lo_.size());
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    groups[g] = {box_distance_sq(p, group_lo_[g], group_hi_[g]), g};
+  std::sort(groups.begin(), groups.end());
+  std::vector<std::pair<double, std::size_t>> blocks;
+  blocks.reserve(static_cast<std::size_t>(kGroup) * kGroup);
+  for (const auto& [group_bound, g] : groups) {
+    if (group_bound > limit()) break;  // every block in it is at least as far
+    const int gi = static_cast<int>(g % static_cast<std::size_t>(gu_));
+    const int gj = static_cast<int>(g / static_cast<std::size_t>(gu_));
+    blocks.clear();
+    for (int j = gj * kGroup; j < std::min(bv_, gj * kGroup + kGroup); ++j)
+      for (int i = gi * kGroup; i < std::min(bu_, gi * kGroup + kGroup); ++i) {
+        const std::size_t b = static_cast<std::size_t>(j) * bu_ + i;
+        blocks.push_back({box_distance_sq(p, box_lo_[b], box_hi_[b]), b});
+      }
+    std::sort(blocks.begin(), blocks.end());
+    for (const auto& [bound, b] : blocks) {
+      if (bound > limit()) break;
+      visit(b);
+    }
+  }
 }
 
-SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest_in(BlocksByDistance& order,
-                                                        const Vec3& p) const {
+template <class Visit>
+void SurfaceSampleGrid::samples_of(std::size_t b, const Visit& visit) const {
+  const int bi = static_cast<int>(b % static_cast<std::size_t>(bu_));
+  const int bj = static_cast<int>(b / static_cast<std::size_t>(bu_));
+  for (int j = bj * kBlock; j < std::min(nv_ + 1, bj * kBlock + kBlock); ++j)
+    for (int i = bi * kBlock; i < std::min(nu_ + 1, bi * kBlock + kBlock); ++i) visit(i, j);
+}
+
+SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p) const {
   double best = std::numeric_limits<double>::infinity();
   std::size_t best_index = 0;
-  std::pair<double, std::size_t> next;
-  for (std::size_t k = 0; order.at(k, next); ++k) {
-    const auto& [bound, b] = next;
-    if (bound > best) break;
-    const int bi = static_cast<int>(b % bu_), bj = static_cast<int>(b / bu_);
-    for (int j = bj * kBlock; j < std::min(nv_ + 1, bj * kBlock + kBlock); ++j)
-      for (int i = bi * kBlock; i < std::min(nu_ + 1, bi * kBlock + kBlock); ++i) {
-        const std::size_t k = static_cast<std::size_t>(j) * (nu_ + 1) + i;
-        const double d = (points_[k] - p).squaredNorm();
-        // Ties go to the first in grid order, whatever order the blocks came in.
-        if (d < best || (d == best && k < best_index)) best = d, best_index = k;
-      }
-  }
+  blocks_within(
+      p, [&] { return best; },
+      [&](std::size_t b) {
+        samples_of(b, [&](int i, int j) {
+          const std::size_t k = static_cast<std::size_t>(j) * (nu_ + 1) + i;
+          const double d = (points_[k] - p).squaredNorm();
+          // Ties go to the first in grid order, whatever order the blocks came in.
+          if (d < best || (d == best && k < best_index)) best = d, best_index = k;
+        });
+      });
   Sample s;
   s.uv = uv_of(static_cast<int>(best_index % (nu_ + 1)), static_cast<int>(best_index / (nu_ + 1)));
   s.distance = std::sqrt(best);
@@ -115,36 +128,28 @@ SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest_in(BlocksByDistance& order,
 
 std::vector<SurfaceSampleGrid::Sample> SurfaceSampleGrid::candidates(const Vec3& p,
                                                                      int count) const {
-  BlocksByDistance order(*this, p);  // one order for both passes
-  const Sample first = nearest_in(order, p);
+  const Sample first = nearest(p);
   const double limit = first.distance + 2.0 * reach_;
   const double limit_sq = limit * limit;
   auto dist_sq = [&](int i, int j) {
     return (points_[static_cast<std::size_t>(j) * (nu_ + 1) + i] - p).squaredNorm();
   };
   std::vector<std::pair<double, std::size_t>> found;  // (squared distance, sample index)
-  std::pair<double, std::size_t> next;
-  for (std::size_t k = 0; order.at(k, next); ++k) {
-    const auto& [bound, b] = next;
-    if (bound > limit_sq) break;
-    const int bi = static_cast<int>(b % bu_), bj = static_cast<int>(b / bu_);
-    for (int j = bj * kBlock; j < std::min(nv_ + 1, bj * kBlock + kBlock); ++j)
-      for (int i = bi * kBlock; i < std::min(nu_ + 1, bi * kBlock + kBlock); ++i) {
-        const double d = dist_sq(i, j);
-        if (d > limit_sq) continue;
-        bool minimum = true;
-        for (int dj = -1; dj <= 1 && minimum; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const int a = i + di, c = j + dj;
-            if ((di == 0 && dj == 0) || a < 0 || c < 0 || a > nu_ || c > nv_) continue;
-            if (dist_sq(a, c) < d) {
-              minimum = false;
-              break;
+  blocks_within(
+      p, [&] { return limit_sq; },
+      [&](std::size_t b) {
+        samples_of(b, [&](int i, int j) {
+          const double d = dist_sq(i, j);
+          if (d > limit_sq) return;
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+              const int a = i + di, c = j + dj;
+              if ((di == 0 && dj == 0) || a < 0 || c < 0 || a > nu_ || c > nv_) continue;
+              if (dist_sq(a, c) < d) return;  // not a local minimum
             }
-          }
-        if (minimum) found.emplace_back(d, static_cast<std::size_t>(j) * (nu_ + 1) + i);
-      }
-  }
+          found.emplace_back(d, static_cast<std::size_t>(j) * (nu_ + 1) + i);
+        });
+      });
   std::sort(found.begin(), found.end());  // by distance, then grid order: deterministic
   std::vector<Sample> out{first};
   for (const auto& [d, k] : found) {

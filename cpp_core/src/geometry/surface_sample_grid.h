@@ -39,16 +39,24 @@ class SurfaceSampleGrid {
 
  private:
   static constexpr int kBlock = 8;  // samples per block side
+  static constexpr int kGroup = 8;  // blocks per group side
   UvBounds range_;
   int nu_, nv_;
-  int bu_, bv_;                        // blocks along u and v
-  std::vector<Vec3> points_;           // (nu + 1) x (nv + 1), u fastest
-  std::vector<Vec3> box_lo_, box_hi_;  // per block
-  double reach_ = 0;                   // largest half diagonal of a grid cell in 3D
+  int bu_, bv_;                            // blocks along u and v
+  int gu_, gv_;                            // groups of blocks along u and v
+  std::vector<Vec3> points_;               // (nu + 1) x (nv + 1), u fastest
+  std::vector<Vec3> box_lo_, box_hi_;      // per block
+  std::vector<Vec3> group_lo_, group_hi_;  // per group
+  double reach_ = 0;                       // largest half diagonal of a grid cell in 3D
   Vec2 uv_of(int i, int j) const;
-  class BlocksByDistance;
-  // The nearest sample, visiting the blocks in order of their box distance.
-  Sample nearest_in(BlocksByDistance& order, const Vec3& p) const;
+  // visit(b) for every block whose box is within limit() (a squared
+  // distance, read again before each block: it may shrink as the visits go)
+  // of p, the nearest groups first and in a group the nearest blocks first.
+  template <class Limit, class Visit>
+  void blocks_within(const Vec3& p, const Limit& limit, const Visit& visit) const;
+  // Every sample of block b.
+  template <class Visit>
+  void samples_of(std::size_t b, const Visit& visit) const;
 };
 
 }  // namespace tessella
