@@ -126,6 +126,9 @@ class Prober {
     return (s_q - x).norm();
   }
   double slack() const { return tiny_; }
+  // A verified foot point within the slack: the probed point lies on the
+  // face (no gradient there; a quad on a plane is all such points).
+  bool on_face(const Probe& p) const { return p.reliable && !(p.distance > tiny_); }
 
   // The distance from x (model parameters q) to the surface, projecting from
   // `start`. Never more than cheap_bound(x, q), S(q) being a real surface
@@ -644,9 +647,9 @@ std::vector<const QuadPoint*> grid_peaks(const QuadGrid& g, double largest) {
 // surface point jumps from one sheet of the surface to another) or varies
 // faster than the grid: its peaks can lie between the samples and 30% above
 // them (MAT.brep).
-// Two samples on the surface (verified foot points within `on_surface`, no
-// gradient there) connect: a quad lying on its face (a plane's) took the
-// fine pass for nothing, 9 times the probes (61% of a filleted box's quads).
+// Two samples on the face (Prober::on_face, no gradient there) connect: a
+// quad lying on its face (a plane's) took the fine pass for nothing, 9 times
+// the probes (61% of a filleted box's quads).
 constexpr double kRoughShare = 0.005;
 
 struct GridEdge {
@@ -661,11 +664,8 @@ struct Roughness {
   bool rough() const { return footless || !edges.empty(); }
 };
 
-Roughness roughness(const QuadGrid& g, double on_surface) {
+Roughness roughness(const QuadGrid& g, const Prober& probe) {
   Roughness out;
-  auto touching = [&](const QuadPoint* x) {
-    return x->probe.reliable && !(x->probe.distance > on_surface);
-  };
   const double largest = g.best.probe.distance;
   const double h = 1.0 / g.n;
   for (int i = 0; i <= g.n; ++i)
@@ -676,7 +676,7 @@ Roughness roughness(const QuadGrid& g, double on_surface) {
         const QuadPoint* o = d == 0 ? g.at(i + 1, j) : g.at(i, j + 1);
         if (!o) continue;
         if (std::max(p->probe.distance, o->probe.distance) < kSeedShare * largest) continue;
-        if (touching(p) && touching(o)) continue;
+        if (probe.on_face(p->probe) && probe.on_face(o->probe)) continue;
         if (!p->has_grad || !o->has_grad) {
           out.footless = true;
           return out;
@@ -740,7 +740,7 @@ bool smooth_at_half_step(const QuadDistance& dist, const Roughness& r, int n, do
 PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& probe, int n) {
   const QuadDistance dist(model, probe);
   QuadGrid grid = probe_grid(model, probe, dist, n, 0.0);
-  const Roughness roughness_at_grid = roughness(grid, probe.slack());
+  const Roughness roughness_at_grid = roughness(grid, probe);
   if (roughness_at_grid.rough() &&
       !smooth_at_half_step(dist, roughness_at_grid, n, grid.best.probe.distance)) {
     QuadGrid fine = probe_grid(model, probe, dist, 3 * n, grid.best.probe.distance);
@@ -754,7 +754,7 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
   // A quad whose largest sample is a verified foot point within the slack
   // lies on its face (a plane's quad): its "peaks" are rounding noise, and
   // ascents on them climbed nothing (up to 8 a quad).
-  if (best.probe.reliable && !(best.probe.distance > probe.slack())) seeds.clear();
+  if (probe.on_face(best.probe)) seeds.clear();
   std::vector<QuadPoint> tops;
   for (const QuadPoint* seed : seeds) {
     // An ascent on a wrong sheet (a foot point that later surface points
@@ -947,7 +947,7 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
   }
   // (No refinement where the largest sample lies on the face, as for quads:
   // it would climb rounding noise.)
-  const bool on_face = best.probe.reliable && !(best.probe.distance > probe.slack());
+  const bool on_face = probe.on_face(best.probe);
   if (best.probe.distance > 0 && !on_face) {
     std::vector<Sample> tops;
     for (const Sample& s : seeds)

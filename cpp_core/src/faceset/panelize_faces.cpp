@@ -89,8 +89,10 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
   std::vector<Eigen::AlignedBox3d> boxes(faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f) {
     for (const Vec3& x : faces[f].mesh.xyz) boxes[f].extend(x);
-    if (!boxes[f].isEmpty()) boxes[f].extend(boxes[f].min() - Vec3::Constant(2 * tol));
-    if (!boxes[f].isEmpty()) boxes[f].extend(boxes[f].max() + Vec3::Constant(2 * tol));
+    if (!boxes[f].isEmpty()) {
+      boxes[f].min().array() -= 2 * tol;
+      boxes[f].max().array() += 2 * tol;
+    }
   }
   auto near_another = [&](std::size_t f, const Vec3& x) {
     for (std::size_t g = 0; g < boxes.size(); ++g)
