@@ -202,6 +202,61 @@ TEST(GlobalProjection, PointsBeyondTheBorderFindTheBorder) {
   }
 }
 
+// A rough terrain of 300 x 300 poles 25 mm apart (random heights within
+// +-20 mm, as OCCT's terrain.brep has 312 x 323): a grid of 4 samples per
+// knot span is 1,188 a side. Capped at 512 a side (until stop 43) its step
+// was wider than the terrain's dips, and the global search returned a foot
+// point on a neighbouring rise, up to twice as far as the surface.
+TEST(GlobalProjection, RoughTerrainOfManySpansFindsTheNearestPoint) {
+  const int n = 300, degree = 3;
+  const double step = 25.0;
+  std::mt19937 heights(3);
+  std::uniform_real_distribution<double> z(-50.0, 50.0);
+  TColgp_Array2OfPnt poles(1, n, 1, n);
+  for (int i = 1; i <= n; ++i)
+    for (int j = 1; j <= n; ++j) poles(i, j) = gp_Pnt(step * i, step * j, z(heights));
+  const int knots = n - degree + 1;
+  TColStd_Array1OfReal k(1, knots);
+  TColStd_Array1OfInteger m(1, knots);
+  for (int i = 1; i <= knots; ++i) k(i) = i - 1, m(i) = 1;
+  m(1) = m(knots) = degree + 1;
+  const SurfaceFace face = wavy_face(new Geom_BSplineSurface(poles, k, k, m, m, degree, degree));
+  // Away from the clamped ends x and y are linear in u and v (uniform knots,
+  // evenly spaced poles): every surface point within D of p has its (u, v)
+  // within D / (step per unit of u) of p's own, so a dense sampling of that
+  // window is the exact nearest distance (to the sampling's resolution).
+  const Vec3 o = face.point(100.0, 100.0), e = face.point(101.0, 101.0);
+  const double per_u = e.x() - o.x(), per_v = e.y() - o.y();
+  ASSERT_NEAR(per_u, step, 1e-9);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> uv(20.0, 270.0), h(-15.0, 25.0);
+  int farther = 0;
+  for (int t = 0; t < 60; ++t) {
+    const double u0 = uv(rng), v0 = uv(rng);
+    const Vec3 p = face.point(u0, v0) + Vec3(0, 0, h(rng));
+    const Projection mine = face.project(p);
+    EXPECT_NEAR((face.point(mine.uv.x(), mine.uv.y()) - mine.point).norm(), 0.0, 1e-9);
+    const double reach = std::abs(p.z() - face.point(u0, v0).z()) + 1e-6;
+    double best = std::numeric_limits<double>::infinity(), bu = u0, bv = v0;
+    const int samples = 160;
+    for (int i = -samples; i <= samples; ++i)
+      for (int j = -samples; j <= samples; ++j) {
+        const double a = u0 + reach / per_u * i / samples, c = v0 + reach / per_v * j / samples;
+        const double d = (face.point(a, c) - p).norm();
+        if (d < best) best = d, bu = a, bv = c;
+      }
+    for (double r = reach / per_u / samples; r > 1e-9; r *= 0.5)  // refine the best sample
+      for (int i = -2; i <= 2; ++i)
+        for (int j = -2; j <= 2; ++j) {
+          const double d = (face.point(bu + r * i / 2, bv + r * j / 2) - p).norm();
+          if (d < best) best = d, bu += r * i / 2, bv += r * j / 2;
+        }
+    EXPECT_LE(mine.distance, best + 1e-6) << t;
+    if (mine.distance > best + 1e-6) ++farther;
+  }
+  EXPECT_EQ(farther, 0);
+}
+
 TEST(GlobalProjection, SameAnswerInsideAndOutsideAFastScope) {
   const SurfaceFace face = wavy_face(wavy_surface());
   const Vec3 p(4000.0, 12000.0, 900.0);
