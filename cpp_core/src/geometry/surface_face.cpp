@@ -566,10 +566,10 @@ namespace {
 // Until stop 43 each direction was capped at 512 samples: on OCCT's terrain
 // (309 x 320 spans of 25 mm) the step became 15 mm, wider than the steep
 // dips of its border spans, and the search returned 14.13 mm where the
-// surface passes 7.70 mm away; a reliable panel deviation read 5.40 mm
-// where it is 10.16. Only the total is capped now (kMaxGlobalSamples, 100 MB
-// of points), for surfaces of more than about 250,000 spans, where the
-// density per span falls below 4 evenly in both directions.
+// surface passes 7.70 mm away. Only the total is capped now
+// (kMaxGlobalSamples, 100 MB of points), for surfaces of more than about
+// 250,000 spans, where the density per span falls below 4 evenly in both
+// directions.
 constexpr double kMaxGlobalSamples = 4.0 * 1024 * 1024;
 
 std::pair<int, int> sample_counts(const Handle(Geom_Surface) & surface, const UvBounds& range) {
