@@ -600,16 +600,8 @@ Projection SurfaceFace::project(const Vec3& p) const {
   s.global_projections.fetch_add(1, std::memory_order_relaxed);
   std::call_once(s.sample_grid_once, [&s] {
     const auto [nu, nv] = sample_counts(s.surface, s.search);
-    // Our span polynomials where they apply (a private instance: the same
-    // points on whichever thread builds the grid); 1.6 million samples on
-    // OCCT's terrain.
-    std::unique_ptr<SpanPolynomials> poly = SpanPolynomials::create(s.surface);
-    s.sample_grid = std::make_unique<SurfaceSampleGrid>(s.search, nu, nv, [&](double u, double v) {
-      if (!poly) return to_vec(s.surface->Value(u, v));
-      Vec3 q;
-      poly->d0(u, v, q.data());
-      return q;
-    });
+    s.sample_grid = std::make_unique<SurfaceSampleGrid>(
+        s.search, nu, nv, [&s](double u, double v) { return to_vec(s.surface->Value(u, v)); });
   });
   const SurfaceSampleGrid& grid = *s.sample_grid;
   // From each candidate sample: Newton to the foot point of its basin, kept

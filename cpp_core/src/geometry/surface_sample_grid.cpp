@@ -12,17 +12,13 @@ SurfaceSampleGrid::SurfaceSampleGrid(const UvBounds& range, int nu, int nv,
                                      const std::function<Vec3(double, double)>& point)
     : range_(range), nu_(std::max(1, nu)), nv_(std::max(1, nv)) {
   points_.resize(static_cast<std::size_t>(nu_ + 1) * (nv_ + 1));
+  for (int j = 0; j <= nv_; ++j)
+    for (int i = 0; i <= nu_; ++i) {
+      const Vec2 uv = uv_of(i, j);
+      points_[static_cast<std::size_t>(j) * (nu_ + 1) + i] = point(uv.x(), uv.y());
+    }
   bu_ = (nu_ + kBlock) / kBlock;  // blocks of samples i in [b * kBlock, b * kBlock + kBlock)
   bv_ = (nv_ + kBlock) / kBlock;
-  // Block by block: a span-cached evaluator then finds the few spans of a
-  // block in its cache (row by row it built each span four times).
-  for (int bj = 0; bj < bv_; ++bj)
-    for (int bi = 0; bi < bu_; ++bi)
-      for (int j = bj * kBlock; j <= std::min(nv_, bj * kBlock + kBlock - 1); ++j)
-        for (int i = bi * kBlock; i <= std::min(nu_, bi * kBlock + kBlock - 1); ++i) {
-          const Vec2 uv = uv_of(i, j);
-          points_[static_cast<std::size_t>(j) * (nu_ + 1) + i] = point(uv.x(), uv.y());
-        }
   const double inf = std::numeric_limits<double>::infinity();
   box_lo_.assign(static_cast<std::size_t>(bu_) * bv_, Vec3(inf, inf, inf));
   box_hi_.assign(static_cast<std::size_t>(bu_) * bv_, Vec3(-inf, -inf, -inf));
