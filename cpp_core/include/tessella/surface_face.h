@@ -35,6 +35,11 @@ struct TrimLoop {
   bool outer = false;
 };
 
+// Upper bounds of the second derivatives' norms |S_uu|, |S_uv|, |S_vv|.
+struct SecondDerivativeBound {
+  double uu = 0, uv = 0, vv = 0;
+};
+
 struct ProjectionParams {
   double distance_tolerance = 1e-9;        // eps1 of seed 004 eq. 18, relative to model size
   double orthogonality_tolerance = 1e-10;  // eps2 of seed 004 eq. 18 (cosine)
@@ -100,6 +105,11 @@ class SurfaceFace {
   // taken on the edges' own curves on the surface (pcurves), so it lies on the
   // true trim, not on a polyline chord. Throws InvalidParameter for a bad loop.
   Vec2 snap_to_trim(int loop, const Vec2& uv) const;
+
+  // Bounds of the second derivatives valid over the whole (u,v) box, from the
+  // surface's control net (B-spline, Bezier) or closed form (plane, cylinder,
+  // cone, sphere, torus); false for other surfaces. Built on first use.
+  bool second_derivative_bound(const UvBounds& box, SecondDerivativeBound& out) const;
 
   // Area of the trimmed face (OCCT's surface integral).
   double area() const;

@@ -32,6 +32,7 @@
 
 #include "geometry/brep_string.h"
 #include "geometry/pcurve_projection.h"
+#include "geometry/second_derivative_bounds.h"
 #include "geometry/span_adaptors.h"
 #include "geometry/span_polynomials.h"
 #include "geometry/surface_sample_grid.h"
@@ -99,6 +100,10 @@ struct SurfaceFace::Impl {
   // itself (not a scope's evaluator, so every thread gets the same samples
   // bit for bit) and then shared read-only.
   mutable std::once_flag sample_grid_once;
+  // Bounds of the second derivatives (null: the surface has none), built
+  // on first use and then shared read-only.
+  mutable std::once_flag curvature_once;
+  mutable std::unique_ptr<SecondDerivativeBounds> curvature;
   mutable std::unique_ptr<SurfaceSampleGrid> sample_grid;
   // snap_to_trim's projections, per wire (explorer order) and edge, built
   // on first use and shared under the mutex.
@@ -207,6 +212,15 @@ SurfaceFace SurfaceFace::from_occt_face(const TopoDS_Face& face) {
 
 UvBounds SurfaceFace::bounds() const { return impl_->bounds; }
 UvBounds SurfaceFace::search_bounds() const { return impl_->search; }
+
+bool SurfaceFace::second_derivative_bound(const UvBounds& box, SecondDerivativeBound& out) const {
+  const Impl& s = *impl_;
+  std::call_once(s.curvature_once,
+                 [&s] { s.curvature = SecondDerivativeBounds::create(s.surface); });
+  if (!s.curvature) return false;
+  out = s.curvature->over(box);
+  return true;
+}
 double SurfaceFace::model_size() const { return impl_->model_size; }
 bool SurfaceFace::u_periodic() const { return impl_->surface->IsUPeriodic(); }
 bool SurfaceFace::v_periodic() const { return impl_->surface->IsVPeriodic(); }
