@@ -25,8 +25,9 @@ struct PanelMetrics {
   // distance, within 1% of it (measure_panel_deviation).
   std::vector<double> deviation;
   // 1 where the farthest point's projection found no foot point (Newton and
-  // OCCT's Extrema both failed): deviation is then the distance to the
-  // nearest surface point found, still an upper bound but maybe not tight.
+  // OCCT's Extrema both failed: deviation is then the distance to the
+  // nearest surface point found, maybe not tight), or where the check
+  // between the samples ran out of splits (the maximum may lie higher).
   std::vector<char> deviation_unreliable;
   std::vector<double> planarity;  // quad: diagonal distance / mean edge; n-gon: max
                                   // distance to best-fit plane / mean edge; triangle: 0
@@ -58,15 +59,23 @@ PanelMetrics measure_panels(const SurfaceFace& face, const PanelMesh& mesh,
 // restarted if its top turns out to lie on a wrong sheet, and where it stops
 // on a crease a pattern search along it and a 5 x 5 look-around. On flat
 // pieces a pattern search (to h / 128) from the three largest samples.
-// Every distance is that of a true surface point, so the value is an upper
-// bound of the true distance; with a foot point found (reliable) it is the
-// true maximum within 1% (tested against independent dense re-measures on
-// closed forms, a wrinkled surface and narrow bumps; bench/metric_trust.py
-// re-measures every panel). A Newton run that stops at a foot point farther
-// than a known surface point is retried from the nearest corner and then by
-// the global search; if the farthest point still has no verified foot
-// point, `unreliable` is set and the value is the nearest surface point's
-// distance (an upper bound).
+// Every distance is that of a true surface point, so each probe is an upper
+// bound of the distance at its point of the panel. Then the check between
+// the samples: where the surface's second derivatives can be bounded (its
+// control net: B-spline, Bezier; closed forms: plane, cylinder, cone,
+// sphere, torus), an upper bound of the distance over every cell of the
+// sampling shows that no point of the panel lies more than 1% (plus 1e-5 of
+// the panel's size) farther than the value; a cell that does not show it is
+// split and its new points probed, within an allowance (256 splits and two
+// per cell). With a verified foot point at the farthest point and the check
+// passed (reliable), the value is the true maximum within 1% (tested
+// against independent dense re-measures on closed forms, a wrinkled
+// surface, narrow bumps and narrow dips; bench/metric_trust.py re-measures
+// every panel). A Newton run that stops at a foot point farther than a known
+// surface point is retried from the nearest corner and then by the global
+// search. `unreliable` is set if the farthest point still has no verified
+// foot point (the value is then the nearest surface point's distance) or
+// the check ran out of splits (the maximum may lie higher).
 struct PanelDeviation {
   double value = 0;
   bool unreliable = false;

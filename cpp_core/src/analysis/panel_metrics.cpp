@@ -5,9 +5,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
+#include <queue>
+#include <tuple>
 #include <utility>
 
+#include "analysis/deviation_bound.h"
 #include "analysis/known_surface_points.h"
 #include "common/parallel_chunks.h"
 #include "mesh/panel_model.h"
@@ -543,8 +547,19 @@ constexpr int kMaxAscents = 8;
 // distance found (a sample whose bound is below that can be neither the
 // largest nor the foot of a peak that matters), then each is checked against
 // every surface point met since (the first probes met few).
+// A point of the grid: its parameters on the quad, the panel point, its own
+// surface parameters and S there, and the cheap bound |x - S(q)|.
+struct GridSample {
+  Vec2 z;
+  Vec3 x;
+  Vec2 q;
+  Vec3 s_q;
+  double bound;
+};
+
 struct QuadGrid {
   int n = 0;
+  std::vector<GridSample> samples;  // row-major, (n+1) x (n+1)
   std::vector<QuadPoint> probed;
   std::vector<int> slot;  // per grid point: index in `probed`, -1 if not probed
   QuadPoint best;
@@ -558,13 +573,6 @@ struct QuadGrid {
 
 QuadGrid probe_grid(const PanelModel& model, const Prober& probe, const QuadDistance& dist, int n,
                     double floor) {
-  struct GridSample {
-    Vec2 z;
-    Vec3 x;
-    Vec2 q;
-    Vec3 s_q;  // S(q)
-    double bound;
-  };
   const int side = n + 1;
   std::vector<GridSample> grid;
   grid.reserve(std::size_t(side) * std::size_t(side));
@@ -611,6 +619,7 @@ QuadGrid probe_grid(const PanelModel& model, const Prober& probe, const QuadDist
     }
     if (!(out.best.probe.distance < before) || by_bound.empty()) break;
   }
+  out.samples = std::move(grid);
   return out;
 }
 
@@ -731,13 +740,265 @@ bool smooth_at_half_step(const QuadDistance& dist, const Roughness& r, int n, do
   return true;
 }
 
+// From a peak of the grid: an ascent on the distance; an ascent on a wrong
+// sheet (a foot point that later surface points show to be farther than the
+// nearest) climbs the wrong function: its top is checked, and if it was
+// wrong, the climb starts again from there with the nearer foot point
+// (MAT.brep: 2.157 on a wrong sheet at a sample, 2.012 there in truth, the
+// true peak 2.10 a fifth of a step away). Where it stops on a crease, a
+// pattern search along the crease, then a look around it. h: the grid step.
+QuadPoint climb(const PanelModel& model, const Prober& probe, const QuadDistance& dist,
+                QuadPoint top, double h) {
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    top = ascend(dist, top, 0.5 * h);
+    Vec3 x;
+    Vec2 q;
+    model.at(-1, top.z.x(), top.z.y(), x, q);
+    const Probe checked = probe.recheck(x, top.probe);
+    if (checked.distance + probe.slack() < top.probe.distance) {
+      top = dist.of(top.z, x, checked);
+      continue;
+    }
+    if (!on_crease(top, h)) break;
+    Sample polish{-1, top.z.x(), top.z.y(), top.probe};
+    polish = refine(model, probe, polish, 0.25 * h);
+    if (polish.probe.distance > top.probe.distance) {
+      model.at(-1, polish.a, polish.b, x, q);
+      top = dist.of({polish.a, polish.b}, x, polish.probe);
+    }
+    const QuadPoint around = explore(dist, top, h);
+    if (!(around.probe.distance > top.probe.distance + probe.slack())) break;
+    top = around;
+  }
+  return top;
+}
+
+// The top checked against every surface point met (its answer if larger).
+void offer_top(const PanelModel& model, const Prober& probe, const QuadPoint& top, Probe& answer) {
+  Vec3 x;
+  Vec2 q;
+  model.at(-1, top.z.x(), top.z.y(), x, q);
+  const Probe checked = probe.recheck(x, top.probe);
+  if (checked.distance > answer.distance) answer = checked;
+}
+
+// The certificate of a panel's answer D: every cell of the finest grid (a
+// quad's, or each flat piece's triangles) gets an upper bound of the
+// distance over the whole cell, not only at its corners (deviation_bound.h:
+// the surface's second-derivative bounds and the surface points met at the
+// corners). A cell whose bound exceeds D by more than kCertifyShare of D
+// (plus kCertifyFloor of the panel's size) is split (a quad in four, or in
+// two across a crease; a triangle in four); each new point gets the
+// surface point at its own parameters, and is probed where that is farther
+// than D (only there can a new top lie); a probe above D is climbed like a
+// grid peak. Until every cell is below, or the splits allowed are spent
+// (kMaxCertifySplits and two per cell of the grid): then the panel is
+// flagged unreliable. The answer never drops; where every cell is below, the
+// true largest distance is at most (1 + kCertifyShare) D plus the floor.
+// Before it (stop 43), the border panels of OCCT's terrain read as low as
+// half their distance, flagged reliable (panel 4,392: 5.40 mm where the
+// global search finds 10.16): dips of 20 mm within 10-15 mm, narrower than
+// the 13 mm grid step, between samples that agreed with their gradients.
+constexpr double kCertifyShare = 0.01;
+constexpr double kCertifyFloor = 1e-5;
+constexpr int kMaxCertifySplits = 256;
+
+// Feet that move this many times as far as the own parameters across a cell.
+constexpr double kCreaseJump = 4.0;
+
+class DeviationCertificate {
+ public:
+  DeviationCertificate(const SurfaceFace& face, const PanelModel& model, const Prober& probe,
+                       const std::vector<Vec3>& p)
+      : face_(face), model_(model), probe_(probe) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec3& a : p) lo = lo.cwiseMin(a), hi = hi.cwiseMax(a);
+    if (!p.empty()) size_ = (hi - lo).norm();
+  }
+
+  // Whether the face has the bounds a certificate needs.
+  static bool possible(const SurfaceFace& face) {
+    SecondDerivativeBound m;
+    const UvBounds b = face.bounds();
+    return face.second_derivative_bound({b.u_min, b.u_min, b.v_min, b.v_min}, m);
+  }
+
+  // A grid point of piece `tri` (-1: the bilinear quad) at z with its
+  // probe, if probed, and the surface point at its own parameters; returns
+  // its index for add_cell.
+  int add_point(int tri, const Vec2& z, const Vec3& x, const Vec2& q, const Vec3& s_q,
+                const Probe* probed) {
+    BoundCorner c{x, q, s_q, q, s_q};
+    if (probed && (x - probed->point).norm() < (x - s_q).norm())
+      c.f = probed->foot, c.s = probed->point;
+    corners_.push_back(c);
+    z_.push_back(z);
+    piece_.push_back(tri);
+    return int(corners_.size()) - 1;
+  }
+  // A cell of the grid: a quad's (corner[3] >= 0, in the order (lo, lo),
+  // (hi, lo), (hi, hi), (lo, hi)) or a triangle's (corner[3] = -1).
+  void add_cell(const std::array<int, 4>& corner) { cells_.push_back(corner); }
+
+  // true: certified (`answer` may have risen); false: the splits ran out.
+  // `dist`: the quad's distance (ascents from new tops), null for pieces.
+  bool run(Probe& answer, const QuadDistance* dist) {
+    answer_ = &answer;
+    dist_ = dist;
+    // One bound over the box of the grid's surface parameters, for the
+    // first try of each cell (not across a periodic seam: unwrapped cells
+    // would leave it).
+    if (!face_.u_periodic() && !face_.v_periodic() && !corners_.empty()) {
+      UvBounds& b = hint_.box;
+      b = {corners_[0].q.x(), corners_[0].q.x(), corners_[0].q.y(), corners_[0].q.y()};
+      for (const BoundCorner& c : corners_)
+        for (const Vec2& f : {c.f, c.q}) {
+          b.u_min = std::min(b.u_min, f.x()), b.u_max = std::max(b.u_max, f.x());
+          b.v_min = std::min(b.v_min, f.y()), b.v_max = std::max(b.v_max, f.y());
+        }
+      has_hint_ = face_.second_derivative_bound(b, hint_.m);
+    }
+    for (const auto& cell : cells_) push(cell);
+    // A boundary panel of a thousand thin pieces may need each of them
+    // split once or twice: the allowance grows with the cells.
+    const std::size_t allowed = kMaxCertifySplits + 2 * cells_.size();
+    std::size_t splits = 0;
+    while (!open_.empty()) {
+      const Cell cell = open_.top();
+      open_.pop();
+      if (passes(cell.bound)) continue;  // the answer rose since
+      if (splits++ >= allowed) return false;
+      split(cell.corner);
+    }
+    return true;
+  }
+
+ private:
+  struct Cell {
+    double bound;
+    std::size_t order;  // ties: the cell pushed first
+    std::array<int, 4> corner;
+    bool operator<(const Cell& o) const {
+      return bound < o.bound || (bound == o.bound && order > o.order);
+    }
+  };
+
+  // A quad in four, or in two across a crease (the feet jump across one
+  // direction of the cell far more than its own parameters move: the cell
+  // need only be thin across it, and a crease can run the panel's length);
+  // a triangle in four at its edges' midpoints.
+  void split(const std::array<int, 4>& k) {
+    const auto [i0, i1, i2, i3] = k;
+    auto mid = [&](int a, int b) { return point(piece_[a], 0.5 * (z_[a] + z_[b]), a, b); };
+    if (i3 < 0) {
+      const int m01 = mid(i0, i1), m12 = mid(i1, i2), m20 = mid(i2, i0);
+      push({i0, m01, m20, -1});
+      push({m01, i1, m12, -1});
+      push({m20, m12, i2, -1});
+      push({m01, m12, m20, -1});
+      return;
+    }
+    auto jump = [&](int a, int b, int d, int e) {
+      const BoundCorner &ca = corners_[a], &cb = corners_[b], &cd = corners_[d], &ce = corners_[e];
+      const double own = (ca.q - cb.q).norm() + (cd.q - ce.q).norm();
+      return own > 0 ? ((ca.f - cb.f).norm() + (cd.f - ce.f).norm()) / own : 0.0;
+    };
+    const double across_s = jump(i0, i1, i3, i2), across_t = jump(i0, i3, i1, i2);
+    if (across_t > kCreaseJump * std::max(1.0, across_s)) {
+      const int l = mid(i0, i3), r = mid(i1, i2);
+      push({i0, i1, r, l});
+      push({l, r, i2, i3});
+      return;
+    }
+    if (across_s > kCreaseJump * std::max(1.0, across_t)) {
+      const int b = mid(i0, i1), t = mid(i3, i2);
+      push({i0, b, t, i3});
+      push({b, i1, i2, t});
+      return;
+    }
+    const int b = mid(i0, i1), r = mid(i1, i2), t = mid(i3, i2), l = mid(i0, i3);
+    const int m = mid(i0, i2);
+    push({i0, b, m, l});
+    push({b, i1, r, m});
+    push({m, r, i2, t});
+    push({l, m, t, i3});
+  }
+
+  double enough() const { return answer_->distance * (1 + kCertifyShare) + kCertifyFloor * size_; }
+  bool passes(double bound) const { return bound <= enough(); }
+
+  void push(const std::array<int, 4>& k) {
+    double bound;
+    const CurvatureOverBox* hint = has_hint_ ? &hint_ : nullptr;
+    if (k[3] < 0)
+      bound = triangle_cell_bound(face_, {corners_[k[0]], corners_[k[1]], corners_[k[2]]}, enough(),
+                                  hint);
+    else
+      bound = bilinear_cell_bound(
+          face_, {corners_[k[0]], corners_[k[1]], corners_[k[2]], corners_[k[3]]}, enough(), hint);
+    if (!passes(bound)) open_.push({bound, pushed_++, k});
+  }
+
+  // The index of the point at z of piece `tri` (the midpoint of corners a
+  // and b): the surface point at its own parameters, and where that is
+  // farther than the answer (a new top may lie there) its probe, climbed
+  // if it is.
+  int point(int tri, const Vec2& z, int a, int b) {
+    const auto key = std::make_tuple(tri, z.x(), z.y());
+    const auto found = added_.find(key);
+    if (found != added_.end()) return found->second;
+    Vec3 x, s_q;
+    Vec2 q;
+    model_.at(tri, z.x(), z.y(), x, q);
+    const double cheap = probe_.cheap_bound(x, q, &s_q);
+    Probe pr;
+    const bool far = cheap > answer_->distance + probe_.slack();
+    // Checked against every surface point met (a foot on a wrong sheet
+    // would hold the cell's bound above the answer).
+    if (far) pr = probe_.recheck(x, probe_(x, q, q, &s_q));
+    const int k = add_point(tri, z, x, q, s_q, far ? &pr : nullptr);
+    added_.emplace(key, k);
+    if (far && pr.distance > answer_->distance + probe_.slack()) {
+      const double step = (z_[a] - z_[b]).cwiseAbs().maxCoeff();
+      if (dist_) {
+        offer_top(model_, probe_, climb(model_, probe_, *dist_, dist_->of(z, x, pr), step),
+                  *answer_);
+      } else {
+        Sample top = refine(model_, probe_, {tri, z.x(), z.y(), pr}, 0.5 * step);
+        model_.at(tri, top.a, top.b, x, q);
+        top.probe = probe_.recheck(x, top.probe);
+        if (top.probe.distance > answer_->distance) *answer_ = top.probe;
+      }
+    }
+    return k;
+  }
+
+  const SurfaceFace& face_;
+  const PanelModel& model_;
+  const Prober& probe_;
+  const QuadDistance* dist_ = nullptr;
+  double size_ = 0;
+  Probe* answer_ = nullptr;
+  std::vector<BoundCorner> corners_;  // the grid's points, then the points added
+  std::vector<Vec2> z_;               // each point's parameters on its piece
+  std::vector<int> piece_;
+  std::vector<std::array<int, 4>> cells_;
+  std::map<std::tuple<int, double, double>, int> added_;
+  std::priority_queue<Cell> open_;
+  std::size_t pushed_ = 0;
+  CurvatureOverBox hint_;
+  bool has_hint_ = false;
+};
+
 // measure_panel_deviation for the bilinear quad (no pieces): a grid pass;
 // where the distance is rough near its top (and not smooth at half the step
 // where the grid found it rough), a second pass three times as fine; from
 // each peak of the finest grid an ascent, a pattern search that follows a
 // ridge the ascent's quadratic model cannot, and, where the top still sits
-// on a crease, a 5 x 5 exploration around it (and again from its best point).
-PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& probe, int n) {
+// on a crease, a 5 x 5 exploration around it (and again from its best
+// point); then the certificate (DeviationCertificate) over the finest grid.
+PanelDeviation measure_quad_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
+                                      const PanelModel& model, const Prober& probe, int n) {
   const QuadDistance dist(model, probe);
   QuadGrid grid = probe_grid(model, probe, dist, n, 0.0);
   const Roughness roughness_at_grid = roughness(grid, probe);
@@ -756,50 +1017,30 @@ PanelDeviation measure_quad_deviation(const PanelModel& model, const Prober& pro
   // ascents on them climbed nothing (up to 8 a quad).
   if (probe.on_face(best.probe)) seeds.clear();
   std::vector<QuadPoint> tops;
-  for (const QuadPoint* seed : seeds) {
-    // An ascent on a wrong sheet (a foot point that later surface points
-    // show to be farther than the nearest) climbs the wrong function: its top
-    // is checked, and if it was wrong, the climb starts again from there with
-    // the nearer foot point (MAT.brep: 2.157 on a wrong sheet at a sample,
-    // 2.012 there in truth, the true peak 2.10 a fifth of a step away).
-    QuadPoint top = *seed;
-    for (int attempt = 0; attempt < 6; ++attempt) {
-      top = ascend(dist, top, 0.5 * h);
-      Vec3 x;
-      Vec2 q;
-      model.at(-1, top.z.x(), top.z.y(), x, q);
-      const Probe checked = probe.recheck(x, top.probe);
-      if (checked.distance + probe.slack() < top.probe.distance) {
-        top = dist.of(top.z, x, checked);
-        continue;
-      }
-      if (!on_crease(top, h)) break;
-      // A pattern search along the crease, then a look around it.
-      Sample polish{-1, top.z.x(), top.z.y(), top.probe};
-      polish = refine(model, probe, polish, 0.25 * h);
-      if (polish.probe.distance > top.probe.distance) {
-        model.at(-1, polish.a, polish.b, x, q);
-        top = dist.of({polish.a, polish.b}, x, polish.probe);
-      }
-      const QuadPoint around = explore(dist, top, h);
-      if (!(around.probe.distance > top.probe.distance + probe.slack())) break;
-      top = around;
-    }
-    tops.push_back(top);
-  }
+  for (const QuadPoint* seed : seeds) tops.push_back(climb(model, probe, dist, *seed, h));
   // Each top (and the best sample) checked against every surface point met;
   // the largest checked value is the answer.
   tops.push_back(best);
   Probe last;
   last.distance = -1;
-  for (const QuadPoint& top : tops) {
-    Vec3 x;
-    Vec2 q;
-    model.at(-1, top.z.x(), top.z.y(), x, q);
-    const Probe checked = probe.recheck(x, top.probe);
-    if (checked.distance > last.distance) last = checked;
+  for (const QuadPoint& top : tops) offer_top(model, probe, top, last);
+  bool certified = true;
+  if (DeviationCertificate::possible(face)) {
+    DeviationCertificate certificate(face, model, probe, p);
+    const int side = grid.n + 1;
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j) {
+        const GridSample& g = grid.samples[std::size_t(i) * side + j];
+        const QuadPoint* pr = grid.at(i, j);
+        certificate.add_point(-1, g.z, g.x, g.q, g.s_q, pr ? &pr->probe : nullptr);
+      }
+    for (int i = 0; i + 1 < side; ++i)
+      for (int j = 0; j + 1 < side; ++j)
+        certificate.add_cell(
+            {i * side + j, (i + 1) * side + j, (i + 1) * side + j + 1, i * side + j + 1});
+    certified = certificate.run(last, &dist);
   }
-  return {last.distance, !last.reliable};
+  return {last.distance, !last.reliable || !certified};
 }
 
 // The three largest of the pieces' own largest probed distances (pieces:
@@ -842,15 +1083,17 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
   const Prober probe(face, uv);
   const PanelModel model(p, uv, tris);
   if (tris.empty() && p.size() == 4)
-    return measure_quad_deviation(model, probe, std::max(2, samples));
+    return measure_quad_deviation(face, p, model, probe, std::max(2, samples));
   std::vector<Sample> grid;
   std::vector<Vec3> grid_x;
   std::vector<Vec2> grid_q;
   std::vector<double> grid_bound;  // cheap_bound of each sample
   std::vector<Vec3> grid_s;        // S(q) of each sample
   std::vector<double> step;        // grid step of each piece, in its parameters
+  std::vector<std::pair<std::size_t, int>> piece_grid;  // first sample and n of each piece
   auto sample_piece = [&](int tri, int n) {
     step.push_back(1.0 / n);
+    piece_grid.push_back({grid.size(), n});
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; j <= (tri < 0 ? n : n - i); ++j) {
         Sample s{tri, double(i) / n, double(j) / n, {}};
@@ -965,7 +1208,37 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
       if (t.probe.distance >= best.probe.distance) best = t;
     }
   }
-  return {best.probe.distance, !best.probe.reliable};
+  Probe answer = best.probe;
+  bool certified = true;
+  if (DeviationCertificate::possible(face)) {
+    DeviationCertificate certificate(face, model, probe, p);
+    std::vector<int> index(grid.size());
+    for (std::size_t k = 0; k < grid.size(); ++k)
+      index[k] = certificate.add_point(grid[k].tri, {grid[k].a, grid[k].b}, grid_x[k], grid_q[k],
+                                       grid_s[k], probed[k] ? &grid[k].probe : nullptr);
+    for (std::size_t piece = 0; piece < piece_grid.size(); ++piece) {
+      const auto [first, n] = piece_grid[piece];
+      const bool quad = grid[first].tri < 0;
+      // Sample (i, j) of the piece: rows of n + 1 (quad) or n + 1 - i (triangle).
+      auto at = [&, first = first, n = n](int i, int j) {
+        const std::size_t row = quad ? std::size_t(i) * (n + 1)
+                                     : std::size_t(i) * (n + 1) - std::size_t(i) * (i - 1) / 2;
+        return index[first + row + j];
+      };
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < (quad ? n : n - i); ++j) {
+          if (quad) {
+            certificate.add_cell({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+            continue;
+          }
+          certificate.add_cell({at(i, j), at(i + 1, j), at(i, j + 1), -1});
+          if (i + j + 2 <= n)
+            certificate.add_cell({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), -1});
+        }
+    }
+    certified = certificate.run(answer, nullptr);
+  }
+  return {answer.distance, !answer.reliable || !certified};
 }
 
 double panel_model_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
