@@ -840,6 +840,18 @@ class DeviationCertificate {
   // (hi, lo), (hi, hi), (lo, hi)) or a triangle's (corner[3] = -1).
   void add_cell(const std::array<int, 4>& corner) { cells_.push_back(corner); }
 
+  // Whether every cell of a triangle piece sampled n times a side, its
+  // samples' own parameters within `box` and their cheap bounds at most
+  // `cheap`, is below the answer `answer` (the cells' bounds through their
+  // own parameters: the triangle form of deviation_bound.h).
+  bool passes_whole(double cheap, const UvBounds& box, int n, double answer) const {
+    SecondDerivativeBound m;
+    if (!face_.second_derivative_bound(box, m)) return false;
+    const double du = (box.u_max - box.u_min) / n, dv = (box.v_max - box.v_min) / n;
+    const double error = (m.uu * du * du + 2 * m.uv * du * dv + m.vv * dv * dv) / 8;
+    return cheap + error <= answer * (1 + kCertifyShare) + kCertifyFloor * size_;
+  }
+
   // true: certified (`answer` may have risen); false: the splits ran out.
   // `dist`: the quad's distance (ascents from new tops), null for pieces.
   bool run(Probe& answer, const QuadDistance* dist) {
@@ -1212,13 +1224,32 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
   bool certified = true;
   if (DeviationCertificate::possible(face)) {
     DeviationCertificate certificate(face, model, probe, p);
-    std::vector<int> index(grid.size());
-    for (std::size_t k = 0; k < grid.size(); ++k)
-      index[k] = certificate.add_point(grid[k].tri, {grid[k].a, grid[k].b}, grid_x[k], grid_q[k],
-                                       grid_s[k], probed[k] ? &grid[k].probe : nullptr);
+    std::vector<int> index(grid.size(), -1);
     for (std::size_t piece = 0; piece < piece_grid.size(); ++piece) {
       const auto [first, n] = piece_grid[piece];
       const bool quad = grid[first].tri < 0;
+      const std::size_t end =
+          piece + 1 < piece_grid.size() ? piece_grid[piece + 1].first : grid.size();
+      // A piece far below the answer passes whole: through the surface
+      // points at the samples' own parameters, every cell's bound is at most
+      // the piece's largest cheap bound plus the interpolation error of a
+      // cell (the piece's parameter box over n each way). Most pieces of a
+      // boundary panel lie so (500 cells a panel of a trimmed dome).
+      if (!quad) {
+        double cheap = 0;
+        UvBounds box{grid_q[first].x(), grid_q[first].x(), grid_q[first].y(), grid_q[first].y()};
+        for (std::size_t k = first; k < end; ++k) {
+          cheap = std::max(cheap, grid_bound[k]);
+          box.u_min = std::min(box.u_min, grid_q[k].x()),
+          box.u_max = std::max(box.u_max, grid_q[k].x());
+          box.v_min = std::min(box.v_min, grid_q[k].y()),
+          box.v_max = std::max(box.v_max, grid_q[k].y());
+        }
+        if (certificate.passes_whole(cheap, box, n, answer.distance)) continue;
+      }
+      for (std::size_t k = first; k < end; ++k)
+        index[k] = certificate.add_point(grid[k].tri, {grid[k].a, grid[k].b}, grid_x[k], grid_q[k],
+                                         grid_s[k], probed[k] ? &grid[k].probe : nullptr);
       // Sample (i, j) of the piece: rows of n + 1 (quad) or n + 1 - i (triangle).
       auto at = [&, first = first, n = n](int i, int j) {
         const std::size_t row = quad ? std::size_t(i) * (n + 1)
