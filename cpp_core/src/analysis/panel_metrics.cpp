@@ -774,12 +774,18 @@ QuadPoint climb(const PanelModel& model, const Prober& probe, const QuadDistance
 }
 
 // The top checked against every surface point met (its answer if larger).
-void offer_top(const PanelModel& model, const Prober& probe, const QuadPoint& top, Probe& answer) {
+// The largest distance found on a panel so far, with the panel point where.
+struct Answer {
+  Probe probe;
+  Vec3 at = Vec3::Zero();
+};
+
+void offer_top(const PanelModel& model, const Prober& probe, const QuadPoint& top, Answer& answer) {
   Vec3 x;
   Vec2 q;
   model.at(-1, top.z.x(), top.z.y(), x, q);
   const Probe checked = probe.recheck(x, top.probe);
-  if (checked.distance > answer.distance) answer = checked;
+  if (checked.distance > answer.probe.distance) answer = {checked, x};
 }
 
 // The certificate of a panel's answer D: every cell of the finest grid (a
@@ -792,7 +798,7 @@ void offer_top(const PanelModel& model, const Prober& probe, const QuadPoint& to
 // surface point at its own parameters, and is probed where that is farther
 // than D (only there can a new top lie); a probe above D is climbed like a
 // grid peak. Until every cell is below, or the splits allowed are spent
-// (kMaxCertifySplits and two per cell of the grid): then the panel is
+// (kMaxCertifySplits and eight per cell of the grid): then the panel is
 // flagged unreliable. The answer never drops; where every cell is below, the
 // true largest distance is at most (1 + kCertifyShare) D plus the floor.
 // Before it (stop 43), the border panels of OCCT's terrain read as low as
@@ -854,7 +860,7 @@ class DeviationCertificate {
 
   // true: certified (`answer` may have risen); false: the splits ran out.
   // `dist`: the quad's distance (ascents from new tops), null for pieces.
-  bool run(Probe& answer, const QuadDistance* dist) {
+  bool run(Answer& answer, const QuadDistance* dist) {
     answer_ = &answer;
     dist_ = dist;
     // One bound over the box of the grid's surface parameters, for the
@@ -872,8 +878,10 @@ class DeviationCertificate {
     }
     for (const auto& cell : cells_) push(cell);
     // A boundary panel of a thousand thin pieces may need each of them
-    // split once or twice: the allowance grows with the cells.
-    const std::size_t allowed = kMaxCertifySplits + 2 * cells_.size();
+    // split once or twice: the allowance grows with the cells (a 160-corner
+    // panel along a trim of the freeform test face needed more than two a
+    // cell).
+    const std::size_t allowed = kMaxCertifySplits + 8 * cells_.size();
     std::size_t splits = 0;
     while (!open_.empty()) {
       const Cell cell = open_.top();
@@ -936,7 +944,9 @@ class DeviationCertificate {
     push({l, m, t, i3});
   }
 
-  double enough() const { return answer_->distance * (1 + kCertifyShare) + kCertifyFloor * size_; }
+  double enough() const {
+    return answer_->probe.distance * (1 + kCertifyShare) + kCertifyFloor * size_;
+  }
   bool passes(double bound) const { return bound <= enough(); }
 
   void push(const std::array<int, 4>& k) {
@@ -964,13 +974,13 @@ class DeviationCertificate {
     model_.at(tri, z.x(), z.y(), x, q);
     const double cheap = probe_.cheap_bound(x, q, &s_q);
     Probe pr;
-    const bool far = cheap > answer_->distance + probe_.slack();
+    const bool far = cheap > answer_->probe.distance + probe_.slack();
     // Checked against every surface point met (a foot on a wrong sheet
     // would hold the cell's bound above the answer).
     if (far) pr = probe_.recheck(x, probe_(x, q, q, &s_q));
     const int k = add_point(tri, z, x, q, s_q, far ? &pr : nullptr);
     added_.emplace(key, k);
-    if (far && pr.distance > answer_->distance + probe_.slack()) {
+    if (far && pr.distance > answer_->probe.distance + probe_.slack()) {
       const double step = (z_[a] - z_[b]).cwiseAbs().maxCoeff();
       if (dist_) {
         offer_top(model_, probe_, climb(model_, probe_, *dist_, dist_->of(z, x, pr), step),
@@ -979,7 +989,7 @@ class DeviationCertificate {
         Sample top = refine(model_, probe_, {tri, z.x(), z.y(), pr}, 0.5 * step);
         model_.at(tri, top.a, top.b, x, q);
         top.probe = probe_.recheck(x, top.probe);
-        if (top.probe.distance > answer_->distance) *answer_ = top.probe;
+        if (top.probe.distance > answer_->probe.distance) *answer_ = {top.probe, x};
       }
     }
     return k;
@@ -990,7 +1000,7 @@ class DeviationCertificate {
   const Prober& probe_;
   const QuadDistance* dist_ = nullptr;
   double size_ = 0;
-  Probe* answer_ = nullptr;
+  Answer* answer_ = nullptr;
   std::vector<BoundCorner> corners_;  // the grid's points, then the points added
   std::vector<Vec2> z_;               // each point's parameters on its piece
   std::vector<int> piece_;
@@ -1033,8 +1043,8 @@ PanelDeviation measure_quad_deviation(const SurfaceFace& face, const std::vector
   // Each top (and the best sample) checked against every surface point met;
   // the largest checked value is the answer.
   tops.push_back(best);
-  Probe last;
-  last.distance = -1;
+  Answer last;
+  last.probe.distance = -1;
   for (const QuadPoint& top : tops) offer_top(model, probe, top, last);
   bool certified = true;
   if (DeviationCertificate::possible(face)) {
@@ -1052,7 +1062,7 @@ PanelDeviation measure_quad_deviation(const SurfaceFace& face, const std::vector
             {i * side + j, (i + 1) * side + j, (i + 1) * side + j + 1, i * side + j + 1});
     certified = certificate.run(last, &dist);
   }
-  return {last.distance, !last.reliable || !certified};
+  return {last.probe.distance, !last.probe.reliable || !certified, last.at};
 }
 
 // The three largest of the pieces' own largest probed distances (pieces:
@@ -1220,7 +1230,11 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
       if (t.probe.distance >= best.probe.distance) best = t;
     }
   }
-  Probe answer = best.probe;
+  Answer answer{best.probe, Vec3::Zero()};
+  {
+    Vec2 q;
+    model.at(best.tri, best.a, best.b, answer.at, q);
+  }
   bool certified = true;
   if (DeviationCertificate::possible(face)) {
     DeviationCertificate certificate(face, model, probe, p);
@@ -1245,7 +1259,7 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
           box.v_min = std::min(box.v_min, grid_q[k].y()),
           box.v_max = std::max(box.v_max, grid_q[k].y());
         }
-        if (certificate.passes_whole(cheap, box, n, answer.distance)) continue;
+        if (certificate.passes_whole(cheap, box, n, answer.probe.distance)) continue;
       }
       for (std::size_t k = first; k < end; ++k)
         index[k] = certificate.add_point(grid[k].tri, {grid[k].a, grid[k].b}, grid_x[k], grid_q[k],
@@ -1269,7 +1283,7 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
     }
     certified = certificate.run(answer, nullptr);
   }
-  return {answer.distance, !answer.reliable || !certified};
+  return {answer.probe.distance, !answer.probe.reliable || !certified, answer.at};
 }
 
 double panel_model_deviation(const SurfaceFace& face, const std::vector<Vec3>& p,
