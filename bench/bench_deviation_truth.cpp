@@ -27,9 +27,7 @@
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
-#include <Extrema_GenLocateExtPS.hxx>
 #include <GProp_GProps.hxx>
-#include <GeomAdaptor_Surface.hxx>
 #include <Geom_Surface.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -42,118 +40,12 @@
 #include <memory>
 #include <vector>
 
+#include "brute_force_distance.h"
 #include "tessella/panel_metrics.h"
 #include "tessella/panelize.h"
 #include "tessella/surface_face.h"
 
 using namespace tessella;
-
-namespace {
-
-class GraphDistance {
- public:
-  explicit GraphDistance(const Handle(Geom_Surface) & s)
-      : surface_(s), adaptor_(s), locate_(adaptor_) {
-    s->Bounds(u0_, u1_, v0_, v1_);
-  }
-
-  double operator()(const Vec3& x) {
-    const gp_Pnt at(x.x(), x.y(), x.z());
-    double best =
-        surface_->Value(std::clamp(x.x(), u0_, u1_), std::clamp(x.y(), v0_, v1_)).Distance(at);
-    std::vector<std::array<double, 3>> near;  // (d, u, v) of the 0.25 mm pass
-    for (const double step : {2.0, 0.5}) {
-      const int n = int(std::ceil(best / step));
-      for (int i = -n; i <= n; ++i)
-        for (int j = -n; j <= n; ++j) {
-          double u = x.x() + step * i, v = x.y() + step * j;
-          // Within reach, clamped to the surface (beyond its bounds OCCT
-          // would extrapolate its end spans; clamped, the border is sampled).
-          if (std::hypot(u - x.x(), v - x.y()) > best) continue;
-          u = std::clamp(u, u0_, u1_), v = std::clamp(v, v0_, v1_);
-          const double d = surface_->Value(u, v).Distance(at);
-          if (step < 1) near.push_back({d, u, v});
-          best = std::min(best, d);
-        }
-    }
-    std::sort(near.begin(), near.end());
-    std::vector<std::array<double, 3>> starts;
-    for (const auto& c : near) {
-      bool apart = true;
-      for (const auto& s : starts) apart = apart && std::hypot(c[1] - s[1], c[2] - s[2]) >= 1.0;
-      if (apart) starts.push_back(c);
-      if (starts.size() == 4) break;
-    }
-    for (const auto& s : starts) {
-      locate_.Perform(at, s[1], s[2], Standard_False);
-      double u, v;
-      if (locate_.IsDone()) {
-        locate_.Point().Parameter(u, v);
-        if (u >= u0_ && u <= u1_ && v >= v0_ && v <= v1_)
-          best = std::min(best, std::sqrt(locate_.SquareDistance()));
-      }
-      // And a compass search clamped to the bounds: the nearest point may lie
-      // on the border, where no orthogonal foot exists.
-      u = s[1], v = s[2];
-      double d = s[0];
-      for (double h = 0.5; h > 1e-7;) {
-        bool moved = false;
-        for (auto [du, dv] :
-             {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}}) {
-          const double nu = std::clamp(u + h * du, u0_, u1_), nv = std::clamp(v + h * dv, v0_, v1_);
-          const double nd = surface_->Value(nu, nv).Distance(at);
-          if (nd < d) {
-            d = nd, u = nu, v = nv, moved = true;
-            break;
-          }
-        }
-        if (!moved) h *= 0.5;
-      }
-      best = std::min(best, d);
-    }
-    return best;
-  }
-
- private:
-  Handle(Geom_Surface) surface_;
-  GeomAdaptor_Surface adaptor_;
-  Extrema_GenLocateExtPS locate_;
-  double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0;
-};
-
-double remeasure(GraphDistance& distance, const std::array<Vec3, 4>& p, int n) {
-  auto at = [&](double s, double t) {
-    return distance((1 - s) * (1 - t) * p[0] + s * (1 - t) * p[1] + s * t * p[2] +
-                    (1 - s) * t * p[3]);
-  };
-  std::vector<std::array<double, 3>> grid;
-  for (int a = 0; a <= n; ++a)
-    for (int b = 0; b <= n; ++b)
-      grid.push_back({at(double(a) / n, double(b) / n), double(a) / n, double(b) / n});
-  std::sort(grid.begin(), grid.end(), [](const auto& x, const auto& y) { return x[0] > y[0]; });
-  double worst = 0;
-  for (int k = 0; k < 3; ++k) {
-    auto [d, s, t] = grid[k];
-    for (double h = 0.5 / n; h > 1e-4;) {
-      bool moved = false;
-      for (auto [ds, dt] :
-           {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}}) {
-        const double ns = s + h * ds, nt = t + h * dt;
-        if (ns < 0 || ns > 1 || nt < 0 || nt > 1) continue;
-        const double nd = at(ns, nt);
-        if (nd > d) {
-          d = nd, s = ns, t = nt, moved = true;
-          break;
-        }
-      }
-      if (!moved) h *= 0.5;
-    }
-    worst = std::max(worst, d);
-  }
-  return worst;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   const char* path = argc > 1 ? argv[1] : "/usr/share/opencascade/data/occ/terrain.brep";
@@ -205,7 +97,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "expected %d x %d quads\n", count, count);
     return 1;
   }
-  GraphDistance distance(surface);
+  test::GraphDistance distance(surface);
   SurfaceFace::FastEvaluation fast(*sf);
   for (const bool border : {true, false}) {
     int checked = 0, below = 0, below_reliable = 0, above = 0, above_reliable = 0;
@@ -230,7 +122,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "panel %zu: measured %.17g, then %.17g\n", k, reported, again.value);
         return 1;
       }
-      const double truth = remeasure(distance, p, grid);
+      const double truth = test::dense_quad_maximum(distance, p, grid);
       // The true distance at the metric's own top: a figure above it is
       // not a distance of that point (a foot on a wrong sheet).
       const double at_top = distance(again.at);
