@@ -34,7 +34,7 @@ class GraphDistance {
     const gp_Pnt at(x.x(), x.y(), x.z());
     double best =
         surface_->Value(std::clamp(x.x(), u0_, u1_), std::clamp(x.y(), v0_, v1_)).Distance(at);
-    std::vector<std::array<double, 3>> near;  // (d, u, v) of the 0.25 mm pass
+    std::vector<std::array<double, 3>> near;  // (d, u, v) of the 0.5 mm pass
     for (const double step : {2.0, 0.5}) {
       const int n = int(std::ceil(best / step));
       for (int i = -n; i <= n; ++i)
