@@ -151,7 +151,16 @@ class Prober {
     Probe p = project(x, start);
     const Vec3 s_q = known_s_q ? *known_s_q : face_.point(q.x(), q.y());
     const double at_q = (s_q - x).norm();
-    if (at_q + tiny_ < p.distance) p = {at_q, false, q, s_q};
+    if (at_q + tiny_ < p.distance) {
+      // The projection's foot is farther than S(q): not the nearest point.
+      // The global search (OCCT's terrain: border panels kept S(q), 9.749 mm
+      // away where the nearest point is 9.522, flagged unreliable, their
+      // figures up to 1.6 times the distance).
+      p = {at_q, false, q, s_q};
+      offer_global(x, [&](double d, bool reliable, const Vec2& foot, const Vec3& at) {
+        if (d < p.distance) p = {d, reliable, foot, at};
+      });
+    }
     return tighten(x, p);
   }
 
