@@ -37,12 +37,6 @@ UvBounds unwrap(const SurfaceFace& face, std::array<Vec2, N>& f) {
   return box;
 }
 
-// max |D^2(S o phi)[e, e]| for an edge vector e of phi with components at
-// most (du, dv) in size.
-double along(const SecondDerivativeBound& m, double du, double dv) {
-  return m.uu * du * du + 2 * m.uv * du * dv + m.vv * dv * dv;
-}
-
 template <std::size_t N>
 double largest_gap(const std::array<BoundCorner, N>& c, const std::array<Vec3, N>& s) {
   double r = 0;
@@ -69,12 +63,12 @@ double interpolation_error(const SurfaceFace& face, std::array<Vec2, N> f,
     // phi_s = (1 - t)(f1 - f0) + t (f2 - f3), phi_t = (1 - s)(f3 - f0) + s (f2 - f1).
     const Vec2 s = (f[1] - f[0]).cwiseAbs().cwiseMax((f[2] - f[3]).cwiseAbs());
     const Vec2 t = (f[3] - f[0]).cwiseAbs().cwiseMax((f[2] - f[1]).cwiseAbs());
-    return (along(m, s.x(), s.y()) + along(m, t.x(), t.y())) / 8;
+    return (along_edge(m, s.x(), s.y()) + along_edge(m, t.x(), t.y())) / 8;
   } else {
     // e(x) = sum_k l_k R_k, |R_k| <= 1/2 |D^2 S[f_k - phi(x), same]|; the
     // weighted spreads of the f_k's u and v are at most a quarter of their
     // ranges squared (the cross term, by Cauchy-Schwarz, of their product).
-    return along(m, box.u_max - box.u_min, box.v_max - box.v_min) / 8;
+    return along_edge(m, box.u_max - box.u_min, box.v_max - box.v_min) / 8;
   }
 }
 
@@ -118,6 +112,10 @@ double cell_bound(const SurfaceFace& face, const std::array<BoundCorner, N>& c, 
 }
 
 }  // namespace
+
+double along_edge(const SecondDerivativeBound& m, double du, double dv) {
+  return m.uu * du * du + 2 * m.uv * du * dv + m.vv * dv * dv;
+}
 
 double bilinear_cell_bound(const SurfaceFace& face, const std::array<BoundCorner, 4>& c,
                            double enough, const CurvatureOverBox* hint) {

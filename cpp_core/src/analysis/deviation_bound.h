@@ -40,6 +40,10 @@ struct BoundCorner {
   Vec3 s_q;  // S(q)
 };
 
+// max |D^2(S o phi)[e, e]| for an edge vector e of phi whose components are
+// at most (du, dv) in size, with m bounding S's second derivatives.
+double along_edge(const SecondDerivativeBound& m, double du, double dv);
+
 // Second-derivative bounds valid over a box holding the cells of a panel:
 // one lookup a panel rather than one per cell for the first, cheapest try.
 struct CurvatureOverBox {

@@ -863,7 +863,7 @@ class DeviationCertificate {
     SecondDerivativeBound m;
     if (!face_.second_derivative_bound(box, m)) return false;
     const double du = (box.u_max - box.u_min) / n, dv = (box.v_max - box.v_min) / n;
-    const double error = (m.uu * du * du + 2 * m.uv * du * dv + m.vv * dv * dv) / 8;
+    const double error = along_edge(m, du, dv) / 8;
     return cheap + error <= answer * (1 + kCertifyShare) + kCertifyFloor * size_;
   }
 

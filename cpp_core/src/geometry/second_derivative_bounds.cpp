@@ -152,7 +152,7 @@ std::unique_ptr<SecondDerivativeBounds> SecondDerivativeBounds::from_bspline(
   const TColgp_Array2OfPnt& poles = b->Poles();
   const TColStd_Array2OfReal* weights = b->Weights();
   out->spans_.resize(ku.size() * kv.size());
-  std::vector<Homogeneous> column, row;
+  std::vector<Homogeneous> column;
   for (std::size_t a = 0; a < ku.size(); ++a) {
     for (std::size_t c = 0; c < kv.size(); ++c) {
       // The span's poles: flat indices k - degree .. k in each direction.
@@ -193,8 +193,7 @@ std::unique_ptr<SecondDerivativeBounds> SecondDerivativeBounds::from_bspline(
         for (const auto& h : derivative(d1, tu, i0 + 1, p - 1)) huu.offer(h);
       }
       for (int i = 0; i <= p; ++i) {
-        row.assign(net[i].begin(), net[i].end());
-        const auto d1 = derivative(row, tv, j0, q);
+        const auto d1 = derivative(net[i], tv, j0, q);
         for (const auto& h : d1) hv.offer(h);
         for (const auto& h : derivative(d1, tv, j0 + 1, q - 1)) hvv.offer(h);
       }
