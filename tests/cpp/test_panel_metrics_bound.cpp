@@ -503,6 +503,8 @@ TEST(PanelDeviationBound, ANarrowDipBetweenTheSamplesIsFound) {
   const PanelDeviation quad = measure_panel_deviation(face, p, uv, {}, 8);
   EXPECT_NEAR(quad.value, dense, 0.01 * dense);
   EXPECT_FALSE(quad.unreliable);
+  // The value is the distance of its own point of the panel (PanelDeviation::at).
+  EXPECT_NEAR(distance(quad.at), quad.value, 1e-6 * quad.value);
   // As two flat triangles (0, 1, 2) and (0, 2, 3): the larger of the two
   // triangles' own dense maxima (a bilinear patch with two equal corners is
   // the triangle).
@@ -515,4 +517,5 @@ TEST(PanelDeviationBound, ANarrowDipBetweenTheSamplesIsFound) {
   EXPECT_GT(dense_pieces, 3.0);
   EXPECT_NEAR(pieces.value, dense_pieces, 0.01 * dense_pieces);
   EXPECT_FALSE(pieces.unreliable);
+  EXPECT_NEAR(distance(pieces.at), pieces.value, 1e-6 * pieces.value);
 }
