@@ -35,21 +35,24 @@ class LargestFirst {
   explicit LargestFirst(const std::vector<double>& values) : heap_(values.size()) {
     for (std::size_t k = 0; k < values.size(); ++k)
       heap_[k] = {std::isnan(values[k]) ? std::numeric_limits<double>::infinity() : values[k], k};
-    std::make_heap(heap_.begin(), heap_.end(), after);
+    std::make_heap(heap_.begin(), heap_.end(), After());
   }
   bool empty() const { return heap_.empty(); }
   std::size_t top() const { return heap_.front().second; }
   void pop() {
-    std::pop_heap(heap_.begin(), heap_.end(), after);
+    std::pop_heap(heap_.begin(), heap_.end(), After());
     heap_.pop_back();
   }
 
  private:
-  // x comes after y: smaller value, or equal value and larger index.
-  static bool after(const std::pair<double, std::size_t>& x,
-                    const std::pair<double, std::size_t>& y) {
-    return x.first < y.first || (x.first == y.first && x.second > y.second);
-  }
+  // x comes after y: smaller value, or equal value and larger index (a
+  // function object, which the heap's code inlines).
+  struct After {
+    bool operator()(const std::pair<double, std::size_t>& x,
+                    const std::pair<double, std::size_t>& y) const {
+      return x.first < y.first || (x.first == y.first && x.second > y.second);
+    }
+  };
   std::vector<std::pair<double, std::size_t>> heap_;
 };
 

@@ -514,40 +514,46 @@ class Merger {
   }
 
   // ---- checks -------------------------------------------------------------
-  double deviation_of(const std::vector<std::vector<int>>& panels,
-                      const std::vector<std::vector<Vec2>>& uv,
+  // The largest deviation of the panels with these corners, each as
+  // measure_panels measures it (its model, its samples, in a span-cached
+  // scope as its calling thread opens one), without the other metrics, the
+  // rods and a progress stage for each candidate. A panel's figure depends
+  // on its corners alone and is kept: the candidates of a rod measure the
+  // same panels before it again and again (walking_agent, whose panels sit
+  // near its bound).
+  double deviation_of(const std::vector<std::vector<Vec2>>& uv,
                       const std::vector<std::vector<Vec3>>& xyz) const {
-    PanelMesh sub;
-    for (std::size_t p = 0; p < panels.size(); ++p) {
-      std::vector<int> ids;
-      for (std::size_t k = 0; k < panels[p].size(); ++k) {
-        ids.push_back(static_cast<int>(sub.xyz.size()));
-        sub.xyz.push_back(xyz[p][k]);
-        sub.uv.push_back(uv[p][k]);
-      }
-      sub.panels.push_back(ids);
-      sub.corner_uv.push_back(uv[p]);
-    }
-    if (sub.panels.empty()) return 0.0;
-    // The deviation as measure_panels measures it (its model, its samples,
-    // in a span-cached scope as its calling thread opens one), without the
-    // other metrics, the rods and a progress stage for each candidate.
     std::optional<SurfaceFace::FastEvaluation> fast;
-    if (!SurfaceFace::FastEvaluation::active(face_)) fast.emplace(face_, false);
     double worst = 0;
-    for (std::size_t p = 0; p < sub.panels.size(); ++p) {
-      const double d = measure_panel_deviation(face_, xyz[p], uv[p], panel_model_triangles(sub, p),
-                                               params_.samples)
-                           .value;
-      if (p == 0 || d > worst) worst = d;
+    for (std::size_t p = 0; p < uv.size(); ++p) {
+      std::vector<double> key;
+      for (std::size_t k = 0; k < uv[p].size(); ++k)
+        key.insert(key.end(),
+                   {uv[p][k].x(), uv[p][k].y(), xyz[p][k].x(), xyz[p][k].y(), xyz[p][k].z()});
+      auto found = measured_.find(key);
+      if (found == measured_.end()) {
+        if (!fast && !SurfaceFace::FastEvaluation::active(face_)) fast.emplace(face_, false);
+        PanelMesh one;
+        one.xyz = xyz[p];
+        one.uv = uv[p];
+        one.corner_uv.push_back(uv[p]);
+        one.panels.emplace_back();
+        for (std::size_t k = 0; k < uv[p].size(); ++k) one.panels.back().push_back(int(k));
+        const double d = measure_panel_deviation(face_, xyz[p], uv[p],
+                                                 panel_model_triangles(one, 0), params_.samples)
+                             .value;
+        found = measured_.emplace(std::move(key), d).first;
+      }
+      if (p == 0 || found->second > worst) worst = found->second;
     }
     return worst;
   }
 
-  bool valid() const { return valid_impl(); }
   // Why a collapse is refused (kept for reading; a debugger can break here).
   void why(const char* /*reason*/, int /*panel*/) const {}
-  bool valid_impl() const {
+  // Whether the applied collapse leaves a valid mesh, the deviation bound
+  // aside (deviation_kept).
+  bool valid() const {
     double before = 0, after = 0, scale = 0;
     for (const Saved& s : saved_) {
       if (!s.alive) continue;
@@ -591,22 +597,25 @@ class Merger {
       }
     }
     if (std::abs(after - before) > 1e-9 * scale + area_eps_) return why("area", -1), false;
+    return true;
+  }
+  // Whether the applied collapse keeps the deviation bound: no changed panel
+  // over it, or none worse than the panels it replaces.
+  bool deviation_kept() const {
     if (params_.max_deviation > 0) {
-      std::vector<std::vector<int>> pb, pa;
       std::vector<std::vector<Vec2>> ub, ua;
       std::vector<std::vector<Vec3>> xb, xa;
       for (const Saved& s : saved_)
-        if (s.alive) pb.push_back(s.v), ub.push_back(s.uv), xb.push_back(s.xyz);
+        if (s.alive) ub.push_back(s.uv), xb.push_back(s.xyz);
       for (int p : touched_) {
         if (!alive_[p]) continue;
-        pa.push_back(m_.panels[p]);
         ua.push_back(m_.corner_uv[p]);
         std::vector<Vec3> x;
         for (int v : m_.panels[p]) x.push_back(m_.xyz[v]);
         xa.push_back(std::move(x));
       }
-      const double dev = deviation_of(pa, ua, xa);
-      if (dev > params_.max_deviation && dev > deviation_of(pb, ub, xb) * (1 + 1e-9))
+      const double dev = deviation_of(ua, xa);
+      if (dev > params_.max_deviation && dev > deviation_of(ub, xb) * (1 + 1e-9))
         return why("deviation", -1), false;
     }
     return true;
@@ -693,16 +702,30 @@ class Merger {
 
   bool collapse(int a, int b, int ref) {
     const std::vector<Candidate> cands = candidates(a, b, ref);
-    int best = -1;
-    std::tuple<int, int, double> best_key{0, 0, 0.0};
+    // The valid candidates, best first (ties: the earlier); the deviation
+    // bound, which measures the changed panels (walking_agent: two thirds
+    // of this stage's time when every candidate was measured), is checked
+    // in that order until one keeps it: the same winner.
+    using Key = std::tuple<int, int, double>;
+    std::vector<std::pair<Key, int>> valid_ones;
     for (std::size_t i = 0; i < cands.size(); ++i) {
-      const bool applied = apply(cands[i]);
-      const bool ok = applied && valid();
+      const bool ok = apply(cands[i]) && valid();
       const double score = ok ? shortest_touched() : 0.0;
       rollback();
-      if (!ok) continue;
-      const std::tuple<int, int, double> key{score >= limit_ ? 1 : 0, -cands[i].rank, score};
-      if (best < 0 || key > best_key) best = static_cast<int>(i), best_key = key;
+      if (ok) valid_ones.push_back({Key{score >= limit_ ? 1 : 0, -cands[i].rank, score}, int(i)});
+    }
+    std::stable_sort(valid_ones.begin(), valid_ones.end(),
+                     [](const auto& x, const auto& y) { return x.first > y.first; });
+    int best = -1;
+    for (const auto& [key, i] : valid_ones) {
+      if (params_.max_deviation > 0) {
+        apply(cands[std::size_t(i)]);
+        const bool kept = deviation_kept();
+        rollback();
+        if (!kept) continue;
+      }
+      best = i;
+      break;
     }
     if (best < 0) return false;
     apply(cands[static_cast<std::size_t>(best)]);
@@ -793,6 +816,8 @@ class Merger {
   std::vector<std::pair<int, int>> pending_alias_, alias_;
   std::vector<int> last_touched_;
   std::set<int> last_vertices_;
+  // deviation_of's figures by panel corners ((u, v, x, y, z) each).
+  mutable std::map<std::vector<double>, double> measured_;
 };
 
 }  // namespace

@@ -58,13 +58,38 @@ void drop_panels(PanelMesh& mesh, const std::vector<char>& keep) {
   if (!mesh.corner_uv.empty()) mesh.corner_uv = std::move(kept_uv);
 }
 
+// A lower bound of panel_area: the length of the vector area of the corner
+// polygon, (1/2) |sum p_k x p_k+1|. Any surface with that outline (the
+// bilinear patch, the flat pieces) has at least this area (|integral of n dA|
+// <= integral of dA); the factor covers rounding. Exact areas triangulate a
+// boundary panel's many-cornered outline (four times a panel in the grids'
+// pipeline), needed only where the bound cannot decide.
+double area_lower_bound(const PanelMesh& mesh, std::size_t p) {
+  const std::vector<int>& poly = mesh.panels[p];
+  Vec3 sum = Vec3::Zero();
+  const Vec3& origin = mesh.xyz[poly[0]];
+  for (std::size_t k = 1; k + 1 < poly.size(); ++k)
+    sum += (mesh.xyz[poly[k]] - origin).cross(mesh.xyz[poly[k + 1]] - origin);
+  return 0.5 * sum.norm() * (1 - 1e-9);
+}
+
+// panel_area(mesh, p) where it may be below `threshold`; where the lower
+// bound shows it is not, that bound (at least the threshold).
+double area_unless_above(const PanelMesh& mesh, std::size_t p, double threshold) {
+  const double lower = area_lower_bound(mesh, p);
+  return lower >= threshold ? lower : panel_area(mesh, p);
+}
+
 }  // namespace
 
 int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& reference_area) {
   require_in_range("sliver_fraction", fraction, 0.0, 1.0);
   if (fraction <= 0) return 0;
+  // Exact areas of the slivers; a panel shown to be none keeps a lower bound
+  // (it is never merged away, and a sliver merged into it leaves it none).
   std::vector<double> area(mesh.panels.size());
-  for (std::size_t p = 0; p < mesh.panels.size(); ++p) area[p] = panel_area(mesh, p);
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p)
+    area[p] = area_unless_above(mesh, p, fraction * reference_area[p]);
   // No sliver at all (the usual case): nothing to merge, skip the edge map.
   bool any = false;
   for (std::size_t p = 0; p < mesh.panels.size() && !any; ++p)
@@ -134,7 +159,8 @@ int remove_zero_area_panels(PanelMesh& mesh, double model_size) {
   // What could not be merged (no neighbour along a contiguous edge chain)
   // covers nothing: drop it.
   std::vector<char> keep(mesh.panels.size(), 1);
-  for (std::size_t p = 0; p < mesh.panels.size(); ++p) keep[p] = panel_area(mesh, p) >= min_area;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p)
+    keep[p] = area_unless_above(mesh, p, min_area) >= min_area;
   drop_panels(mesh, keep);
   const int removed = static_cast<int>(before - mesh.panels.size());
   if (removed > 0) {
