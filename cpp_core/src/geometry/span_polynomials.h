@@ -65,7 +65,7 @@ class SpanPolynomials {
     double um = 0, vm = 0;         // the expansion point
     double origin[3] = {0, 0, 0};  // subtracted from the span's poles (accuracy)
   };
-  static constexpr unsigned kSide = 8;
+  static constexpr unsigned kSide = 16;
 
   // The slot of the span holding (u, v), its coefficients built if missing.
   std::size_t slot(double u, double v) {

@@ -54,6 +54,10 @@ class SurfaceSampleGrid {
   // of p, the nearest groups first and in a group the nearest blocks first.
   template <class Limit, class Visit>
   void blocks_within(const Vec3& p, const Limit& limit, const Visit& visit) const;
+  // visit(b) for every block whose box is within limit_sq of p, in grid
+  // order (a fixed limit: no order can let one be skipped).
+  template <class Visit>
+  void blocks_within_fixed(const Vec3& p, double limit_sq, const Visit& visit) const;
   // Every sample of block b.
   template <class Visit>
   void samples_of(std::size_t b, const Visit& visit) const;
