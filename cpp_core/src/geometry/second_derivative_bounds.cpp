@@ -41,11 +41,13 @@ void spans_of(const TColStd_Array1OfReal& flat, int degree, int poles, std::vect
 // Control points of the derivative of a B-spline of `degree` over the
 // flat knots t: D_i = degree (Q_{i+1} - Q_i) / (t_{i+degree+1} - t_{i+1}),
 // for the `count` points Q[0..count) starting at flat index `first`.
-// Within one span the denominators are at least the span's width.
-std::vector<Homogeneous> derivative(const std::vector<Homogeneous>& q,
-                                    const TColStd_Array1OfReal& t, int first, int degree) {
-  std::vector<Homogeneous> d;
-  if (degree < 1 || q.size() < 2) return d;
+// Within one span the denominators are at least the span's width. Into `d`
+// (a buffer the caller keeps: a surface of 100,000 spans asked for a million
+// small vectors).
+void derivative(const std::vector<Homogeneous>& q, const TColStd_Array1OfReal& t, int first,
+                int degree, std::vector<Homogeneous>& d) {
+  d.clear();
+  if (degree < 1 || q.size() < 2) return;
   const int lo = t.Lower();
   for (std::size_t i = 0; i + 1 < q.size(); ++i) {
     const int f = first + int(i);
@@ -54,7 +56,6 @@ std::vector<Homogeneous> derivative(const std::vector<Homogeneous>& q,
     for (int c = 0; c < 4; ++c) h[c] = degree * (q[i + 1][c] - q[i][c]) / width;
     d.push_back(h);
   }
-  return d;
 }
 
 struct Largest {
@@ -152,7 +153,10 @@ std::unique_ptr<SecondDerivativeBounds> SecondDerivativeBounds::from_bspline(
   const TColgp_Array2OfPnt& poles = b->Poles();
   const TColStd_Array2OfReal* weights = b->Weights();
   out->spans_.resize(ku.size() * kv.size());
-  std::vector<Homogeneous> column;
+  // Buffers kept across the spans.
+  std::vector<Homogeneous> column, d1, d2;
+  std::vector<std::vector<Homogeneous>> net(p + 1, std::vector<Homogeneous>(q + 1));
+  std::vector<std::vector<Homogeneous>> du_net(p);  // the u-derivative's net, per i
   for (std::size_t a = 0; a < ku.size(); ++a) {
     for (std::size_t c = 0; c < kv.size(); ++c) {
       // The span's poles: flat indices k - degree .. k in each direction.
@@ -170,7 +174,6 @@ std::unique_ptr<SecondDerivativeBounds> SecondDerivativeBounds::from_bspline(
       centre /= double((p + 1) * (q + 1));
       // net[i][j] = (w (P - C), w); the span lies within `radius` of C (the
       // convex hull of its poles, the weights being positive).
-      std::vector<std::vector<Homogeneous>> net(p + 1, std::vector<Homogeneous>(q + 1));
       double radius = 0;
       for (int i = 0; i <= p; ++i)
         for (int j = 0; j <= q; ++j) {
@@ -184,21 +187,25 @@ std::unique_ptr<SecondDerivativeBounds> SecondDerivativeBounds::from_bspline(
         }
       // Derivatives of the homogeneous net H = w (S - C) and of w.
       Largest hu, huu, hv, hvv, huv;
-      std::vector<std::vector<Homogeneous>> du_net(p);  // the u-derivative's net, per i
+      for (auto& row : du_net) row.clear();
       for (int j = 0; j <= q; ++j) {
         column.clear();
         for (int i = 0; i <= p; ++i) column.push_back(net[i][j]);
-        const auto d1 = derivative(column, tu, i0, p);
+        derivative(column, tu, i0, p, d1);
         for (std::size_t i = 0; i < d1.size(); ++i) hu.offer(d1[i]), du_net[i].push_back(d1[i]);
-        for (const auto& h : derivative(d1, tu, i0 + 1, p - 1)) huu.offer(h);
+        derivative(d1, tu, i0 + 1, p - 1, d2);
+        for (const auto& h : d2) huu.offer(h);
       }
       for (int i = 0; i <= p; ++i) {
-        const auto d1 = derivative(net[i], tv, j0, q);
+        derivative(net[i], tv, j0, q, d1);
         for (const auto& h : d1) hv.offer(h);
-        for (const auto& h : derivative(d1, tv, j0 + 1, q - 1)) hvv.offer(h);
+        derivative(d1, tv, j0 + 1, q - 1, d2);
+        for (const auto& h : d2) hvv.offer(h);
       }
-      for (int i = 0; i < p; ++i)
-        for (const auto& h : derivative(du_net[i], tv, j0, q)) huv.offer(h);
+      for (int i = 0; i < p; ++i) {
+        derivative(du_net[i], tv, j0, q, d1);
+        for (const auto& h : d1) huv.offer(h);
+      }
       // S - C = H / w, so S_u = (H_u - (S - C) w_u) / w and
       // S_uu = (H_uu - 2 S_u w_u - (S - C) w_uu) / w,
       // S_uv = (H_uv - S_u w_v - S_v w_u - (S - C) w_uv) / w.

@@ -157,12 +157,30 @@ void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
   const TColgp_Array2OfPnt& poles = surface_->Poles();
   const TColStd_Array2OfReal* weights = dim_ == 4 ? surface_->Weights() : nullptr;
   const int r0 = poles.LowerRow() + fu - 1, c0 = poles.LowerCol() + fv - 1;
+  // The span's poles and weights and the basis derivatives read once into
+  // plain arrays (OCCT's arrays and math_Matrix check every index: reading
+  // them in the loops below was most of a span's 13,000 instructions, and
+  // OCCT's terrain fills 175,000 spans). The same sums in the same order.
+  double xyz[kN][kN][3], wt[kN][kN];
+  for (int a = 0; a <= p_; ++a)
+    for (int b = 0; b <= q_; ++b) {
+      const gp_Pnt& P = poles(r0 + a, c0 + b);
+      xyz[a][b][0] = P.X(), xyz[a][b][1] = P.Y(), xyz[a][b][2] = P.Z();
+      wt[a][b] =
+          weights ? (*weights)(weights->LowerRow() + fu - 1 + a, weights->LowerCol() + fv - 1 + b)
+                  : 1.0;
+    }
+  double bu[kN][kN], bv[kN][kN];
+  for (int i = 0; i <= p_; ++i)
+    for (int a = 0; a <= p_; ++a) bu[i][a] = u_basis_(i + 1, a + 1);
+  for (int j = 0; j <= q_; ++j)
+    for (int b = 0; b <= q_; ++b) bv[j][b] = v_basis_(j + 1, b + 1);
   for (int d = 0; d < 3; ++d) {
-    double lo = poles(r0, c0).Coord(d + 1), hi = lo;
+    double lo = xyz[0][0][d], hi = lo;
     for (int a = 0; a <= p_; ++a) {
       for (int b = 0; b <= q_; ++b) {
-        lo = std::min(lo, poles(r0 + a, c0 + b).Coord(d + 1));
-        hi = std::max(hi, poles(r0 + a, c0 + b).Coord(d + 1));
+        lo = std::min(lo, xyz[a][b][d]);
+        hi = std::max(hi, xyz[a][b][d]);
       }
     }
     s.origin[d] = 0.5 * (lo + hi);
@@ -170,11 +188,8 @@ void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
   double h[kN][kN][4];
   for (int a = 0; a <= p_; ++a) {
     for (int b = 0; b <= q_; ++b) {
-      const gp_Pnt& P = poles(r0 + a, c0 + b);
-      const double w =
-          weights ? (*weights)(weights->LowerRow() + fu - 1 + a, weights->LowerCol() + fv - 1 + b)
-                  : 1.0;
-      for (int d = 0; d < 3; ++d) h[a][b][d] = w * (P.Coord(d + 1) - s.origin[d]);
+      const double w = wt[a][b];
+      for (int d = 0; d < 3; ++d) h[a][b][d] = w * (xyz[a][b][d] - s.origin[d]);
       h[a][b][3] = w;
     }
   }
@@ -186,7 +201,7 @@ void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
     for (int b = 0; b <= q_; ++b) {
       for (int d = 0; d < dim_; ++d) {
         double sum = 0;
-        for (int a = 0; a <= p_; ++a) sum += u_basis_(i + 1, a + 1) * h[a][b][d];
+        for (int a = 0; a <= p_; ++a) sum += bu[i][a] * h[a][b][d];
         t[i][b][d] = sum / fact;
       }
     }
@@ -198,7 +213,7 @@ void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
       if (j > 0) fact *= j;
       for (int d = 0; d < dim_; ++d) {
         double sum = 0;
-        for (int b = 0; b <= q_; ++b) sum += v_basis_(j + 1, b + 1) * t[i][b][d];
+        for (int b = 0; b <= q_; ++b) sum += bv[j][b] * t[i][b][d];
         c[(i * (q_ + 1) + j) * dim_ + d] = sum / fact;
       }
     }
