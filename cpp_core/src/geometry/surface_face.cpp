@@ -135,15 +135,26 @@ struct SurfaceFace::Impl {
     suu = to_vec(Suu), svv = to_vec(Svv), suv = to_vec(Suv);
   }
 
+  // The surface's periodicity, read once (OCCT's virtual calls were asked
+  // on every Newton step and cell bound).
+  bool u_periodic = false, v_periodic = false;
+  double u_period = 0, v_period = 0;
+  void read_periods() {
+    u_periodic = surface->IsUPeriodic();
+    v_periodic = surface->IsVPeriodic();
+    u_period = u_periodic ? surface->UPeriod() : 0.0;
+    v_period = v_periodic ? surface->VPeriod() : 0.0;
+  }
+
   double wrap_u(double u) const {
-    if (!surface->IsUPeriodic()) return std::clamp(u, search.u_min, search.u_max);
-    const double p = surface->UPeriod();
+    if (!u_periodic) return std::clamp(u, search.u_min, search.u_max);
+    const double p = u_period;
     const double lo = bounds.u_min;
     return lo + std::fmod(std::fmod(u - lo, p) + p, p);
   }
   double wrap_v(double v) const {
-    if (!surface->IsVPeriodic()) return std::clamp(v, search.v_min, search.v_max);
-    const double p = surface->VPeriod();
+    if (!v_periodic) return std::clamp(v, search.v_min, search.v_max);
+    const double p = v_period;
     const double lo = bounds.v_min;
     return lo + std::fmod(std::fmod(v - lo, p) + p, p);
   }
@@ -176,6 +187,7 @@ SurfaceFace SurfaceFace::from_occt_face(const TopoDS_Face& face) {
     impl->face = face;
     impl->surface = BRep_Tool::Surface(face);  // location applied
     if (impl->surface.IsNull()) throw InvalidGeometry("the face has no surface");
+    impl->read_periods();
     impl->reversed = face.Orientation() == TopAbs_REVERSED;
     BRepTools::UVBounds(face, impl->bounds.u_min, impl->bounds.u_max, impl->bounds.v_min,
                         impl->bounds.v_max);
@@ -222,10 +234,10 @@ bool SurfaceFace::second_derivative_bound(const UvBounds& box, SecondDerivativeB
   return true;
 }
 double SurfaceFace::model_size() const { return impl_->model_size; }
-bool SurfaceFace::u_periodic() const { return impl_->surface->IsUPeriodic(); }
-bool SurfaceFace::v_periodic() const { return impl_->surface->IsVPeriodic(); }
-double SurfaceFace::u_period() const { return u_periodic() ? impl_->surface->UPeriod() : 0.0; }
-double SurfaceFace::v_period() const { return v_periodic() ? impl_->surface->VPeriod() : 0.0; }
+bool SurfaceFace::u_periodic() const { return impl_->u_periodic; }
+bool SurfaceFace::v_periodic() const { return impl_->v_periodic; }
+double SurfaceFace::u_period() const { return impl_->u_period; }
+double SurfaceFace::v_period() const { return impl_->v_period; }
 bool SurfaceFace::reversed() const { return impl_->reversed; }
 double SurfaceFace::area() const { return impl_->area; }
 
@@ -648,10 +660,9 @@ Projection SurfaceFace::project(const Vec3& p) const {
     }
     // A sample on the border of the range also stands for the border's own
     // closest point, which has no orthogonal foot.
-    const bool border = (!s.surface->IsUPeriodic() &&
-                         (start.uv.x() == s.search.u_min || start.uv.x() == s.search.u_max)) ||
-                        (!s.surface->IsVPeriodic() &&
-                         (start.uv.y() == s.search.v_min || start.uv.y() == s.search.v_max));
+    const bool border =
+        (!s.u_periodic && (start.uv.x() == s.search.u_min || start.uv.x() == s.search.u_max)) ||
+        (!s.v_periodic && (start.uv.y() == s.search.v_min || start.uv.y() == s.search.v_max));
     if (found && !border) continue;
     u = start.uv.x(), v = start.uv.y();
     double best = start.distance;
