@@ -8,9 +8,13 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/parallel_chunks.h"
+#include "common/task_tree.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_metrics.h"
 #include "tessella/panelize.h"
@@ -116,8 +120,46 @@ TEST(MetricsThreads, ABudgetCapsEveryLoopAndANestedLoopRunsOnOneThread) {
   unsetenv("TESSELLA_THREADS");
 }
 
+TEST(MetricsThreads, EveryTaskOfATreeRunsOnceOnAnyNumberOfThreads) {
+  // A binary tree of depth 12: every leaf is reached exactly once, whichever
+  // thread takes which task.
+  for (int threads : {1, 2, 3}) {
+    SCOPED_TRACE(threads);
+    std::vector<std::atomic<int>> visits(1 << 12);
+    std::atomic<int> inner{0};
+    run_task_tree(std::pair<int, int>{0, 0}, threads, [&](const auto& task, const auto& push) {
+      const auto [depth, index] = task;
+      if (depth == 12) {
+        ++visits[std::size_t(index)];
+        return;
+      }
+      ++inner;
+      push(std::pair<int, int>{depth + 1, 2 * index});
+      push(std::pair<int, int>{depth + 1, 2 * index + 1});
+    });
+    EXPECT_EQ(inner.load(), (1 << 12) - 1);
+    for (const auto& v : visits) ASSERT_EQ(v.load(), 1);
+  }
+}
+
+TEST(MetricsThreads, AFailingTaskOfATreeReachesTheCallerAndStopsTheOthers) {
+  for (int threads : {1, 3}) {
+    SCOPED_TRACE(threads);
+    std::atomic<int> ran{0};
+    EXPECT_THROW(run_task_tree(0, threads,
+                               [&](const int& task, const auto& push) {
+                                 ++ran;
+                                 if (task == 50) throw std::runtime_error("task 50");
+                                 if (task < 1000) push(task + 1), push(task + 1000);
+                               }),
+                 std::runtime_error);
+    // Stopped soon after the failure, not run to the tree's end (1,000+).
+    EXPECT_LT(ran.load(), 400);
+  }
+}
+
 TEST(MetricsThreads, TheGridIsCutIdenticallyOnOneAndTwoThreads) {
-  // clip_grid cuts the two halves of its top split on two threads.
+  // clip_grid cuts the parts of its halving as tasks on every thread.
   for (const char* name : {"trimmed_bspline_holes", "vault_openings"}) {
     SCOPED_TRACE(name);
     const auto face = example(name);

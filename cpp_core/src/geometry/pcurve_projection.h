@@ -22,12 +22,18 @@ class PcurveProjection {
 
   // The curve's end points, then its extrema of the distance to p (OCCT's order).
   void candidates(const gp_Pnt2d& p, std::vector<gp_Pnt2d>& out);
+  // No candidate lies nearer to p than this (the distance to a box around
+  // the curve's control points or segment, slightly grown; 0 for a curve
+  // of another kind): a caller after the nearest can skip the curve.
+  double lower_bound(const gp_Pnt2d& p) const;
 
  private:
   Handle(Geom2d_Curve) curve_;
   double first_, last_;
   Geom2dAdaptor_Curve adaptor_;
   Extrema_ExtPC2d extrema_;
+  bool has_box_ = false;
+  double box_[4] = {0, 0, 0, 0};  // x min, x max, y min, y max
 };
 
 }  // namespace tessella

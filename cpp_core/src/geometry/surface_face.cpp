@@ -351,6 +351,11 @@ Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
   const gp_Pnt2d p(uv.x(), uv.y());
   std::vector<gp_Pnt2d> candidates;
   for (const auto& edge : s.trim_projections[static_cast<std::size_t>(loop)]) {
+    // An edge whose every point is farther than the nearest candidate so
+    // far cannot change the answer (its candidates are never strictly
+    // nearer): not projected (a loop of many edges projected each crossing
+    // onto every one of them).
+    if (edge->lower_bound(p) > best_d) continue;
     edge->candidates(p, candidates);
     for (const gp_Pnt2d& q : candidates) {
       const double d = q.Distance(p);
