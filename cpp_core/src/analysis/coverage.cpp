@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
+#include "common/parallel_chunks.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/seam_sides.h"
 #include "tessella/errors.h"
@@ -290,8 +292,20 @@ Coverage measure_coverage(const SurfaceFace& face, const PanelMesh& mesh,
     count = static_cast<int>(4.0 * std::sqrt(double(std::max<std::size_t>(1, panels.size()))));
     count = std::clamp(count, 256, 4096);
   }
-  Coverage c = scan(face, panels, loops, 0, count);
-  const Coverage other = scan(face, panels, loops, 1, count);
+  // The two scans on two threads where there are two (a worker evaluates
+  // in a scope of its own exactly where the caller does, so the figures are
+  // the same bit for bit).
+  Coverage both[2];
+  const bool scoped = SurfaceFace::FastEvaluation::active(face);
+  ChunkQueue directions(2, 1);
+  run_chunks(directions, worker_threads(), [&](bool calling) {
+    std::optional<SurfaceFace::FastEvaluation> fast;
+    if (!calling && scoped) fast.emplace(face, true);
+    std::size_t begin = 0, end = 0;
+    while (directions.next(begin, end)) both[begin] = scan(face, panels, loops, int(begin), count);
+  });
+  Coverage c = both[0];
+  const Coverage& other = both[1];
   c.gap = std::max(c.gap, other.gap);
   c.overlap = std::max(c.overlap, other.overlap);
   c.outside = std::max(c.outside, other.outside);
