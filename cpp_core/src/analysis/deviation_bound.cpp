@@ -50,6 +50,24 @@ bool inside(const UvBounds& a, const UvBounds& b) {
   return a.u_min >= b.u_min && a.u_max <= b.u_max && a.v_min >= b.v_min && a.v_max <= b.v_max;
 }
 
+UvBounds box_of(const std::array<Vec2, 4>& f) {
+  UvBounds box{f[0].x(), f[0].x(), f[0].y(), f[0].y()};
+  for (const Vec2& q : f) {
+    box.u_min = std::min(box.u_min, q.x()), box.u_max = std::max(box.u_max, q.x());
+    box.v_min = std::min(box.v_min, q.y()), box.v_max = std::max(box.v_max, q.y());
+  }
+  return box;
+}
+
+// The bilinear map's interpolation error over the (unwrapped) corner
+// parameters f, with m bounding S's second derivatives over their box.
+double bilinear_error(const std::array<Vec2, 4>& f, const SecondDerivativeBound& m) {
+  // phi_s = (1 - t)(f1 - f0) + t (f2 - f3), phi_t = (1 - s)(f3 - f0) + s (f2 - f1).
+  const Vec2 s = (f[1] - f[0]).cwiseAbs().cwiseMax((f[2] - f[3]).cwiseAbs());
+  const Vec2 t = (f[3] - f[0]).cwiseAbs().cwiseMax((f[2] - f[1]).cwiseAbs());
+  return (along_edge(m, s.x(), s.y()) + along_edge(m, t.x(), t.y())) / 8;
+}
+
 template <std::size_t N>
 double interpolation_error(const SurfaceFace& face, std::array<Vec2, N> f,
                            const CurvatureOverBox* hint = nullptr) {
@@ -60,10 +78,7 @@ double interpolation_error(const SurfaceFace& face, std::array<Vec2, N> f,
   else if (!face.second_derivative_bound(box, m))
     return -1;
   if constexpr (N == 4) {
-    // phi_s = (1 - t)(f1 - f0) + t (f2 - f3), phi_t = (1 - s)(f3 - f0) + s (f2 - f1).
-    const Vec2 s = (f[1] - f[0]).cwiseAbs().cwiseMax((f[2] - f[3]).cwiseAbs());
-    const Vec2 t = (f[3] - f[0]).cwiseAbs().cwiseMax((f[2] - f[1]).cwiseAbs());
-    return (along_edge(m, s.x(), s.y()) + along_edge(m, t.x(), t.y())) / 8;
+    return bilinear_error(f, m);
   } else {
     // e(x) = sum_k l_k R_k, |R_k| <= 1/2 |D^2 S[f_k - phi(x), same]|; the
     // weighted spreads of the f_k's u and v are at most a quarter of their
@@ -112,6 +127,12 @@ double cell_bound(const SurfaceFace& face, const std::array<BoundCorner, N>& c, 
 }
 
 }  // namespace
+
+double bilinear_hint_bound(const std::array<Vec2, 4>& feet, double gap,
+                           const CurvatureOverBox& hint) {
+  if (!inside(box_of(feet), hint.box)) return -1;
+  return gap + bilinear_error(feet, hint.m);
+}
 
 double along_edge(const SecondDerivativeBound& m, double du, double dv) {
   return m.uu * du * du + 2 * m.uv * du * dv + m.vv * dv * dv;

@@ -64,6 +64,13 @@ struct CurvatureOverBox {
 // with `hint` where their box lies inside its box.
 double bilinear_cell_bound(const SurfaceFace& face, const std::array<BoundCorner, 4>& c,
                            double enough = -1, const CurvatureOverBox* hint = nullptr);
+// The first try of bilinear_cell_bound on a face that is not periodic (its
+// feet need no unwrapping), from the corners' feet f_k and the largest
+// |x_k - S(f_k)|: the same value, or -1 where the feet's box leaves the
+// hint's. For a caller that keeps the corners' gaps: a quad's 64 cells,
+// most of which pass here, without the copies of their corners.
+double bilinear_hint_bound(const std::array<Vec2, 4>& feet, double gap,
+                           const CurvatureOverBox& hint);
 // The same over a flat triangle.
 double triangle_cell_bound(const SurfaceFace& face, const std::array<BoundCorner, 3>& c,
                            double enough = -1, const CurvatureOverBox* hint = nullptr);

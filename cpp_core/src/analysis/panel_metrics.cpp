@@ -242,8 +242,8 @@ class Prober {
   template <class Offer>
   void offer_global(const Vec3& x, const Offer& offer) const {
     if (!local_.global_search) return;
-    auto known = std::find_if(global_.begin(), global_.end(),
-                              [&](const auto& e) { return e.first == x; });
+    auto known =
+        std::find_if(global_.begin(), global_.end(), [&](const auto& e) { return e.first == x; });
     if (known == global_.end()) known = global_.insert(global_.end(), {x, face_.project(x)});
     const Projection& g = known->second;
     offer(g.distance, true, g.uv, g.point);
@@ -857,6 +857,7 @@ class DeviationCertificate {
     if (probed && (x - probed->point).norm() < (x - s_q).norm())
       c.f = probed->foot, c.s = probed->point;
     corners_.push_back(c);
+    gap_.push_back((c.x - c.s).norm());
     z_.push_back(z);
     piece_.push_back(tri);
     return int(corners_.size()) - 1;
@@ -969,6 +970,15 @@ class DeviationCertificate {
   bool passes(double bound) const { return bound <= enough(); }
 
   void push(const std::array<int, 4>& k) {
+    if (has_hint_ && k[3] >= 0) {
+      // The first try of bilinear_cell_bound, from the kept gaps: most
+      // cells pass here.
+      double gap = 0;  // (as bilinear_cell_bound takes the largest: from 0)
+      for (int i : k) gap = std::max(gap, gap_[std::size_t(i)]);
+      const double quick = bilinear_hint_bound(
+          {corners_[k[0]].f, corners_[k[1]].f, corners_[k[2]].f, corners_[k[3]].f}, gap, hint_);
+      if (quick >= 0 && passes(quick)) return;
+    }
     double bound;
     const CurvatureOverBox* hint = has_hint_ ? &hint_ : nullptr;
     if (k[3] < 0)
@@ -1021,6 +1031,7 @@ class DeviationCertificate {
   double size_ = 0;
   Answer* answer_ = nullptr;
   std::vector<BoundCorner> corners_;  // the grid's points, then the points added
+  std::vector<double> gap_;           // |x - S(f)| of each
   std::vector<Vec2> z_;               // each point's parameters on its piece
   std::vector<int> piece_;
   std::vector<std::array<int, 4>> cells_;
