@@ -459,11 +459,11 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   std::atomic<std::size_t> near_done{0};
   const cInt y_lo = Y.front() - 1, y_hi = Y.back() + 1;
   const auto cut = clip_to_box;
-  // The parts are tasks any thread takes (the top split's two halves alone
-  // were uneven: the method gained 10% on two threads): each cell's polygons
-  // come from the same operations on any thread and in any order (only
-  // integer Clipper calls; each leaf writes its own cell), so the mesh is
-  // the same.
+  // The parts are tasks any thread takes (with only the top split's two
+  // halves on two threads, the one with less of the trim waited for the
+  // other): each cell's polygons come from the same operations on any thread
+  // and in any order (only integer Clipper calls; each leaf writes its own
+  // cell), so the mesh is the same.
   struct Part {
     Paths piece;
     std::size_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
