@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -74,24 +73,22 @@ double box_distance_sq(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 // is farther than the limit, and the limit only shrinks, so every sample
 // within the final limit is visited (the answers are the same as visiting
 // all blocks in sorted order).
-// The nearest first from a heap, as far as the limit lets the visits go
-// (sorting all 420 groups of OCCT's terrain on every call was 7% of its
-// metrics' time; the order among equal bounds is the heap's, which the
-// answers do not depend on).
+// The nearest group first (after it the limit is small), then every other
+// group in grid order that the limit still lets in: neither a sort nor a
+// heap of all groups (420 on OCCT's terrain: sorting them twice a search was
+// 7% of its time, a heap still 2.5%). In a group, the nearest blocks first.
 template <class Limit, class Visit>
 void SurfaceSampleGrid::blocks_within(const Vec3& p, const Limit& limit, const Visit& visit) const {
-  using Entry = std::pair<double, std::size_t>;
-  const auto nearer_last = std::greater<Entry>();  // a min-heap
-  std::vector<Entry> groups(group_lo_.size());
-  for (std::size_t g = 0; g < groups.size(); ++g)
-    groups[g] = {box_distance_sq(p, group_lo_[g], group_hi_[g]), g};
-  std::make_heap(groups.begin(), groups.end(), nearer_last);
-  std::vector<Entry> blocks;
+  std::vector<double> group_bound(group_lo_.size());
+  std::size_t first = 0;
+  for (std::size_t g = 0; g < group_bound.size(); ++g) {
+    group_bound[g] = box_distance_sq(p, group_lo_[g], group_hi_[g]);
+    if (group_bound[g] < group_bound[first]) first = g;
+  }
+  std::vector<std::pair<double, std::size_t>> blocks;
   blocks.reserve(static_cast<std::size_t>(kGroup) * kGroup);
-  for (; !groups.empty();
-       std::pop_heap(groups.begin(), groups.end(), nearer_last), groups.pop_back()) {
-    const auto [group_bound, g] = groups.front();
-    if (group_bound > limit()) break;  // every block in it is at least as far
+  auto visit_group = [&](std::size_t g) {
+    if (group_bound[g] > limit()) return;  // every block in it is at least as far
     const int gi = static_cast<int>(g % static_cast<std::size_t>(gu_));
     const int gj = static_cast<int>(g / static_cast<std::size_t>(gu_));
     blocks.clear();
@@ -105,7 +102,11 @@ void SurfaceSampleGrid::blocks_within(const Vec3& p, const Limit& limit, const V
       if (bound > limit()) break;
       visit(b);
     }
-  }
+  };
+  if (group_bound.empty()) return;
+  visit_group(first);
+  for (std::size_t g = 0; g < group_bound.size(); ++g)
+    if (g != first) visit_group(g);
 }
 
 template <class Visit>

@@ -51,7 +51,7 @@ class SurfaceSampleGrid {
   Vec2 uv_of(int i, int j) const;
   // visit(b) for every block whose box is within limit() (a squared
   // distance, read again before each block: it may shrink as the visits go)
-  // of p, the nearest groups first and in a group the nearest blocks first.
+  // of p, the nearest group first and in a group the nearest blocks first.
   template <class Limit, class Visit>
   void blocks_within(const Vec3& p, const Limit& limit, const Visit& visit) const;
   // visit(b) for every block whose box is within limit_sq of p, in grid
