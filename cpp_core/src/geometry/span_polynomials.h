@@ -3,7 +3,7 @@
 // GeomAdaptor_Surface takes 100-300 ns a call. Each knot span becomes its
 // Taylor polynomial about the span's middle (centred, so Horner stays well
 // conditioned), built on first use and kept in a small direct-mapped table
-// (8 x 8 neighbouring spans stay cached together). Rational surfaces keep
+// (16 x 16 neighbouring spans stay cached together). Rational surfaces keep
 // the homogeneous (wx, wy, wz, w) polynomial and divide by the quotient rule.
 //
 // Spans as OCCT picks them: a parameter on an interior knot (or an ulp below

@@ -525,8 +525,8 @@ class Merger {
   //
   // Panels not yet measured are measured on every thread where there are
   // several and one of them is modelled as pieces (a boundary panel costs
-  // about ten quads; walking_agent's merge was a sixth of its time on two
-  // threads, all on one): a worker evaluates in a scope of its own, as the
+  // about ten quads; walking_agent's merge was 13% of the dome's time on
+  // two threads, all of it on one): a worker evaluates in a scope of its own, as the
   // metrics' workers do, so the figures are the same on any thread count.
   double deviation_of(const std::vector<std::vector<Vec2>>& uv,
                       const std::vector<std::vector<Vec3>>& xyz) const {

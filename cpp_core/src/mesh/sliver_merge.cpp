@@ -66,6 +66,7 @@ void drop_panels(PanelMesh& mesh, const std::vector<char>& keep) {
 // pipeline), needed only where the bound cannot decide.
 double area_lower_bound(const PanelMesh& mesh, std::size_t p) {
   const std::vector<int>& poly = mesh.panels[p];
+  if (poly.size() < 3) return 0.0;
   Vec3 sum = Vec3::Zero();
   const Vec3& origin = mesh.xyz[poly[0]];
   for (std::size_t k = 1; k + 1 < poly.size(); ++k)
