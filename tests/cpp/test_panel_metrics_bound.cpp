@@ -13,9 +13,12 @@
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <random>
 
+#include "analysis/deviation_bound.h"
 #include "brute_force_distance.h"
 #include "tessella/panel_metrics.h"
 #include "tessella/surface_face.h"
@@ -518,4 +521,56 @@ TEST(PanelDeviationBound, ANarrowDipBetweenTheSamplesIsFound) {
   EXPECT_NEAR(pieces.value, dense_pieces, 0.01 * dense_pieces);
   EXPECT_FALSE(pieces.unreliable);
   EXPECT_NEAR(distance(pieces.at), pieces.value, 1e-6 * pieces.value);
+}
+
+// bilinear_hint_bound is bilinear_cell_bound's first try, computed from the
+// corners' feet and their largest gap alone: the same value where that try
+// decides, -1 where the feet leave the hint's box; both bound the distance
+// over the cell (a dense sweep of the cell on a doubly curved face).
+TEST(PanelDeviationBound, TheHintBoundIsTheCellBoundsFirstTry) {
+  const Handle(Geom_BSplineSurface) surface = wrinkled_surface();
+  const SurfaceFace face =
+      SurfaceFace::from_brep_string(brep(BRepBuilderAPI_MakeFace(surface, 1e-7).Face()));
+  double u0, u1, v0, v1;
+  surface->Bounds(u0, u1, v0, v1);
+  // Parameters as shares of the surface's range.
+  auto uv = [&](double a, double b) { return Vec2(u0 + (u1 - u0) * a, v0 + (v1 - v0) * b); };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> at(0.1, 0.8), jitter(-0.01, 0.01);
+  CurvatureOverBox hint;
+  hint.box = {uv(0.05, 0).x(), uv(0.95, 0).x(), uv(0, 0.05).y(), uv(0, 0.95).y()};
+  ASSERT_TRUE(face.second_derivative_bound(hint.box, hint.m));
+  for (int t = 0; t < 200; ++t) {
+    const double u = at(rng), v = at(rng), h = 0.05;
+    const std::array<Vec2, 4> q = {uv(u, v), uv(u + h, v), uv(u + h, v + h), uv(u, v + h)};
+    // Panel points a little off the surface; the feet the surface points at
+    // the corners' own parameters, moved a little (any surface points serve).
+    std::array<BoundCorner, 4> c;
+    std::array<Vec2, 4> feet;
+    double gap = 0;
+    for (int k = 0; k < 4; ++k) {
+      const Vec2 f = q[k] + (uv(jitter(rng), jitter(rng)) - uv(0, 0));
+      const Vec3 s = face.point(f.x(), f.y());
+      const Vec3 x = face.point(q[k].x(), q[k].y()) + Vec3(0, 0, 5 + 20 * jitter(rng));
+      c[k] = {x, f, s, q[k], face.point(q[k].x(), q[k].y())};
+      feet[k] = f;
+      gap = std::max(gap, (x - s).norm());
+    }
+    const double quick = bilinear_hint_bound(feet, gap, hint);
+    ASSERT_GE(quick, gap);
+    // Where the first try decides (enough at or above it), the full bound
+    // returns the same value.
+    EXPECT_EQ(bilinear_cell_bound(face, c, quick, &hint), quick);
+    // Every point of the cell is within it of the surface.
+    for (int i = 0; i <= 6; ++i)
+      for (int j = 0; j <= 6; ++j) {
+        const double a = i / 6.0, b = j / 6.0;
+        const Vec3 x = (1 - a) * (1 - b) * c[0].x + a * (1 - b) * c[1].x + a * b * c[2].x +
+                       (1 - a) * b * c[3].x;
+        EXPECT_LE(face.project(x).distance, quick * (1 + 1e-9));
+      }
+  }
+  // Feet outside the hint's box: no answer from the hint.
+  const std::array<Vec2, 4> outside = {uv(0.0, 0.0), uv(0.04, 0.0), uv(0.04, 0.04), uv(0.0, 0.04)};
+  EXPECT_EQ(bilinear_hint_bound(outside, 1.0, hint), -1.0);
 }
