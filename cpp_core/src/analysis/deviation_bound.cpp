@@ -15,6 +15,17 @@ struct Choice {
   std::array<Vec3, N> s;
 };
 
+// The box of the corners' parameters.
+template <std::size_t N>
+UvBounds box_of(const std::array<Vec2, N>& f) {
+  UvBounds box{f[0].x(), f[0].x(), f[0].y(), f[0].y()};
+  for (const Vec2& q : f) {
+    box.u_min = std::min(box.u_min, q.x()), box.u_max = std::max(box.u_max, q.x());
+    box.v_min = std::min(box.v_min, q.y()), box.v_max = std::max(box.v_max, q.y());
+  }
+  return box;
+}
+
 // The parameters with a periodic direction unwrapped next to the first
 // corner's (S is periodic, so S(f) is unchanged), and their box.
 template <std::size_t N>
@@ -29,12 +40,7 @@ UvBounds unwrap(const SurfaceFace& face, std::array<Vec2, N>& f) {
       f[k].y() -= p * std::round((f[k].y() - f[0].y()) / p);
     }
   }
-  UvBounds box{f[0].x(), f[0].x(), f[0].y(), f[0].y()};
-  for (const Vec2& q : f) {
-    box.u_min = std::min(box.u_min, q.x()), box.u_max = std::max(box.u_max, q.x());
-    box.v_min = std::min(box.v_min, q.y()), box.v_max = std::max(box.v_max, q.y());
-  }
-  return box;
+  return box_of(f);
 }
 
 template <std::size_t N>
@@ -44,19 +50,8 @@ double largest_gap(const std::array<BoundCorner, N>& c, const std::array<Vec3, N
   return r;
 }
 
-// The interpolation error's bound for the corners' parameters f (N = 4:
-// bilinear, N = 3: linear); -1 for a surface without bounds.
 bool inside(const UvBounds& a, const UvBounds& b) {
   return a.u_min >= b.u_min && a.u_max <= b.u_max && a.v_min >= b.v_min && a.v_max <= b.v_max;
-}
-
-UvBounds box_of(const std::array<Vec2, 4>& f) {
-  UvBounds box{f[0].x(), f[0].x(), f[0].y(), f[0].y()};
-  for (const Vec2& q : f) {
-    box.u_min = std::min(box.u_min, q.x()), box.u_max = std::max(box.u_max, q.x());
-    box.v_min = std::min(box.v_min, q.y()), box.v_max = std::max(box.v_max, q.y());
-  }
-  return box;
 }
 
 // The bilinear map's interpolation error over the (unwrapped) corner
@@ -68,6 +63,8 @@ double bilinear_error(const std::array<Vec2, 4>& f, const SecondDerivativeBound&
   return (along_edge(m, s.x(), s.y()) + along_edge(m, t.x(), t.y())) / 8;
 }
 
+// The interpolation error's bound for the corners' parameters f (N = 4:
+// bilinear, N = 3: linear); -1 for a surface without bounds.
 template <std::size_t N>
 double interpolation_error(const SurfaceFace& face, std::array<Vec2, N> f,
                            const CurvatureOverBox* hint = nullptr) {

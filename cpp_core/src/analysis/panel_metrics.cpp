@@ -235,7 +235,8 @@ class Prober {
   // point (another sheet of a folded or wavy surface): the global search, whose
   // answer is the nearest of its candidate basins and of the face's border
   // (MAT.brep reported 1.80 mm against 1.17 when only the nearer known point
-  // bounded it). Rare: the cost of the global search is paid only here.
+  // bounded it). Rare on smooth faces (none on the bench faces; about four
+  // a panel on OCCT's rough terrain): its cost is paid only here.
   // A panel asks for the same point's global search again (a probe's peek,
   // then its tightening: 15% of OCCT's terrain's 24,000 searches): each
   // answer is kept for the panel.
