@@ -56,6 +56,47 @@ void horner(const double* c, int p_rt, int q_rt, double s, double t, double (&ou
   }
 }
 
+// fill's sums, c[i][j] = sum_ab Nu_a^(i) Nv_b^(j) H_ab / (i! j!), separably
+// (u first): bu[i][a] and bv[j][b] the basis derivatives ((p+1)^2 and
+// (q+1)^2 doubles, row-major), h[a][b][d] the homogeneous poles (kN x kN x 4).
+// P, Q > 0 fix the degrees at compile time; the same sums in the same order
+// either way.
+template <int P, int Q, int D>
+void expand(int p_rt, int q_rt, const double* bu, const double* bv, const double* h, double* c) {
+  const int p = P > 0 ? P : p_rt, q = Q > 0 ? Q : q_rt;
+  auto H = [h](int a, int b, int d) { return h[(a * kN + b) * 4 + d]; };
+  double t[kN][kN][4];
+  double fact = 1;
+  for (int i = 0; i <= p; ++i) {
+    if (i > 0) fact *= i;
+    for (int b = 0; b <= q; ++b) {
+      for (int d = 0; d < D; ++d) {
+        double sum = 0;
+        for (int a = 0; a <= p; ++a) sum += bu[i * (p + 1) + a] * H(a, b, d);
+        t[i][b][d] = sum / fact;
+      }
+    }
+  }
+  for (int i = 0; i <= p; ++i) {
+    fact = 1;
+    for (int j = 0; j <= q; ++j) {
+      if (j > 0) fact *= j;
+      for (int d = 0; d < D; ++d) {
+        double sum = 0;
+        for (int b = 0; b <= q; ++b) sum += bv[j * (q + 1) + b] * t[i][b][d];
+        c[(i * (q + 1) + j) * D + d] = sum / fact;
+      }
+    }
+  }
+}
+
+template <int D>
+void (*expand_for(int p, int q))(int, int, const double*, const double*, const double*, double*) {
+  if (p == 3 && q == 3) return expand<3, 3, D>;
+  if (p == 2 && q == 2) return expand<2, 2, D>;
+  return expand<0, 0, D>;
+}
+
 using Kernels = std::array<void (*)(const double*, int, int, double, double, double (&)[6][4]), 3>;
 
 template <int P, int Q, int D>
@@ -91,11 +132,10 @@ SpanPolynomials::SpanPolynomials(const Handle(Geom_BSplineSurface) & bs)
     : surface_(bs),
       p_(bs->UDegree()),
       q_(bs->VDegree()),
-      dim_(bs->IsURational() || bs->IsVRational() ? 4 : 3),
-      u_basis_(1, bs->UDegree() + 1, 1, bs->UDegree() + 1),
-      v_basis_(1, bs->VDegree() + 1, 1, bs->VDegree() + 1) {
+      dim_(bs->IsURational() || bs->IsVRational() ? 4 : 3) {
   stride_ = (p_ + 1) * (q_ + 1) * dim_;
   kernels_ = dim_ == 4 ? kernels_for<4>(p_, q_) : kernels_for<3>(p_, q_);
+  expand_ = dim_ == 4 ? expand_for<4>(p_, q_) : expand_for<3>(p_, q_);
   u_.init(bs, true);
   v_.init(bs, false);
   coeffs_.assign(static_cast<std::size_t>(stride_) * slots_.size(), 0.0);
@@ -108,6 +148,8 @@ void SpanPolynomials::Axis::init(const Handle(Geom_BSplineSurface) & bs, bool u)
   const int end = u ? bs->LastUKnotIndex() : bs->LastVKnotIndex();
   for (int i = first; i <= end; ++i) knots.push_back(u ? bs->UKnot(i) : bs->VKnot(i));
   last = u ? bs->UKnot(bs->NbUKnots()) : bs->VKnot(bs->NbVKnots());
+  degree = u ? bs->UDegree() : bs->VDegree();
+  sequence = u ? &bs->UKnotSequence() : &bs->VKnotSequence();
   // The end spans extend to infinity. OCCT moves a parameter within its
   // Epsilon below a knot up to the next span (see step): a few ulps short of
   // the knot a span surely holds it; step decides the few in between.
@@ -137,6 +179,28 @@ int SpanPolynomials::Axis::step(double t) const {
   return i;
 }
 
+const double* SpanPolynomials::Axis::basis_of(int span, int& first_pole) {
+  const auto i = static_cast<std::size_t>(span);
+  const std::size_t n = static_cast<std::size_t>(degree + 1) * (degree + 1);
+  if (first.empty()) {
+    first.assign(knots.size() - 1, 0);
+    basis.assign(first.size() * n, 0.0);
+  }
+  double* out = basis.data() + i * n;
+  if (first[i] == 0) {
+    const double middle = 0.5 * (knots[i] + knots[i + 1]);
+    int f = 0;
+    math_Matrix scratch(1, degree + 1, 1, degree + 1);
+    if (BSplCLib::EvalBsplineBasis(degree, degree + 1, *sequence, middle, f, scratch))
+      throw std::logic_error("SpanPolynomials: cannot evaluate the B-spline basis");
+    for (int r = 0; r <= degree; ++r)
+      for (int a = 0; a <= degree; ++a) out[r * (degree + 1) + a] = scratch(r + 1, a + 1);
+    first[i] = f;
+  }
+  first_pole = first[i];
+  return out;
+}
+
 void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
   const auto ku = static_cast<std::size_t>(iu), kv = static_cast<std::size_t>(iv);
   Slot& s = slots_[k];
@@ -147,20 +211,17 @@ void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
 
   // Derivatives of the non-zero basis functions at the middle (1-based first pole).
   int fu = 0, fv = 0;
-  if (BSplCLib::EvalBsplineBasis(p_, p_ + 1, surface_->UKnotSequence(), s.um, fu, u_basis_) ||
-      BSplCLib::EvalBsplineBasis(q_, q_ + 1, surface_->VKnotSequence(), s.vm, fv, v_basis_)) {
-    throw std::logic_error("SpanPolynomials: cannot evaluate the B-spline basis");
-  }
+  const double* bu = u_.basis_of(iu, fu);
+  const double* bv = v_.basis_of(iv, fv);
   // The homogeneous poles of the span, relative to their centre: the
   // derivative coefficients sum basis derivatives (of size 1/h^i) times
   // poles, so their rounding scales with the span's extent, not the model's.
   const TColgp_Array2OfPnt& poles = surface_->Poles();
   const TColStd_Array2OfReal* weights = dim_ == 4 ? surface_->Weights() : nullptr;
   const int r0 = poles.LowerRow() + fu - 1, c0 = poles.LowerCol() + fv - 1;
-  // The span's poles and weights and the basis derivatives read once into
-  // plain arrays (OCCT's arrays and math_Matrix check every index: reading
-  // them in the loops below was most of a span's 13,000 instructions, and
-  // OCCT's terrain fills 175,000 spans). The same sums in the same order.
+  // The span's poles and weights read once into plain arrays (OCCT's arrays
+  // check every index: reading them in the sums was most of a span's 13,000
+  // instructions, and OCCT's terrain fills 175,000 spans).
   double xyz[kN][kN][3], wt[kN][kN];
   for (int a = 0; a <= p_; ++a)
     for (int b = 0; b <= q_; ++b) {
@@ -170,11 +231,6 @@ void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
           weights ? (*weights)(weights->LowerRow() + fu - 1 + a, weights->LowerCol() + fv - 1 + b)
                   : 1.0;
     }
-  double bu[kN][kN], bv[kN][kN];
-  for (int i = 0; i <= p_; ++i)
-    for (int a = 0; a <= p_; ++a) bu[i][a] = u_basis_(i + 1, a + 1);
-  for (int j = 0; j <= q_; ++j)
-    for (int b = 0; b <= q_; ++b) bv[j][b] = v_basis_(j + 1, b + 1);
   for (int d = 0; d < 3; ++d) {
     double lo = xyz[0][0][d], hi = lo;
     for (int a = 0; a <= p_; ++a) {
@@ -193,31 +249,7 @@ void SpanPolynomials::fill(std::size_t k, int iu, int iv) {
       h[a][b][3] = w;
     }
   }
-  // c[i][j] = sum_ab Nu_a^(i) Nv_b^(j) H_ab / (i! j!), separably: u first.
-  double t[kN][kN][4];
-  double fact = 1;
-  for (int i = 0; i <= p_; ++i) {
-    if (i > 0) fact *= i;
-    for (int b = 0; b <= q_; ++b) {
-      for (int d = 0; d < dim_; ++d) {
-        double sum = 0;
-        for (int a = 0; a <= p_; ++a) sum += bu[i][a] * h[a][b][d];
-        t[i][b][d] = sum / fact;
-      }
-    }
-  }
-  double* c = coeffs_.data() + k * static_cast<std::size_t>(stride_);
-  for (int i = 0; i <= p_; ++i) {
-    fact = 1;
-    for (int j = 0; j <= q_; ++j) {
-      if (j > 0) fact *= j;
-      for (int d = 0; d < dim_; ++d) {
-        double sum = 0;
-        for (int b = 0; b <= q_; ++b) sum += bv[j][b] * t[i][b][d];
-        c[(i * (q_ + 1) + j) * dim_ + d] = sum / fact;
-      }
-    }
-  }
+  expand_(p_, q_, bu, bv, &h[0][0][0], coeffs_.data() + k * static_cast<std::size_t>(stride_));
 }
 
 const double* SpanPolynomials::eval(int order, double u, double v, Derivatives& out) {

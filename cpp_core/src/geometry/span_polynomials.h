@@ -15,6 +15,7 @@
 
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Surface.hxx>
+#include <TColStd_Array1OfReal.hxx>
 #include <array>
 #include <math_Matrix.hxx>
 #include <memory>
@@ -59,6 +60,17 @@ class SpanPolynomials {
     }
     int step(double t) const;  // a neighbour of the current span, else a search
     void init(const Handle(Geom_BSplineSurface) & bs, bool u);
+    // The derivatives 0..degree of the span's non-zero basis functions at its
+    // middle (row i: the i-th derivatives; (degree + 1)^2 doubles) and, in
+    // `first_pole`, the 1-based index of its first pole. Evaluated on first
+    // use and kept: every span of a row shares its u basis (OCCT's
+    // EvalBsplineBasis was a third of a span's fill).
+    const double* basis_of(int span, int& first_pole);
+
+    int degree = 0;
+    const TColStd_Array1OfReal* sequence = nullptr;  // the flat knots (the surface owns them)
+    std::vector<double> basis;
+    std::vector<int> first;  // per span: its first pole, 0 until evaluated
   };
   struct Slot {
     int iu = -1, iv = -1;          // the span held (indices into the distinct knots)
@@ -76,6 +88,10 @@ class SpanPolynomials {
     return k;
   }
   void fill(std::size_t slot, int iu, int iv);
+  // fill's power-form sums, unrolled for the common degrees.
+  using Expand = void (*)(int p, int q, const double* bu, const double* bv, const double* h,
+                          double* c);
+  Expand expand_ = nullptr;
   // The polynomial's derivatives at (u, v); returns the span's origin.
   const double* eval(int order, double u, double v, Derivatives& out);
   // The point and derivatives from the homogeneous ones.
@@ -87,8 +103,7 @@ class SpanPolynomials {
   std::array<Kernel, 3> kernels_{};      // by derivative order
   Axis u_, v_;
   std::array<Slot, kSide * kSide> slots_;
-  std::vector<double> coeffs_;     // stride_ per slot: c[i][j][d] = d^(i+j)S/du^i dv^j / (i! j!)
-  math_Matrix u_basis_, v_basis_;  // scratch of BSplCLib::EvalBsplineBasis
+  std::vector<double> coeffs_;  // stride_ per slot: c[i][j][d] = d^(i+j)S/du^i dv^j / (i! j!)
 };
 
 }  // namespace tessella
