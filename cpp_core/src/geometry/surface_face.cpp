@@ -111,16 +111,20 @@ struct SurfaceFace::Impl {
   // trim_loops' (u,v) loops (no points in space) by deflection, under trim_mutex.
   mutable std::map<double, std::vector<TrimLoop>> trim_loops_uv;
   mutable std::vector<std::vector<std::unique_ptr<PcurveProjection>>> trim_projections;
-  void count(std::uint64_t n = 1) const {
-    if (Objects* o = scope())
+  // Counts n evaluations into the scope o (scope()'s answer: looked up once
+  // by the caller, a thread-local read in a shared library being a call).
+  void count(Objects* o, std::uint64_t n = 1) const {
+    if (o)
       o->evaluations += n;
     else
       evaluations.fetch_add(n, std::memory_order_relaxed);
   }
   // The objects of a FastEvaluation of this face on this thread, or null.
   Objects* scope() const { return tls_fast.impl == this ? tls_fast.objects : nullptr; }
+  // One evaluation of S and its first and second derivatives (counted).
   void d2(double u, double v, Vec3& p, Vec3& su, Vec3& sv, Vec3& suu, Vec3& svv, Vec3& suv) const {
     Objects* o = scope();
+    count(o);
     if (o && o->poly) {
       o->poly->d2(u, v, p.data(), su.data(), sv.data(), suu.data(), svv.data(), suv.data());
       return;
@@ -242,8 +246,9 @@ bool SurfaceFace::reversed() const { return impl_->reversed; }
 double SurfaceFace::area() const { return impl_->area; }
 
 Vec3 SurfaceFace::point(double u, double v) const {
-  impl_->count();
-  if (Objects* o = impl_->scope()) {
+  Objects* o = impl_->scope();
+  impl_->count(o);
+  if (o) {
     if (!o->poly) return to_vec(o->adaptor.at(u, v).Value(u, v));
     Vec3 p;
     o->poly->d0(u, v, p.data());
@@ -293,8 +298,8 @@ void SurfaceFace::reset_global_projections() const {
 }
 
 SurfacePoint SurfaceFace::derivatives(double u, double v) const {
-  impl_->count();
   Objects* o = impl_->scope();
+  impl_->count(o);
   if (o && o->poly) {
     SurfacePoint d;
     o->poly->d1(u, v, d.point.data(), d.du.data(), d.dv.data());
@@ -491,7 +496,6 @@ bool newton_foot(const Impl& s, const Vec3& p, double& u, double& v, const Proje
   bool converged = false;
   for (int it = 0; it <= params.max_iterations; ++it) {
     Vec3 P, su, sv, suu, svv, suv;
-    s.count();
     s.d2(u, v, P, su, sv, suu, svv, suv);
     const Vec3 r = P - p;
     const double rn = r.norm();
@@ -672,12 +676,28 @@ Projection SurfaceFace::project(const Vec3& p) const {
     u = start.uv.x(), v = start.uv.y();
     double best = start.distance;
     double hu = grid.step_u(), hv = grid.step_v();
+    // A neighbour that repeats one already evaluated this round (on the
+    // border, u - hu clamps to u) has the same distance, which cannot be
+    // below best after that one: not evaluated again. Nor the centre once
+    // the search has moved (best is then the centre's own distance; before,
+    // best is the sample's, which the evaluation here may beat by an ulp).
+    // The same steps and answer as evaluating all eight, with 3 of 8
+    // evaluations fewer along a border (OCCT's terrain: 18,000 searches from
+    // border samples a panelize, 44 rounds each).
+    bool moved = false;
     for (int round = 0; round < 1000 && (hu > stop_u || hv > stop_v); ++round) {
       double bu = u, bv = v;
+      double seen_u[8], seen_v[8];
+      int seen = 0;
       for (int i = -1; i <= 1; ++i)
         for (int j = -1; j <= 1; ++j) {
           if (i == 0 && j == 0) continue;
           const double cu = s.wrap_u(u + i * hu), cv = s.wrap_v(v + j * hv);
+          if (moved && cu == u && cv == v) continue;
+          bool repeat = false;
+          for (int k = 0; k < seen && !repeat; ++k) repeat = seen_u[k] == cu && seen_v[k] == cv;
+          if (repeat) continue;
+          seen_u[seen] = cu, seen_v[seen] = cv, ++seen;
           const double d = (point(cu, cv) - p).norm();
           if (d < best) best = d, bu = cu, bv = cv;
         }
@@ -685,6 +705,7 @@ Projection SurfaceFace::project(const Vec3& p) const {
         hu *= 0.5, hv *= 0.5;
       } else {
         u = bu, v = bv;
+        moved = true;
       }
     }
     if (best < result.distance)
