@@ -77,14 +77,18 @@ double box_distance_sq(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 // group in grid order that the limit still lets in: neither a sort nor a
 // heap of all groups (420 on OCCT's terrain: sorting them twice a search was
 // 7% of its time, a heap still 2.5%). In a group, the nearest blocks first.
+void SurfaceSampleGrid::group_bounds(const Vec3& p, std::vector<double>& out) const {
+  out.resize(group_lo_.size());
+  for (std::size_t g = 0; g < out.size(); ++g)
+    out[g] = box_distance_sq(p, group_lo_[g], group_hi_[g]);
+}
+
 template <class Limit, class Visit>
-void SurfaceSampleGrid::blocks_within(const Vec3& p, const Limit& limit, const Visit& visit) const {
-  std::vector<double> group_bound(group_lo_.size());
+void SurfaceSampleGrid::blocks_within(const Vec3& p, const std::vector<double>& group_bound,
+                                      const Limit& limit, const Visit& visit) const {
   std::size_t first = 0;
-  for (std::size_t g = 0; g < group_bound.size(); ++g) {
-    group_bound[g] = box_distance_sq(p, group_lo_[g], group_hi_[g]);
+  for (std::size_t g = 1; g < group_bound.size(); ++g)
     if (group_bound[g] < group_bound[first]) first = g;
-  }
   std::vector<std::pair<double, std::size_t>> blocks;
   blocks.reserve(static_cast<std::size_t>(kGroup) * kGroup);
   auto visit_group = [&](std::size_t g) {
@@ -110,10 +114,10 @@ void SurfaceSampleGrid::blocks_within(const Vec3& p, const Limit& limit, const V
 }
 
 template <class Visit>
-void SurfaceSampleGrid::blocks_within_fixed(const Vec3& p, double limit_sq,
-                                            const Visit& visit) const {
-  for (std::size_t g = 0; g < group_lo_.size(); ++g) {
-    if (box_distance_sq(p, group_lo_[g], group_hi_[g]) > limit_sq) continue;
+void SurfaceSampleGrid::blocks_within_fixed(const Vec3& p, const std::vector<double>& group_bound,
+                                            double limit_sq, const Visit& visit) const {
+  for (std::size_t g = 0; g < group_bound.size(); ++g) {
+    if (group_bound[g] > limit_sq) continue;
     const int gi = static_cast<int>(g % static_cast<std::size_t>(gu_));
     const int gj = static_cast<int>(g / static_cast<std::size_t>(gu_));
     for (int j = gj * kGroup; j < std::min(bv_, gj * kGroup + kGroup); ++j)
@@ -133,10 +137,17 @@ void SurfaceSampleGrid::samples_of(std::size_t b, const Visit& visit) const {
 }
 
 SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p) const {
+  std::vector<double> group_bound;
+  group_bounds(p, group_bound);
+  return nearest(p, group_bound);
+}
+
+SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p,
+                                                     const std::vector<double>& group_bound) const {
   double best = std::numeric_limits<double>::infinity();
   std::size_t best_index = 0;
   blocks_within(
-      p, [&] { return best; },
+      p, group_bound, [&] { return best; },
       [&](std::size_t b) {
         samples_of(b, [&](int i, int j) {
           const std::size_t k = static_cast<std::size_t>(j) * (nu_ + 1) + i;
@@ -153,14 +164,16 @@ SurfaceSampleGrid::Sample SurfaceSampleGrid::nearest(const Vec3& p) const {
 
 std::vector<SurfaceSampleGrid::Sample> SurfaceSampleGrid::candidates(const Vec3& p,
                                                                      int count) const {
-  const Sample first = nearest(p);
+  std::vector<double> group_bound;
+  group_bounds(p, group_bound);
+  const Sample first = nearest(p, group_bound);
   const double limit = first.distance + 2.0 * reach_;
   const double limit_sq = limit * limit;
   auto dist_sq = [&](int i, int j) {
     return (points_[static_cast<std::size_t>(j) * (nu_ + 1) + i] - p).squaredNorm();
   };
   std::vector<std::pair<double, std::size_t>> found;  // (squared distance, sample index)
-  blocks_within_fixed(p, limit_sq, [&](std::size_t b) {
+  blocks_within_fixed(p, group_bound, limit_sq, [&](std::size_t b) {
     samples_of(b, [&](int i, int j) {
       const double d = dist_sq(i, j);
       if (d > limit_sq) return;

@@ -52,12 +52,19 @@ class SurfaceSampleGrid {
   // visit(b) for every block whose box is within limit() (a squared
   // distance, read again before each block: it may shrink as the visits go)
   // of p, the nearest group first and in a group the nearest blocks first.
+  // group_bound: every group's squared box distance from p (group_bounds).
   template <class Limit, class Visit>
-  void blocks_within(const Vec3& p, const Limit& limit, const Visit& visit) const;
+  void blocks_within(const Vec3& p, const std::vector<double>& group_bound, const Limit& limit,
+                     const Visit& visit) const;
   // visit(b) for every block whose box is within limit_sq of p, in grid
   // order (a fixed limit: no order can let one be skipped).
   template <class Visit>
-  void blocks_within_fixed(const Vec3& p, double limit_sq, const Visit& visit) const;
+  void blocks_within_fixed(const Vec3& p, const std::vector<double>& group_bound, double limit_sq,
+                           const Visit& visit) const;
+  // The squared distance from p to each group's box, into out (reused: a
+  // search computes them once for both of its passes).
+  void group_bounds(const Vec3& p, std::vector<double>& out) const;
+  Sample nearest(const Vec3& p, const std::vector<double>& group_bound) const;
   // Every sample of block b.
   template <class Visit>
   void samples_of(std::size_t b, const Visit& visit) const;
