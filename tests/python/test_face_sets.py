@@ -208,6 +208,27 @@ def test_filleted_box(tmp_path):
     assert abs(joined - alone) / shape.Area < 5e-3, (joined, alone, shape.Area)
 
 
+def test_filleted_box_same_result_on_one_and_two_threads():
+    # 26 faces and 48 shared edges: the faces run side by side, and so do
+    # the edges of disjoint faces in the join (each face still sees its
+    # edges in the set's order); the strips between the edges and their
+    # chords feed the coverage figures.
+    shape = filleted_box_shell()
+    one = tessella.panelize_faces(shape, method="iso_grid", size=450.0, threads=1)
+    two = tessella.panelize_faces(shape, method="iso_grid", size=450.0, threads=2)
+    assert np.array_equal(one.vertices, two.vertices)
+    assert one.panels == two.panels
+    assert np.array_equal(one.rods, two.rods)
+    for name in one.metrics:
+        assert np.array_equal(one.metrics[name], two.metrics[name], equal_nan=True), name
+    for key in ("shared_edge_nodes", "shared_nodes_taken_over", "gap_fraction",
+                "overlap_fraction", "model_area_ratio"):
+        assert one.summary[key] == two.summary[key], key
+    assert [f["gap_fraction"] for f in one.summary["faces"]] == \
+        [f["gap_fraction"] for f in two.summary["faces"]]
+    assert one.summary["shared_edges"] == 48
+
+
 def test_periodic_side_next_to_a_planar_top():
     shape = cylinder_and_top()
     assert len(shape.Faces) == 2

@@ -1,10 +1,12 @@
 #include "faceset/shared_edge_nodes.h"
 
+#include <BRep_Tool.hxx>
 #include <BndLib_Add2dCurve.hxx>
 #include <Bnd_Box.hxx>
 #include <Bnd_Box2d.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Standard_Failure.hxx>
+#include <TopLoc_Location.hxx>
 #include <algorithm>
 #include <cmath>
 #include <gp_Pnt2d.hxx>
@@ -14,6 +16,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "common/parallel_chunks.h"
 #include "geometry/edge_track.h"
 
 namespace tessella {
@@ -204,395 +207,453 @@ void set_node(PanelMesh& mesh, int v) {
   mesh.is_node[static_cast<std::size_t>(v)] = 1;
 }
 
+struct EdgeCounts {
+  int nodes = 0, taken_over = 0;
+};
+
+// One shared edge: its two faces' vertices on it merged into one list of
+// nodes, each face's mesh made to use them; the strips' areas added to its
+// faces' strip_area.
+void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<PanelMesh*>& meshes,
+                  double merge_distance, std::vector<double>& strip_area, EdgeCounts& counts) {
+  std::array<PanelMesh*, 2> mesh{meshes[static_cast<std::size_t>(e.faces[0])],
+                                 meshes[static_cast<std::size_t>(e.faces[1])]};
+  std::array<const SurfaceFace*, 2> face{set.faces[static_cast<std::size_t>(e.faces[0])].get(),
+                                         set.faces[static_cast<std::size_t>(e.faces[1])].get()};
+  const std::array<EdgeSide, 2> side{EdgeSide(e, 0, *face[0], *mesh[0]),
+                                     EdgeSide(e, 1, *face[1], *mesh[1])};
+  const double tol = 1e-6 * std::max(face[0]->model_size(), face[1]->model_size());
+  const double span = e.last - e.first;
+  // The vertices of each face on the edge: its boundary vertices that lie on it.
+  std::array<std::vector<OnEdge>, 2> on;
+  std::array<std::unordered_map<int, double>, 2> t_of;  // looked up only
+  std::array<SideUse, 2> uses;                          // each side's panel sides
+  for (int s = 0; s < 2; ++s) {
+    const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
+    std::vector<char> boundary(m.vertex_count(), 0);
+    uses[static_cast<std::size_t>(s)] = edge_use(m);
+    for (const auto& [edge, count] : uses[static_cast<std::size_t>(s)])
+      if (count == 1)
+        boundary[static_cast<std::size_t>(edge.first)] =
+            boundary[static_cast<std::size_t>(edge.second)] = 1;
+    for (int v = 0; v < static_cast<int>(m.vertex_count()); ++v) {
+      double t = 0;
+      if (!boundary[static_cast<std::size_t>(v)] ||
+          !side[static_cast<std::size_t>(s)].locate(v, tol, t))
+        continue;
+      on[static_cast<std::size_t>(s)].push_back({v, t});
+      t_of[static_cast<std::size_t>(s)][v] = t;
+    }
+  }
+  // The merged list of nodes: sorted along the edge; nodes of the two sides
+  // closer than merge_distance joined, so no short rod crosses between
+  // them; an edge end wins, else side 0. Two nodes of one side stay two
+  // (unless they coincide): that face's own rod between them was kept by its
+  // pipeline, a trim node beside an edge end, and merging them bent its
+  // panel out of the deviation bound (walking_agent on the split roof: a
+  // 121 mm side merged away, 52 mm against a bound of 30).
+  struct Entry {
+    double t;
+    int side, vertex;
+    Vec3 xyz;
+  };
+  // Nodes, and an outline vertex at an end of the edge even where its
+  // face's method left it a trim point (a B-rep vertex where the edge
+  // meets a free trim): the other face may have a node there, and a trim
+  // point's boundary piece, modelled flat between its nodes, moved it off
+  // the trim (the roof split along its diagonals, where a diagonal meets
+  // the drum: 9.9 mm, and a segment of the edge bounded panels of one face
+  // only). In 3D: such a vertex is located a hair inside the edge's
+  // parameter range, farther than at_end allows.
+  std::vector<Entry> entries;
+  for (int s = 0; s < 2; ++s) {
+    const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
+    const Vec3 ends[2] = {side[static_cast<std::size_t>(s)].xyz_at(e.first),
+                          side[static_cast<std::size_t>(s)].xyz_at(e.last)};
+    auto at_an_end = [&](int v) {
+      const Vec3& x = m.xyz[static_cast<std::size_t>(v)];
+      return (x - ends[0]).norm() <= tol || (x - ends[1]).norm() <= tol;
+    };
+    for (const OnEdge& o : on[static_cast<std::size_t>(s)])
+      if (is_node(m, o.vertex) || at_an_end(o.vertex))
+        entries.push_back(
+            {o.t, s, o.vertex,
+             mesh[static_cast<std::size_t>(s)]->xyz[static_cast<std::size_t>(o.vertex)]});
+  }
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.t < b.t || (a.t == b.t && a.side < b.side);
+  });
+  const double join = std::max(merge_distance, tol);
+  auto at_end = [&](double t) {
+    return std::abs(t - e.first) <= 1e-9 * std::abs(span) ||
+           std::abs(t - e.last) <= 1e-9 * std::abs(span);
+  };
+  std::vector<EdgeNode> nodes;
+  // First the entries that coincide (within tol) become one group each;
+  // then a group of one side only joins a neighbouring group of the other
+  // side only closer than `join`, the nearest pairs first. (Joining
+  // greedily along the edge paired each vertex of one face with the next
+  // of the other where both had a row of vertices, one of them an extra
+  // line's: the pairs that coincided came apart and two nodes sat at one
+  // position; walking_agent on the centre split at 12 mm.)
+  std::vector<std::vector<const Entry*>> members;
+  for (const Entry& x : entries) {
+    if (!members.empty() && (x.xyz - members.back().front()->xyz).norm() <= tol)
+      members.back().push_back(&x);
+    else
+      members.push_back({&x});
+  }
+  // A closed edge: the last group may be the first one again (its two ends).
+  if (e.closed && members.size() > 1 &&
+      std::all_of(members.back().begin(), members.back().end(), [&](const Entry* x) {
+        return (x->xyz - members.front().front()->xyz).norm() <= tol;
+      })) {
+    for (const Entry* x : members.back()) members.front().push_back(x);
+    members.pop_back();
+  }
+  auto one_side = [](const std::vector<const Entry*>& g) {
+    for (const Entry* x : g)
+      if (x->side != g.front()->side) return -1;
+    return g.front()->side;
+  };
+  const std::size_t groups = members.size();
+  std::vector<std::pair<double, std::size_t>> pairs;  // (distance, first of the pair)
+  for (std::size_t k = 0; k + 1 < groups + (e.closed && groups > 2 ? 1 : 0); ++k) {
+    const auto& g0 = members[k];
+    const auto& g1 = members[(k + 1) % groups];
+    const int s0 = one_side(g0), s1 = one_side(g1);
+    if (s0 < 0 || s1 < 0 || s0 == s1) continue;
+    const double d = (g0.front()->xyz - g1.front()->xyz).norm();
+    if (d <= join) pairs.push_back({d, k});
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> paired(groups, 0), gone(groups, 0);
+  for (const auto& [d, k] : pairs) {
+    const std::size_t k1 = (k + 1) % groups;
+    if (paired[k] || paired[k1]) continue;
+    paired[k] = paired[k1] = 1;
+    for (const Entry* x : members[k1]) members[k].push_back(x);
+    gone[k1] = 1;
+  }
+  {
+    std::vector<std::vector<const Entry*>> kept;
+    for (std::size_t k = 0; k < groups; ++k)
+      if (!gone[k]) kept.push_back(std::move(members[k]));
+    members = std::move(kept);
+  }
+  for (const auto& group : members) {
+    const Entry* pick = group.front();
+    for (const Entry* x : group)
+      if (at_end(x->t) && !at_end(pick->t)) pick = x;
+    if (!at_end(pick->t))
+      for (const Entry* x : group)
+        if (x->side == 0) {
+          pick = x;
+          break;
+        }
+    EdgeNode n;
+    n.t = pick->t;
+    n.xyz = pick->xyz;
+    nodes.push_back(n);
+  }
+  counts.nodes += static_cast<int>(nodes.size());
+  // The strips between the edge and its chords, node to node.
+  for (std::size_t k = 0; k + 1 < nodes.size() + (e.closed ? 1 : 0); ++k) {
+    const EdgeNode& a = nodes[k];
+    const EdgeNode& b = nodes[(k + 1) % nodes.size()];
+    double tm = 0.5 * (a.t + b.t);
+    if (e.closed && k + 1 == nodes.size()) tm = 0.5 * (a.t + b.t + span);
+    if (tm > e.last) tm -= span;
+    const Vec3 chord = b.xyz - a.xyz;
+    if (!(chord.norm() > 0)) continue;
+    for (int s = 0; s < 2; ++s) {
+      const Vec3 m = side[static_cast<std::size_t>(s)].xyz_at(tm) - a.xyz;
+      const double sagitta = (m - chord * (m.dot(chord) / chord.squaredNorm())).norm();
+      strip_area[static_cast<std::size_t>(e.faces[static_cast<std::size_t>(s)])] +=
+          2.0 / 3.0 * chord.norm() * sagitta;
+    }
+  }
+
+  for (int s = 0; s < 2; ++s) {
+    PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
+    // On a periodic face a vertex moved onto a node has one (u,v), on one
+    // side of the seam; a panel on the other side needs its own: each
+    // panel keeps its corners' (u,v) from here on (without them a seam
+    // panel spanned the whole period in (u,v) and the coverage check
+    // found a hole the width of the face).
+    if (m.corner_uv.empty() && (face[static_cast<std::size_t>(s)]->u_periodic() ||
+                                face[static_cast<std::size_t>(s)]->v_periodic())) {
+      m.corner_uv.reserve(m.panels.size());
+      for (std::size_t p = 0; p < m.panels.size(); ++p)
+        m.corner_uv.push_back(panel_corner_uv(m, p));
+    }
+    // Each merged node's vertex on this side: the first of its own there
+    // (moved onto the node), else a new one; its other ones join it.
+    std::map<int, int> replace;    // vertex -> the vertex standing for its node
+    std::map<int, Vec2> moved_uv;  // vertices moved onto a merged node
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      EdgeNode& n = nodes[k];
+      int& mine = n.vertex[static_cast<std::size_t>(s)];
+      for (const Entry* x : members[k]) {
+        if (x->side != s) continue;
+        if (mine < 0)
+          mine = x->vertex;
+        else
+          replace[x->vertex] = mine;
+      }
+      if (mine < 0) {
+        mine = static_cast<int>(m.vertex_count());
+        m.uv.push_back(side[static_cast<std::size_t>(s)].uv_at(n.t));
+        m.xyz.push_back(n.xyz);
+        if (!m.is_node.empty()) m.is_node.push_back(1);
+        ++counts.taken_over;
+      } else if (m.xyz[static_cast<std::size_t>(mine)] != n.xyz) {
+        moved_uv[mine] = m.uv[static_cast<std::size_t>(mine)];
+        m.uv[static_cast<std::size_t>(mine)] = side[static_cast<std::size_t>(s)].uv_at(n.t);
+        m.xyz[static_cast<std::size_t>(mine)] = n.xyz;
+        ++counts.taken_over;
+      }
+      set_node(m, mine);
+      t_of[static_cast<std::size_t>(s)][mine] = n.t;
+    }
+    // A trim point of this side where a node now sits (the other side's
+    // node, or one of its own moved there) is that node: left a vertex of
+    // its own, the outline ran node, trim point, node at one position
+    // (iso_grid on the roof split along its diagonals at 900 mm: a grid
+    // corner on a diagonal, a node of face 2 and a trim point of face 3,
+    // whose node 180 mm away merged onto it).
+    std::vector<char> stands(m.vertex_count(), 0);  // a node's vertex on this side
+    for (const EdgeNode& n : nodes)
+      stands[static_cast<std::size_t>(n.vertex[static_cast<std::size_t>(s)])] = 1;
+    for (const OnEdge& o : on[static_cast<std::size_t>(s)]) {
+      if (stands[static_cast<std::size_t>(o.vertex)] || replace.count(o.vertex)) continue;
+      const Vec3& x = m.xyz[static_cast<std::size_t>(o.vertex)];
+      for (const EdgeNode& n : nodes)
+        if ((n.xyz - x).norm() <= tol) {
+          replace[o.vertex] = n.vertex[static_cast<std::size_t>(s)];
+          break;
+        }
+    }
+    const auto& use = uses[static_cast<std::size_t>(s)];
+    auto on_edge = [&](int v) { return t_of[static_cast<std::size_t>(s)].count(v) != 0; };
+    // An outline side along the edge: both ends on it, on the mesh boundary,
+    // its middle near the edge's point halfway (not a chord across a bend).
+    auto along = [&](int a, int b, const Vec2& ua, const Vec2& ub) {
+      if (!on_edge(a) || !on_edge(b)) return false;
+      const auto it = use.find({std::min(a, b), std::max(a, b)});
+      if (it == use.end() || it->second != 1) return false;
+      const double ta = t_of[static_cast<std::size_t>(s)][a];
+      const double tb = t_of[static_cast<std::size_t>(s)][b];
+      double halfway = 0.5 * (ta + tb);
+      if (e.closed && std::abs(ta - tb) > 0.5 * std::abs(span)) {  // across the closing point
+        halfway += 0.5 * span;
+        if (halfway > e.last) halfway -= span;
+      }
+      const Vec2 mid = 0.5 * (ua + ub);
+      return (side[static_cast<std::size_t>(s)].uv_near(halfway, mid) - mid).norm() <=
+             0.25 * (ua - ub).norm();
+    };
+    // Per-panel corner (u,v)s are kept (a periodic face's seam corners).
+    const bool corner_uv = !m.corner_uv.empty();
+    // The vertices on this edge (t_of's): a panel with none of them, and no
+    // corner repeated, comes out of the walk below as it went in.
+    std::vector<char> on_this_edge(m.vertex_count(), 0);
+    for (const auto& [v, t] : t_of[static_cast<std::size_t>(s)])
+      on_this_edge[static_cast<std::size_t>(v)] = 1;
+    for (std::size_t p = 0; p < m.panels.size(); ++p) {
+      std::vector<int>& panel = m.panels[p];
+      const std::size_t n = panel.size();
+      bool untouched = true;
+      for (std::size_t i = 0; i < n && untouched; ++i)
+        untouched =
+            !on_this_edge[static_cast<std::size_t>(panel[i])] && panel[i] != panel[(i + 1) % n];
+      if (untouched) continue;
+      std::vector<Vec2> cuv = panel_corner_uv(m, p);
+      // A corner moved onto a merged node: its (u,v) follows, on its own side
+      // of a seam.
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto mv = moved_uv.find(panel[i]);
+        if (mv != moved_uv.end())
+          cuv[i] = side[static_cast<std::size_t>(s)].uv_near(
+              t_of[static_cast<std::size_t>(s)][panel[i]], cuv[i]);
+      }
+      std::vector<char> seg(n, 0);  // side i (i -> i+1) runs along the edge
+      bool any = false;
+      for (std::size_t i = 0; i < n; ++i)
+        any |= (seg[i] = along(panel[i], panel[(i + 1) % n], cuv[i], cuv[(i + 1) % n])) != 0;
+      std::vector<int> out;
+      std::vector<Vec2> out_uv;
+      // Start the walk at a corner that begins a run (not inside one).
+      std::size_t start = 0;
+      while (any && start < n && !(seg[start] && !seg[(start + n - 1) % n])) ++start;
+      // Parameter distance from `from` to `to` along the edge, going up or
+      // down it (round a closed edge: in [0, span)).
+      auto ahead = [&](double from, double to, bool up) {
+        const double d = up ? to - from : from - to;
+        return e.closed ? std::fmod(std::fmod(d, span) + span, span) : d;
+      };
+      if (any && start == n && e.closed) {
+        // Every side along the closed edge (one panel covering a disc whose
+        // rim is the edge): the outline is every merged node in order round
+        // the loop, the way corner 0 goes to corner 1.
+        const double t0 = t_of[static_cast<std::size_t>(s)][panel[0]];
+        const bool up =
+            ahead(t0, t_of[static_cast<std::size_t>(s)][panel[1 % n]], true) < 0.5 * span;
+        std::vector<std::pair<double, std::size_t>> round;
+        for (std::size_t k = 0; k < nodes.size(); ++k)
+          round.push_back({ahead(t0, nodes[k].t, up), k});
+        std::sort(round.begin(), round.end());
+        Vec2 near = cuv[0];
+        for (const auto& [key, k] : round) {
+          out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
+          near = side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, near);
+          out_uv.push_back(near);
+        }
+      } else if (!any || start == n) {  // nothing along the edge
+        out = panel;
+        out_uv = cuv;
+      }
+      std::size_t i = start;
+      for (std::size_t step = 0; any && start < n && step < n;) {
+        if (!seg[i]) {
+          out.push_back(panel[i]);
+          out_uv.push_back(cuv[i]);
+          i = (i + 1) % n, ++step;
+          continue;
+        }
+        // A run of sides along the edge from corner i to corner j.
+        std::size_t j = i, len = 0;
+        while (seg[j] && len < n) j = (j + 1) % n, ++len;
+        const int a = panel[i], b = panel[j];
+        const double ta = t_of[static_cast<std::size_t>(s)][a];
+        const double tb = t_of[static_cast<std::size_t>(s)][b];
+        out.push_back(a);
+        out_uv.push_back(cuv[i]);
+        // The merged nodes strictly between, in the run's direction: that of
+        // its middle corner (not its second: a crossing snapped onto the
+        // curve may lie just past the next trim point); node to node, the
+        // shorter way round a closed edge.
+        // Inner corners that stand for the run's end nodes say nothing:
+        // several curves ending at one edge end leave coincident vertices
+        // there (located a hair apart), and a run [end, its twin, node]
+        // went "up" from the end by the twin and skipped the nodes between
+        // (boundary_driven, the roof split along its diagonals, at the drum).
+        auto stands_for = [&](int v) {
+          const auto r = replace.find(v);
+          return r != replace.end() ? r->second : v;
+        };
+        std::vector<double> inner;
+        for (std::size_t k = 1; k < len; ++k) {
+          const int v = panel[(i + k) % n];
+          if (stands_for(v) != stands_for(a) && stands_for(v) != stands_for(b))
+            inner.push_back(t_of[static_cast<std::size_t>(s)][v]);
+        }
+        bool up = tb > ta;
+        if (!inner.empty()) {
+          const double tm = inner[(inner.size() + 1) / 2 - 1];  // the run's middle
+          up = e.closed ? ahead(ta, tm, true) < ahead(ta, tb, true) : tm > ta;
+        } else if (e.closed) {
+          up = ahead(ta, tb, true) < 0.5 * span;
+        }
+        const double reach = ahead(ta, tb, up);
+        std::vector<std::pair<double, std::size_t>> between;
+        for (std::size_t k = 0; k < nodes.size(); ++k) {
+          const int v = nodes[k].vertex[static_cast<std::size_t>(s)];
+          if (v == a || v == b) continue;
+          const double d = ahead(ta, nodes[k].t, up);
+          if (d > 0 && d < reach) between.push_back({d, k});
+        }
+        std::sort(between.begin(), between.end());
+        for (const auto& [key, k] : between) {
+          out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
+          out_uv.push_back(side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, out_uv.back()));
+        }
+        step += len;
+        i = j;
+      }
+      // Joined nodes: the one standing for them; repeated corners once.
+      std::vector<int> clean;
+      std::vector<Vec2> clean_uv;
+      for (std::size_t k = 0; k < out.size(); ++k) {
+        const auto r = replace.find(out[k]);
+        const int w = r != replace.end() ? r->second : out[k];
+        if (!clean.empty() && clean.back() == w) continue;
+        clean.push_back(w);
+        clean_uv.push_back(out_uv[k]);
+      }
+      while (clean.size() > 1 && clean.front() == clean.back())
+        clean.pop_back(), clean_uv.pop_back();
+      panel = std::move(clean);
+      if (corner_uv) m.corner_uv[p] = std::move(clean_uv);
+    }
+    for (std::size_t p = m.panels.size(); p-- > 0;) {
+      if (m.panels[p].size() >= 3) continue;
+      m.panels.erase(m.panels.begin() + static_cast<long>(p));
+      if (corner_uv) m.corner_uv.erase(m.corner_uv.begin() + static_cast<long>(p));
+    }
+    // Vertices left unused stay until all edges are done (indices stable).
+  }
+}
+
+// The edges in rounds: an edge goes one round after the last earlier edge
+// (in the set's order) that shares a face or a face's surface with it. An
+// edge changes its two faces' meshes only, so the edges of a round can run
+// side by side, and each face still sees its edges one after the other in
+// the set's order: the same meshes and strip areas as one edge at a time.
+// (Faces split from one surface may share its OCCT object, which not every
+// kind of surface evaluates safely on two threads at once.)
+std::vector<std::vector<std::size_t>> edge_rounds(const FaceSet::Impl& set) {
+  std::map<const void*, std::size_t> next_round;  // per face and per surface
+  std::vector<std::vector<std::size_t>> rounds;
+  for (std::size_t k = 0; k < set.shared.size(); ++k) {
+    std::vector<const void*> keys;
+    for (int f : set.shared[k].faces) {
+      const auto i = static_cast<std::size_t>(f);
+      keys.push_back(set.faces[i].get());
+      TopLoc_Location where;
+      keys.push_back(BRep_Tool::Surface(set.occt[i], where).get());
+    }
+    std::size_t round = 0;
+    for (const void* key : keys) {
+      const auto it = next_round.find(key);
+      if (it != next_round.end()) round = std::max(round, it->second);
+    }
+    if (round == rounds.size()) rounds.emplace_back();
+    rounds[round].push_back(k);
+    for (const void* key : keys) next_round[key] = round + 1;
+  }
+  return rounds;
+}
+
 }  // namespace
 
 SharedEdgeReport conform_shared_edges(const FaceSet::Impl& set, std::vector<PanelMesh*>& meshes,
                                       double merge_distance) {
   SharedEdgeReport report;
   report.strip_area.assign(meshes.size(), 0.0);
-  for (const SharedEdge& e : set.shared) {
-    std::array<PanelMesh*, 2> mesh{meshes[static_cast<std::size_t>(e.faces[0])],
-                                   meshes[static_cast<std::size_t>(e.faces[1])]};
-    std::array<const SurfaceFace*, 2> face{set.faces[static_cast<std::size_t>(e.faces[0])].get(),
-                                           set.faces[static_cast<std::size_t>(e.faces[1])].get()};
-    const std::array<EdgeSide, 2> side{EdgeSide(e, 0, *face[0], *mesh[0]),
-                                       EdgeSide(e, 1, *face[1], *mesh[1])};
-    const double tol = 1e-6 * std::max(face[0]->model_size(), face[1]->model_size());
-    const double span = e.last - e.first;
-    // The vertices of each face on the edge: its boundary vertices that lie on it.
-    std::array<std::vector<OnEdge>, 2> on;
-    std::array<std::unordered_map<int, double>, 2> t_of;  // looked up only
-    std::array<SideUse, 2> uses;                          // each side's panel sides
-    for (int s = 0; s < 2; ++s) {
-      const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
-      std::vector<char> boundary(m.vertex_count(), 0);
-      uses[static_cast<std::size_t>(s)] = edge_use(m);
-      for (const auto& [edge, count] : uses[static_cast<std::size_t>(s)])
-        if (count == 1)
-          boundary[static_cast<std::size_t>(edge.first)] =
-              boundary[static_cast<std::size_t>(edge.second)] = 1;
-      for (int v = 0; v < static_cast<int>(m.vertex_count()); ++v) {
-        double t = 0;
-        if (!boundary[static_cast<std::size_t>(v)] ||
-            !side[static_cast<std::size_t>(s)].locate(v, tol, t))
-          continue;
-        on[static_cast<std::size_t>(s)].push_back({v, t});
-        t_of[static_cast<std::size_t>(s)][v] = t;
-      }
-    }
-    // The merged list of nodes: sorted along the edge; nodes of the two sides
-    // closer than merge_distance joined, so no short rod crosses between
-    // them; an edge end wins, else side 0. Two nodes of one side stay two
-    // (unless they coincide): that face's own rod between them was kept by its
-    // pipeline, a trim node beside an edge end, and merging them bent its
-    // panel out of the deviation bound (walking_agent on the split roof: a
-    // 121 mm side merged away, 52 mm against a bound of 30).
-    struct Entry {
-      double t;
-      int side, vertex;
-      Vec3 xyz;
-    };
-    // Nodes, and an outline vertex at an end of the edge even where its
-    // face's method left it a trim point (a B-rep vertex where the edge
-    // meets a free trim): the other face may have a node there, and a trim
-    // point's boundary piece, modelled flat between its nodes, moved it off
-    // the trim (the roof split along its diagonals, where a diagonal meets
-    // the drum: 9.9 mm, and a segment of the edge bounded panels of one face
-    // only). In 3D: such a vertex is located a hair inside the edge's
-    // parameter range, farther than at_end allows.
-    std::vector<Entry> entries;
-    for (int s = 0; s < 2; ++s) {
-      const PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
-      const Vec3 ends[2] = {side[static_cast<std::size_t>(s)].xyz_at(e.first),
-                            side[static_cast<std::size_t>(s)].xyz_at(e.last)};
-      auto at_an_end = [&](int v) {
-        const Vec3& x = m.xyz[static_cast<std::size_t>(v)];
-        return (x - ends[0]).norm() <= tol || (x - ends[1]).norm() <= tol;
-      };
-      for (const OnEdge& o : on[static_cast<std::size_t>(s)])
-        if (is_node(m, o.vertex) || at_an_end(o.vertex))
-          entries.push_back(
-              {o.t, s, o.vertex,
-               mesh[static_cast<std::size_t>(s)]->xyz[static_cast<std::size_t>(o.vertex)]});
-    }
-    std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-      return a.t < b.t || (a.t == b.t && a.side < b.side);
+  std::vector<EdgeCounts> counts(set.shared.size());
+  const int threads = worker_threads();
+  for (const std::vector<std::size_t>& round : edge_rounds(set)) {
+    ChunkQueue queue(round.size(), 1);
+    run_chunks(queue, threads, [&](bool) {
+      std::size_t begin = 0, end = 0;
+      while (queue.next(begin, end))
+        for (std::size_t k = begin; k < end; ++k)
+          conform_edge(set, set.shared[round[k]], meshes, merge_distance, report.strip_area,
+                       counts[round[k]]);
     });
-    const double join = std::max(merge_distance, tol);
-    auto at_end = [&](double t) {
-      return std::abs(t - e.first) <= 1e-9 * std::abs(span) ||
-             std::abs(t - e.last) <= 1e-9 * std::abs(span);
-    };
-    std::vector<EdgeNode> nodes;
-    // First the entries that coincide (within tol) become one group each;
-    // then a group of one side only joins a neighbouring group of the other
-    // side only closer than `join`, the nearest pairs first. (Joining
-    // greedily along the edge paired each vertex of one face with the next
-    // of the other where both had a row of vertices, one of them an extra
-    // line's: the pairs that coincided came apart and two nodes sat at one
-    // position; walking_agent on the centre split at 12 mm.)
-    std::vector<std::vector<const Entry*>> members;
-    for (const Entry& x : entries) {
-      if (!members.empty() && (x.xyz - members.back().front()->xyz).norm() <= tol)
-        members.back().push_back(&x);
-      else
-        members.push_back({&x});
-    }
-    // A closed edge: the last group may be the first one again (its two ends).
-    if (e.closed && members.size() > 1 &&
-        std::all_of(members.back().begin(), members.back().end(), [&](const Entry* x) {
-          return (x->xyz - members.front().front()->xyz).norm() <= tol;
-        })) {
-      for (const Entry* x : members.back()) members.front().push_back(x);
-      members.pop_back();
-    }
-    auto one_side = [](const std::vector<const Entry*>& g) {
-      for (const Entry* x : g)
-        if (x->side != g.front()->side) return -1;
-      return g.front()->side;
-    };
-    const std::size_t groups = members.size();
-    std::vector<std::pair<double, std::size_t>> pairs;  // (distance, first of the pair)
-    for (std::size_t k = 0; k + 1 < groups + (e.closed && groups > 2 ? 1 : 0); ++k) {
-      const auto& g0 = members[k];
-      const auto& g1 = members[(k + 1) % groups];
-      const int s0 = one_side(g0), s1 = one_side(g1);
-      if (s0 < 0 || s1 < 0 || s0 == s1) continue;
-      const double d = (g0.front()->xyz - g1.front()->xyz).norm();
-      if (d <= join) pairs.push_back({d, k});
-    }
-    std::sort(pairs.begin(), pairs.end());
-    std::vector<char> paired(groups, 0), gone(groups, 0);
-    for (const auto& [d, k] : pairs) {
-      const std::size_t k1 = (k + 1) % groups;
-      if (paired[k] || paired[k1]) continue;
-      paired[k] = paired[k1] = 1;
-      for (const Entry* x : members[k1]) members[k].push_back(x);
-      gone[k1] = 1;
-    }
-    {
-      std::vector<std::vector<const Entry*>> kept;
-      for (std::size_t k = 0; k < groups; ++k)
-        if (!gone[k]) kept.push_back(std::move(members[k]));
-      members = std::move(kept);
-    }
-    for (const auto& group : members) {
-      const Entry* pick = group.front();
-      for (const Entry* x : group)
-        if (at_end(x->t) && !at_end(pick->t)) pick = x;
-      if (!at_end(pick->t))
-        for (const Entry* x : group)
-          if (x->side == 0) {
-            pick = x;
-            break;
-          }
-      EdgeNode n;
-      n.t = pick->t;
-      n.xyz = pick->xyz;
-      nodes.push_back(n);
-    }
-    report.nodes += static_cast<int>(nodes.size());
-    // The strips between the edge and its chords, node to node.
-    for (std::size_t k = 0; k + 1 < nodes.size() + (e.closed ? 1 : 0); ++k) {
-      const EdgeNode& a = nodes[k];
-      const EdgeNode& b = nodes[(k + 1) % nodes.size()];
-      double tm = 0.5 * (a.t + b.t);
-      if (e.closed && k + 1 == nodes.size()) tm = 0.5 * (a.t + b.t + span);
-      if (tm > e.last) tm -= span;
-      const Vec3 chord = b.xyz - a.xyz;
-      if (!(chord.norm() > 0)) continue;
-      for (int s = 0; s < 2; ++s) {
-        const Vec3 m = side[static_cast<std::size_t>(s)].xyz_at(tm) - a.xyz;
-        const double sagitta = (m - chord * (m.dot(chord) / chord.squaredNorm())).norm();
-        report.strip_area[static_cast<std::size_t>(e.faces[static_cast<std::size_t>(s)])] +=
-            2.0 / 3.0 * chord.norm() * sagitta;
-      }
-    }
-
-    for (int s = 0; s < 2; ++s) {
-      PanelMesh& m = *mesh[static_cast<std::size_t>(s)];
-      // On a periodic face a vertex moved onto a node has one (u,v), on one
-      // side of the seam; a panel on the other side needs its own: each
-      // panel keeps its corners' (u,v) from here on (without them a seam
-      // panel spanned the whole period in (u,v) and the coverage check
-      // found a hole the width of the face).
-      if (m.corner_uv.empty() && (face[static_cast<std::size_t>(s)]->u_periodic() ||
-                                  face[static_cast<std::size_t>(s)]->v_periodic())) {
-        m.corner_uv.reserve(m.panels.size());
-        for (std::size_t p = 0; p < m.panels.size(); ++p)
-          m.corner_uv.push_back(panel_corner_uv(m, p));
-      }
-      // Each merged node's vertex on this side: the first of its own there
-      // (moved onto the node), else a new one; its other ones join it.
-      std::map<int, int> replace;    // vertex -> the vertex standing for its node
-      std::map<int, Vec2> moved_uv;  // vertices moved onto a merged node
-      for (std::size_t k = 0; k < nodes.size(); ++k) {
-        EdgeNode& n = nodes[k];
-        int& mine = n.vertex[static_cast<std::size_t>(s)];
-        for (const Entry* x : members[k]) {
-          if (x->side != s) continue;
-          if (mine < 0)
-            mine = x->vertex;
-          else
-            replace[x->vertex] = mine;
-        }
-        if (mine < 0) {
-          mine = static_cast<int>(m.vertex_count());
-          m.uv.push_back(side[static_cast<std::size_t>(s)].uv_at(n.t));
-          m.xyz.push_back(n.xyz);
-          if (!m.is_node.empty()) m.is_node.push_back(1);
-          ++report.taken_over;
-        } else if (m.xyz[static_cast<std::size_t>(mine)] != n.xyz) {
-          moved_uv[mine] = m.uv[static_cast<std::size_t>(mine)];
-          m.uv[static_cast<std::size_t>(mine)] = side[static_cast<std::size_t>(s)].uv_at(n.t);
-          m.xyz[static_cast<std::size_t>(mine)] = n.xyz;
-          ++report.taken_over;
-        }
-        set_node(m, mine);
-        t_of[static_cast<std::size_t>(s)][mine] = n.t;
-      }
-      // A trim point of this side where a node now sits (the other side's
-      // node, or one of its own moved there) is that node: left a vertex of
-      // its own, the outline ran node, trim point, node at one position
-      // (iso_grid on the roof split along its diagonals at 900 mm: a grid
-      // corner on a diagonal, a node of face 2 and a trim point of face 3,
-      // whose node 180 mm away merged onto it).
-      std::vector<char> stands(m.vertex_count(), 0);  // a node's vertex on this side
-      for (const EdgeNode& n : nodes)
-        stands[static_cast<std::size_t>(n.vertex[static_cast<std::size_t>(s)])] = 1;
-      for (const OnEdge& o : on[static_cast<std::size_t>(s)]) {
-        if (stands[static_cast<std::size_t>(o.vertex)] || replace.count(o.vertex)) continue;
-        const Vec3& x = m.xyz[static_cast<std::size_t>(o.vertex)];
-        for (const EdgeNode& n : nodes)
-          if ((n.xyz - x).norm() <= tol) {
-            replace[o.vertex] = n.vertex[static_cast<std::size_t>(s)];
-            break;
-          }
-      }
-      const auto& use = uses[static_cast<std::size_t>(s)];
-      auto on_edge = [&](int v) { return t_of[static_cast<std::size_t>(s)].count(v) != 0; };
-      // An outline side along the edge: both ends on it, on the mesh boundary,
-      // its middle near the edge's point halfway (not a chord across a bend).
-      auto along = [&](int a, int b, const Vec2& ua, const Vec2& ub) {
-        if (!on_edge(a) || !on_edge(b)) return false;
-        const auto it = use.find({std::min(a, b), std::max(a, b)});
-        if (it == use.end() || it->second != 1) return false;
-        const double ta = t_of[static_cast<std::size_t>(s)][a];
-        const double tb = t_of[static_cast<std::size_t>(s)][b];
-        double halfway = 0.5 * (ta + tb);
-        if (e.closed && std::abs(ta - tb) > 0.5 * std::abs(span)) {  // across the closing point
-          halfway += 0.5 * span;
-          if (halfway > e.last) halfway -= span;
-        }
-        const Vec2 mid = 0.5 * (ua + ub);
-        return (side[static_cast<std::size_t>(s)].uv_near(halfway, mid) - mid).norm() <=
-               0.25 * (ua - ub).norm();
-      };
-      // Per-panel corner (u,v)s are kept (a periodic face's seam corners).
-      const bool corner_uv = !m.corner_uv.empty();
-      // The vertices on this edge (t_of's): a panel with none of them, and no
-      // corner repeated, comes out of the walk below as it went in.
-      std::vector<char> on_this_edge(m.vertex_count(), 0);
-      for (const auto& [v, t] : t_of[static_cast<std::size_t>(s)])
-        on_this_edge[static_cast<std::size_t>(v)] = 1;
-      for (std::size_t p = 0; p < m.panels.size(); ++p) {
-        std::vector<int>& panel = m.panels[p];
-        const std::size_t n = panel.size();
-        bool untouched = true;
-        for (std::size_t i = 0; i < n && untouched; ++i)
-          untouched =
-              !on_this_edge[static_cast<std::size_t>(panel[i])] && panel[i] != panel[(i + 1) % n];
-        if (untouched) continue;
-        std::vector<Vec2> cuv = panel_corner_uv(m, p);
-        // A corner moved onto a merged node: its (u,v) follows, on its own side
-        // of a seam.
-        for (std::size_t i = 0; i < n; ++i) {
-          const auto mv = moved_uv.find(panel[i]);
-          if (mv != moved_uv.end())
-            cuv[i] = side[static_cast<std::size_t>(s)].uv_near(
-                t_of[static_cast<std::size_t>(s)][panel[i]], cuv[i]);
-        }
-        std::vector<char> seg(n, 0);  // side i (i -> i+1) runs along the edge
-        bool any = false;
-        for (std::size_t i = 0; i < n; ++i)
-          any |= (seg[i] = along(panel[i], panel[(i + 1) % n], cuv[i], cuv[(i + 1) % n])) != 0;
-        std::vector<int> out;
-        std::vector<Vec2> out_uv;
-        // Start the walk at a corner that begins a run (not inside one).
-        std::size_t start = 0;
-        while (any && start < n && !(seg[start] && !seg[(start + n - 1) % n])) ++start;
-        // Parameter distance from `from` to `to` along the edge, going up or
-        // down it (round a closed edge: in [0, span)).
-        auto ahead = [&](double from, double to, bool up) {
-          const double d = up ? to - from : from - to;
-          return e.closed ? std::fmod(std::fmod(d, span) + span, span) : d;
-        };
-        if (any && start == n && e.closed) {
-          // Every side along the closed edge (one panel covering a disc whose
-          // rim is the edge): the outline is every merged node in order round
-          // the loop, the way corner 0 goes to corner 1.
-          const double t0 = t_of[static_cast<std::size_t>(s)][panel[0]];
-          const bool up =
-              ahead(t0, t_of[static_cast<std::size_t>(s)][panel[1 % n]], true) < 0.5 * span;
-          std::vector<std::pair<double, std::size_t>> round;
-          for (std::size_t k = 0; k < nodes.size(); ++k)
-            round.push_back({ahead(t0, nodes[k].t, up), k});
-          std::sort(round.begin(), round.end());
-          Vec2 near = cuv[0];
-          for (const auto& [key, k] : round) {
-            out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
-            near = side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, near);
-            out_uv.push_back(near);
-          }
-        } else if (!any || start == n) {  // nothing along the edge
-          out = panel;
-          out_uv = cuv;
-        }
-        std::size_t i = start;
-        for (std::size_t step = 0; any && start < n && step < n;) {
-          if (!seg[i]) {
-            out.push_back(panel[i]);
-            out_uv.push_back(cuv[i]);
-            i = (i + 1) % n, ++step;
-            continue;
-          }
-          // A run of sides along the edge from corner i to corner j.
-          std::size_t j = i, len = 0;
-          while (seg[j] && len < n) j = (j + 1) % n, ++len;
-          const int a = panel[i], b = panel[j];
-          const double ta = t_of[static_cast<std::size_t>(s)][a];
-          const double tb = t_of[static_cast<std::size_t>(s)][b];
-          out.push_back(a);
-          out_uv.push_back(cuv[i]);
-          // The merged nodes strictly between, in the run's direction: that of
-          // its middle corner (not its second: a crossing snapped onto the
-          // curve may lie just past the next trim point); node to node, the
-          // shorter way round a closed edge.
-          // Inner corners that stand for the run's end nodes say nothing:
-          // several curves ending at one edge end leave coincident vertices
-          // there (located a hair apart), and a run [end, its twin, node]
-          // went "up" from the end by the twin and skipped the nodes between
-          // (boundary_driven, the roof split along its diagonals, at the drum).
-          auto stands_for = [&](int v) {
-            const auto r = replace.find(v);
-            return r != replace.end() ? r->second : v;
-          };
-          std::vector<double> inner;
-          for (std::size_t k = 1; k < len; ++k) {
-            const int v = panel[(i + k) % n];
-            if (stands_for(v) != stands_for(a) && stands_for(v) != stands_for(b))
-              inner.push_back(t_of[static_cast<std::size_t>(s)][v]);
-          }
-          bool up = tb > ta;
-          if (!inner.empty()) {
-            const double tm = inner[(inner.size() + 1) / 2 - 1];  // the run's middle
-            up = e.closed ? ahead(ta, tm, true) < ahead(ta, tb, true) : tm > ta;
-          } else if (e.closed) {
-            up = ahead(ta, tb, true) < 0.5 * span;
-          }
-          const double reach = ahead(ta, tb, up);
-          std::vector<std::pair<double, std::size_t>> between;
-          for (std::size_t k = 0; k < nodes.size(); ++k) {
-            const int v = nodes[k].vertex[static_cast<std::size_t>(s)];
-            if (v == a || v == b) continue;
-            const double d = ahead(ta, nodes[k].t, up);
-            if (d > 0 && d < reach) between.push_back({d, k});
-          }
-          std::sort(between.begin(), between.end());
-          for (const auto& [key, k] : between) {
-            out.push_back(nodes[k].vertex[static_cast<std::size_t>(s)]);
-            out_uv.push_back(side[static_cast<std::size_t>(s)].uv_near(nodes[k].t, out_uv.back()));
-          }
-          step += len;
-          i = j;
-        }
-        // Joined nodes: the one standing for them; repeated corners once.
-        std::vector<int> clean;
-        std::vector<Vec2> clean_uv;
-        for (std::size_t k = 0; k < out.size(); ++k) {
-          const auto r = replace.find(out[k]);
-          const int w = r != replace.end() ? r->second : out[k];
-          if (!clean.empty() && clean.back() == w) continue;
-          clean.push_back(w);
-          clean_uv.push_back(out_uv[k]);
-        }
-        while (clean.size() > 1 && clean.front() == clean.back())
-          clean.pop_back(), clean_uv.pop_back();
-        panel = std::move(clean);
-        if (corner_uv) m.corner_uv[p] = std::move(clean_uv);
-      }
-      for (std::size_t p = m.panels.size(); p-- > 0;) {
-        if (m.panels[p].size() >= 3) continue;
-        m.panels.erase(m.panels.begin() + static_cast<long>(p));
-        if (corner_uv) m.corner_uv.erase(m.corner_uv.begin() + static_cast<long>(p));
-      }
-      // Vertices left unused stay until all edges are done (indices stable).
-    }
   }
-  for (PanelMesh* m : meshes) {
-    remove_unused_vertices(*m);
-    build_rods(*m);
-  }
+  for (const EdgeCounts& c : counts) report.nodes += c.nodes, report.taken_over += c.taken_over;
+  // Unused vertices go (indices were kept stable while the edges ran).
+  ChunkQueue faces(meshes.size(), 1);
+  run_chunks(faces, threads, [&](bool) {
+    std::size_t begin = 0, end = 0;
+    while (faces.next(begin, end))
+      for (std::size_t f = begin; f < end; ++f) {
+        remove_unused_vertices(*meshes[f]);
+        build_rods(*meshes[f]);
+      }
+  });
   return report;
 }
 
