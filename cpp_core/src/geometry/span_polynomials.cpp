@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <math_Matrix.hxx>
 #include <stdexcept>
 
 namespace tessella {
@@ -90,8 +91,10 @@ void expand(int p_rt, int q_rt, const double* bu, const double* bv, const double
   }
 }
 
+using ExpandFn = void (*)(int, int, const double*, const double*, const double*, double*);
+
 template <int D>
-void (*expand_for(int p, int q))(int, int, const double*, const double*, const double*, double*) {
+ExpandFn expand_for(int p, int q) {
   if (p == 3 && q == 3) return expand<3, 3, D>;
   if (p == 2 && q == 2) return expand<2, 2, D>;
   return expand<0, 0, D>;

@@ -17,7 +17,6 @@
 #include <Geom_Surface.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <array>
-#include <math_Matrix.hxx>
 #include <memory>
 #include <vector>
 

@@ -66,6 +66,12 @@ double box_distance_sq(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 }
 }  // namespace
 
+void SurfaceSampleGrid::group_bounds(const Vec3& p, std::vector<double>& out) const {
+  out.resize(group_lo_.size());
+  for (std::size_t g = 0; g < out.size(); ++g)
+    out[g] = box_distance_sq(p, group_lo_[g], group_hi_[g]);
+}
+
 // Two levels, so a search looks at the boxes near p only: the terrain's grid
 // has 4,225 blocks, and sorting all of them on every call was half of the
 // time of its metrics. Which blocks are visited does not depend on the
@@ -77,12 +83,6 @@ double box_distance_sq(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 // group in grid order that the limit still lets in: neither a sort nor a
 // heap of all groups (420 on OCCT's terrain: sorting them twice a search was
 // 7% of its time, a heap still 2.5%). In a group, the nearest blocks first.
-void SurfaceSampleGrid::group_bounds(const Vec3& p, std::vector<double>& out) const {
-  out.resize(group_lo_.size());
-  for (std::size_t g = 0; g < out.size(); ++g)
-    out[g] = box_distance_sq(p, group_lo_[g], group_hi_[g]);
-}
-
 template <class Limit, class Visit>
 void SurfaceSampleGrid::blocks_within(const Vec3& p, const std::vector<double>& group_bound,
                                       const Limit& limit, const Visit& visit) const {
