@@ -1,12 +1,10 @@
 #include "faceset/shared_edge_nodes.h"
 
-#include <BRep_Tool.hxx>
 #include <BndLib_Add2dCurve.hxx>
 #include <Bnd_Box.hxx>
 #include <Bnd_Box2d.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Standard_Failure.hxx>
-#include <TopLoc_Location.hxx>
 #include <algorithm>
 #include <cmath>
 #include <gp_Pnt2d.hxx>
@@ -596,31 +594,21 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
 }
 
 // The edges in rounds: an edge goes one round after the last earlier edge
-// (in the set's order) that shares a face or a face's surface with it. An
-// edge changes its two faces' meshes only, so the edges of a round can run
-// side by side, and each face still sees its edges one after the other in
-// the set's order: the same meshes and strip areas as one edge at a time.
-// (Faces split from one surface may share its OCCT object, which not every
-// kind of surface evaluates safely on two threads at once.)
+// (in the set's order) that shares a face with it. An edge changes its two
+// faces' meshes only and evaluates their surfaces (each face has its own
+// copy, FaceSet::from_brep_string), so the edges of a round can run side by
+// side, and each face still sees its edges one after the other in the set's
+// order: the same meshes and strip areas as one edge at a time.
 std::vector<std::vector<std::size_t>> edge_rounds(const FaceSet::Impl& set) {
-  std::map<const void*, std::size_t> next_round;  // per face and per surface
+  std::vector<std::size_t> next_round(set.faces.size(), 0);  // per face
   std::vector<std::vector<std::size_t>> rounds;
   for (std::size_t k = 0; k < set.shared.size(); ++k) {
-    std::vector<const void*> keys;
-    for (int f : set.shared[k].faces) {
-      const auto i = static_cast<std::size_t>(f);
-      keys.push_back(set.faces[i].get());
-      TopLoc_Location where;
-      keys.push_back(BRep_Tool::Surface(set.occt[i], where).get());
-    }
-    std::size_t round = 0;
-    for (const void* key : keys) {
-      const auto it = next_round.find(key);
-      if (it != next_round.end()) round = std::max(round, it->second);
-    }
+    const auto f0 = static_cast<std::size_t>(set.shared[k].faces[0]);
+    const auto f1 = static_cast<std::size_t>(set.shared[k].faces[1]);
+    const std::size_t round = std::max(next_round[f0], next_round[f1]);
     if (round == rounds.size()) rounds.emplace_back();
     rounds[round].push_back(k);
-    for (const void* key : keys) next_round[key] = round + 1;
+    next_round[f0] = next_round[f1] = round + 1;
   }
   return rounds;
 }
