@@ -15,6 +15,7 @@
 #include <TopoDS.hxx>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <gp_Ax2d.hxx>
@@ -22,6 +23,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -267,6 +269,56 @@ TEST(MetricsThreads, AFailureOnAnyThreadReachesTheCaller) {
                             if (!calling) throw std::runtime_error("worker");
                           }),
                std::runtime_error);
+}
+
+TEST(MetricsThreads, TheLowestFailingChunkIsReportedWhateverTheTiming) {
+  // Chunk 3 fails late, chunk 7 at once: on two threads chunk 7's failure
+  // comes first in time, but a single thread meets chunk 3's first, and so
+  // must every thread count (a face set's error names the same face).
+  for (int threads : {1, 2, 3}) {
+    ChunkQueue queue(10, 1);
+    std::string message;
+    try {
+      run_chunks(queue, threads, [&](bool) {
+        std::size_t b, e;
+        while (queue.next(b, e)) {
+          if (b == 3) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(150));
+            throw std::runtime_error("chunk 3");
+          }
+          if (b == 7) throw std::runtime_error("chunk 7");
+        }
+      });
+    } catch (const std::runtime_error& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(message, "chunk 3") << threads << " threads";
+  }
+  // A nested loop on a worker keeps its own claims: the outer failure is
+  // still ranked by the outer chunk.
+  ChunkQueue outer(6, 1);
+  std::string message;
+  try {
+    run_chunks(outer, 2, [&](bool) {
+      std::size_t b, e;
+      while (outer.next(b, e)) {
+        ChunkQueue inner(4, 1);
+        run_chunks(inner, 2, [&](bool) {
+          std::size_t ib, ie;
+          while (inner.next(ib, ie)) {
+          }
+        });
+        if (b == 1) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(150));
+          throw std::runtime_error("outer 1");
+        }
+        if (b == 4) throw std::runtime_error("outer 4");
+      }
+    });
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, "outer 1");
 }
 
 TEST(MetricsThreads, CancelStopsTheParallelMetrics) {

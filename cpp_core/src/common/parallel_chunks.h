@@ -49,8 +49,9 @@ class ChunkQueue {
 // Runs worker(on_calling_thread) on min(threads, queue.chunks()) threads, the
 // calling thread being one of them (only it may report progress: the progress
 // sink is the caller's). Each worker takes chunks from `queue` until it is
-// empty. The first exception stops the queue, the others finish their chunk,
-// and it is rethrown here.
+// empty. An exception stops the queue, the others finish their chunk, and
+// the exception of the lowest chunk that failed is rethrown here (the one a
+// single thread would meet first).
 void run_chunks(ChunkQueue& queue, int threads, const std::function<void(bool)>& worker);
 
 }  // namespace tessella
