@@ -229,6 +229,27 @@ def test_filleted_box_same_result_on_one_and_two_threads():
     assert one.summary["shared_edges"] == 48
 
 
+def test_a_refused_face_is_named_the_same_on_any_thread_count():
+    # Three planar faces side by side, 1000, 1500 and 2000 mm wide: at 100 mm
+    # the two wider ones exceed max_panels. The faces run largest first, so a
+    # single thread meets face 3 first; on two threads face 2 may fail
+    # earlier in time, but the error must still be face 3's, and say so.
+    def plate(x0, width):
+        pts = [V(x0, 0, 0), V(x0 + width, 0, 0), V(x0 + width, 1000, 0), V(x0, 1000, 0)]
+        return Part.Face(Part.makePolygon(pts + [pts[0]]))
+
+    shape = plate(0, 1000).fuse([plate(1000, 1500), plate(2500, 2000)])
+    assert len(shape.Faces) == 3
+    areas = [round(f.Area / 1e6, 3) for f in shape.Faces]
+    widest = areas.index(max(areas)) + 1
+    for threads in (1, 2, 1, 2, 2):
+        with pytest.raises(ValueError) as err:
+            tessella.panelize_faces(shape, method="iso_grid", size=100.0, max_panels=120,
+                                    threads=threads)
+        assert str(err.value).startswith(f"face {widest}: "), (threads, str(err.value))
+        assert "200 panels" in str(err.value)
+
+
 def test_periodic_side_next_to_a_planar_top():
     shape = cylinder_and_top()
     assert len(shape.Faces) == 2

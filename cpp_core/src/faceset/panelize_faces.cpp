@@ -51,6 +51,22 @@ void for_each_face(const FaceSet& set, int threads, const Work& work) {
   });
 }
 
+// work() for face f, a failure saying which face it was ("face 3: ..."): in
+// a set of tens of faces a message without it leaves the user to guess.
+template <class Work>
+void naming_the_face(std::size_t f, const Work& work) {
+  const std::string face = "face " + std::to_string(f + 1) + ": ";
+  try {
+    work();
+  } catch (const GeometryFailure& e) {
+    throw GeometryFailure(face + e.what());
+  } catch (const LimitExceeded& e) {
+    throw LimitExceeded(face + e.what());
+  } catch (const InvalidGeometry& e) {
+    throw InvalidGeometry(face + e.what());
+  }
+}
+
 // The faces' results as one: vertices, panels and their data in face order;
 // the vertices two faces share (identical positions, made so along shared
 // edges) once.
@@ -603,60 +619,62 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
   for (int attempt = 0;; ++attempt) {
     report_stage(0.0, "panelizing the faces");
     for_each_face(set, workers, [&](std::size_t f) {
-      const SurfaceFace& face = *set.face(f);
-      const SurfaceFace::FastEvaluation fast(face);
-      face.reset_global_projections();
-      // The face's share of a layout made across faces (curves traced or
-      // lines walked on a union or a smooth group); false where it leaves
-      // the face without a valid mesh (a sliver between two curves, a bound
-      // its refinement rounds cannot meet): the face then runs on its own.
-      auto from_shared = [&](const std::function<PanelMesh()>& make) {
-        try {
-          modelled[f] = run_method_with(face, decl, face_values[f], make);
-          return true;
-        } catch (const GeometryFailure&) {
-          return false;
+      naming_the_face(f, [&] {
+        const SurfaceFace& face = *set.face(f);
+        const SurfaceFace::FastEvaluation fast(face);
+        face.reset_global_projections();
+        // The face's share of a layout made across faces (curves traced or
+        // lines walked on a union or a smooth group); false where it leaves
+        // the face without a valid mesh (a sliver between two curves, a bound
+        // its refinement rounds cannot meet): the face then runs on its own.
+        auto from_shared = [&](const std::function<PanelMesh()>& make) {
+          try {
+            modelled[f] = run_method_with(face, decl, face_values[f], make);
+            return true;
+          } catch (const GeometryFailure&) {
+            return false;
+          }
+        };
+        bool done = false;
+        if (f < across.size() && across[f]) {
+          done = from_shared([&] {
+            return boundary_driven_on_curves(face, boundary_driven_params(face_values[f]),
+                                             *across[f]);
+          });
+          if (!done) traced_alone[f] = 1;
         }
-      };
-      bool done = false;
-      if (f < across.size() && across[f]) {
-        done = from_shared([&] {
-          return boundary_driven_on_curves(face, boundary_driven_params(face_values[f]),
-                                           *across[f]);
-        });
-        if (!done) traced_alone[f] = 1;
-      }
-      if (!done && f < smooth_groups.size() && smooth_groups[f].group) {
-        const GroupCurves& g = *smooth_groups[f].group;
-        const std::size_t m = smooth_groups[f].member;
-        done = from_shared([&] {
-          return boundary_driven_on_group_curves(face, boundary_driven_params(face_values[f]),
-                                                 g.members[m], g.traced.curves[m],
-                                                 g.traced.spacing);
-        });
-        if (done) group_traced[f] = 1;
-      }
-      if (!done && f < walked.size() && walked[f]) {
-        done = from_shared([&] {
-          if (extra_lines[f].u.empty() && extra_lines[f].v.empty())
-            return walking_agent_on_lines(face, walking_agent_params(face_values[f]), *walked[f]);
-          return walking_agent_on_lines(face, walking_agent_params(face_values[f]),
-                                        with_lines(*walked[f], extra_lines[f]));
-        });
-        walked_alone[f] = done ? 0 : 1;
-      }
-      if (!done && f < grid_lines.size() && grid_lines[f]) {
-        const GridClipParams clip = method == "iso_grid"
-                                        ? iso_grid_params(face_values[f]).clip
-                                        : equal_size_grid_params(face_values[f]).clip;
-        modelled[f] = run_method_with(face, decl, face_values[f],
-                                      [&] { return grid_on_lines(face, *grid_lines[f], clip); });
-        done = true;
-      }
-      if (!done) modelled[f] = run_method(face, decl, face_values[f]);
-      promote_hard_bound_trim_nodes(face, decl, face_values[f], modelled[f]);
-      // The faces already keep the threads busy.
-      modelled[f].metrics_threads_requested = n > 1 && workers > 1 ? 1 : threads;
+        if (!done && f < smooth_groups.size() && smooth_groups[f].group) {
+          const GroupCurves& g = *smooth_groups[f].group;
+          const std::size_t m = smooth_groups[f].member;
+          done = from_shared([&] {
+            return boundary_driven_on_group_curves(face, boundary_driven_params(face_values[f]),
+                                                   g.members[m], g.traced.curves[m],
+                                                   g.traced.spacing);
+          });
+          if (done) group_traced[f] = 1;
+        }
+        if (!done && f < walked.size() && walked[f]) {
+          done = from_shared([&] {
+            if (extra_lines[f].u.empty() && extra_lines[f].v.empty())
+              return walking_agent_on_lines(face, walking_agent_params(face_values[f]), *walked[f]);
+            return walking_agent_on_lines(face, walking_agent_params(face_values[f]),
+                                          with_lines(*walked[f], extra_lines[f]));
+          });
+          walked_alone[f] = done ? 0 : 1;
+        }
+        if (!done && f < grid_lines.size() && grid_lines[f]) {
+          const GridClipParams clip = method == "iso_grid"
+                                          ? iso_grid_params(face_values[f]).clip
+                                          : equal_size_grid_params(face_values[f]).clip;
+          modelled[f] = run_method_with(face, decl, face_values[f],
+                                        [&] { return grid_on_lines(face, *grid_lines[f], clip); });
+          done = true;
+        }
+        if (!done) modelled[f] = run_method(face, decl, face_values[f]);
+        promote_hard_bound_trim_nodes(face, decl, face_values[f], modelled[f]);
+        // The faces already keep the threads busy.
+        modelled[f].metrics_threads_requested = n > 1 && workers > 1 ? 1 : threads;
+      });
     });
     report_stage(0.0, "joining the faces along shared edges");
     double merge = std::numeric_limits<double>::infinity();
@@ -668,9 +686,11 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
       modelled[f].coverage_allowance = 1.5 * shared.strip_area[f];  // a margin on 2/3 c h
     report_stage(0.0, "measuring the faces' panels");
     for_each_face(set, workers, [&](std::size_t f) {
-      const SurfaceFace& face = *set.face(f);
-      const SurfaceFace::FastEvaluation fast(face);
-      model_and_measure(face, decl, face_values[f], modelled[f]);
+      naming_the_face(f, [&] {
+        const SurfaceFace& face = *set.face(f);
+        const SurfaceFace::FastEvaluation fast(face);
+        model_and_measure(face, decl, face_values[f], modelled[f]);
+      });
     });
     // walking_agent's bound is hard (as for one face): a face over it runs
     // again with its bound tightened, and so do its neighbours' joins.
@@ -737,12 +757,10 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     report_stage(0.0, "checking the faces' coverage");
     for_each_face(set, workers, [&](std::size_t f) {
       const SurfaceFace::FastEvaluation fast(*set.face(f));
-      try {
+      naming_the_face(f, [&] {
         results[f] =
             finish_result(set.face(f), decl, face_values[f], std::move(modelled[f]), started);
-      } catch (const GeometryFailure& e) {
-        throw GeometryFailure("face " + std::to_string(f + 1) + ": " + e.what());
-      }
+      });
     });
     FaceSetResult out;
     out.combined.method = method;
