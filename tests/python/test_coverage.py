@@ -233,3 +233,40 @@ def test_grids_tile_a_hemisphere_up_to_its_apex(method, size):
     gap, overlap = _normal_line_coverage(face, r, reach=0.2 * size)
     assert gap < 2e-3 and overlap < 2e-3
     assert 0.95 < r.metrics["panel_area"].sum() / face.Area <= 1.0
+
+
+@pytest.mark.parametrize("method", ["iso_grid", "equal_size_grid", "walking_agent", "boundary_driven"])
+def test_a_face_whose_first_wire_is_its_hole(method):
+    # A STEP part's thin annulus listed its hole's wire first; the grids
+    # snapped their crossings with the outer circle onto the hole (the trim
+    # loop index counted the B-rep's wires, not outer-first) and left 0.4-1.8%
+    # of the face uncovered. Built here with the hole first and with the
+    # outer wire first: the same panels, and their areas (flat, on a plane)
+    # sum to the annulus's within the trim polylines' deflection.
+    V = FreeCAD.Vector
+    big, small = 625.0, 517.0
+    halves = [Part.ArcOfCircle(Part.Circle(V(), V(0, 0, 1), big), a, a + math.pi).toShape()
+              for a in (0.0, math.pi)]
+    outer = Part.Wire(halves)
+    hole = Part.Wire(Part.Circle(V(), V(0, 0, 1), small).toShape())
+    hole.reverse()
+    hole_first = Part.Face(Part.Plane(), [hole, outer])
+    outer_first = Part.Face(Part.Plane(), [outer, hole])
+    assert hole_first.isValid() and outer_first.isValid()
+    assert hole_first.Wires[0].Length < hole_first.Wires[1].Length  # the hole comes first
+    annulus = math.pi * (big ** 2 - small ** 2)
+    assert abs(hole_first.Area - annulus) < 1e-6 * annulus
+    kw = {"size": 146.0} if method != "walking_agent" else {"max_size": 146.0, "max_deviation": 1.0}
+    a = tessella.panelize(hole_first, method=method, **kw)
+    b = tessella.panelize(outer_first, method=method, **kw)
+    for r in (a, b):
+        assert r.summary["gap_fraction"] < 1e-4 and r.summary["overlap_fraction"] < 1e-4
+        xy = r.vertices[:, :2]
+        radius = np.hypot(xy[:, 0], xy[:, 1])
+        assert radius.min() > small - 1e-6 and radius.max() < big + 1e-6
+        # Every panel lies on the plane z = 0: its area is its polygon's.
+        area = sum(0.5 * abs(np.dot(xy[list(p), 0], np.roll(xy[list(p), 1], -1))
+                             - np.dot(xy[list(p), 1], np.roll(xy[list(p), 0], -1)))
+                   for p in r.panels)
+        assert abs(area - annulus) < 1e-4 * annulus, (method, area, annulus)
+    assert len(a.panels) == len(b.panels)

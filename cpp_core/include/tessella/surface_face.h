@@ -33,6 +33,7 @@ struct TrimLoop {
   // 1 where the point is a vertex of the B-rep wire (where trim edges meet).
   std::vector<char> corner;
   bool outer = false;
+  int wire = -1;  // the B-rep wire it samples (the face's wires in explorer order)
 };
 
 // Upper bounds of the second derivatives' norms |S_uu|, |S_uv|, |S_vv|.
