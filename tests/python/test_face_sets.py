@@ -250,6 +250,27 @@ def test_a_refused_face_is_named_the_same_on_any_thread_count():
         assert "200 panels" in str(err.value)
 
 
+def test_boundary_driven_takes_faces_smaller_than_its_size():
+    # A box with 5 mm fillets at the set's size (63 mm): its eight corner
+    # faces are 8.7 mm across. boundary_driven refused the whole set (a size
+    # beyond a face's extent is out of its range); each such face is traced
+    # at its own extent, on its own (in a smooth group it made the group's
+    # curves as dense as itself: a STEP part's 0.02 mm fillets gave its
+    # 3.6 mm^2 neighbour 31,000 panels at 0.11 mm).
+    box = Part.makeBox(1000, 1000, 1000)
+    shape = Part.Shell(box.makeFillet(5, box.Edges).Faces)
+    size = math.sqrt(shape.Area / 1500)
+    small = [i for i, f in enumerate(shape.Faces) if f.BoundBox.DiagonalLength < size]
+    assert len(small) == 8
+    r = tessella.panelize_faces(shape, method="boundary_driven", size=size)
+    per_face = np.bincount(r.panel_face, minlength=len(shape.Faces))
+    assert per_face.min() >= 1
+    assert max(per_face[small]) <= 8
+    assert 0.8 < len(r.panels) / (shape.Area / size ** 2) < 1.6
+    assert r.summary["gap_fraction"] < 1e-3 and r.summary["overlap_fraction"] < 1e-3
+    assert check_conforming(shape, r) > 50
+
+
 def test_periodic_side_next_to_a_planar_top():
     shape = cylinder_and_top()
     assert len(shape.Faces) == 2
