@@ -270,3 +270,39 @@ def test_a_face_whose_first_wire_is_its_hole(method):
                    for p in r.panels)
         assert abs(area - annulus) < 1e-4 * annulus, (method, area, annulus)
     assert len(a.panels) == len(b.panels)
+
+
+@pytest.mark.parametrize("method", ["iso_grid", "equal_size_grid"])
+def test_a_size_coarser_than_a_closed_face(method):
+    # A full cylinder at a size beyond its circumference got one cell around
+    # (its corners coincide: no panel, "100% uncovered"), at a size beyond
+    # half of it two cells (two flat panels through the axis, the same in
+    # space); a full sphere at a size beyond its meridian got one cell from
+    # pole to pole ("157% uncovered"). The grids take at least three cells
+    # around a closed direction and two between two poles.
+    def area(x):
+        return 0.5 * sum(np.linalg.norm(np.cross(x[k] - x[0], x[k + 1] - x[0]))
+                         for k in range(1, len(x) - 1))
+
+    radius, height = 1000.0, 10000.0
+    cylinder = next(f for f in Part.makeCylinder(radius, height).Faces
+                    if f.Surface.__class__.__name__ == "Cylinder")
+    for size in (8000.0, 4000.0):
+        r = tessella.panelize(cylinder, method=method, size=size)
+        assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
+        # Flat rectangles of an inscribed prism of n >= 3 sides: their areas
+        # sum to n chords x the height, and no two lie on the same side.
+        angles = {round(math.atan2(*r.vertices[list(p)].mean(axis=0)[:2][::-1]), 6)
+                  for p in r.panels}
+        n = len(angles)
+        assert n >= 3
+        total = sum(area(r.vertices[list(p)]) for p in r.panels)
+        assert abs(total - n * 2 * radius * math.sin(math.pi / n) * height) < 1e-6 * total
+    sphere = Part.makeSphere(2000.0).Faces[0]
+    r = tessella.panelize(sphere, method=method, size=20000.0)
+    assert len(r.panels) == 6 and r.summary["gap_fraction"] < 1e-6
+    for p in r.panels:  # triangles from a pole to the equator, none without area
+        x = np.unique(np.round(r.vertices[list(p)], 6), axis=0)
+        assert len(x) == 3 and area(x) > 1e6
+    with pytest.raises(ValueError, match="u_count must be at least 3"):
+        tessella.panelize(cylinder, method="iso_grid", u_count=2, v_count=3)

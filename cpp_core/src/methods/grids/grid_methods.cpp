@@ -54,8 +54,36 @@ std::vector<double> cumulative_arc_length(const SurfaceFace& face, bool along_u)
   return cumulative;
 }
 
-int count_for_size(double length, double size, const char* direction) {
-  const double n = std::max(1.0, std::round(length / size));
+// The fewest cells a direction of the grid takes: across a face closed in
+// it (the whole period) three, since one cell's corners coincide and two
+// make the same flat panel twice (a plane through the axis); between two
+// poles (a sphere's v) two, since one cell spans pole to pole and its corners
+// are two points. A size coarser than that (a fillet's small sphere in a face
+// set) gets these counts, not an empty grid.
+int fewest_cells(const SurfaceFace& face, bool along_u) {
+  const UvBounds b = face.bounds();
+  const bool periodic = along_u ? face.u_periodic() : face.v_periodic();
+  const double span = along_u ? b.u_max - b.u_min : b.v_max - b.v_min;
+  if (periodic && span >= (along_u ? face.u_period() : face.v_period()) * (1 - 1e-9)) return 3;
+  // Both ends of the direction poles: the iso-curves there have no length.
+  auto pole = [&](double at) {
+    double length = 0;
+    const int n = 8;
+    for (int i = 0; i <= n; ++i) {
+      const double c =
+          along_u ? b.v_min + (b.v_max - b.v_min) * i / n : b.u_min + (b.u_max - b.u_min) * i / n;
+      const SurfacePoint d = along_u ? face.derivatives(at, c) : face.derivatives(c, at);
+      length +=
+          (along_u ? d.dv : d.du).norm() * (along_u ? b.v_max - b.v_min : b.u_max - b.u_min) / n;
+    }
+    return length <= 1e-9 * face.model_size();
+  };
+  const double lo = along_u ? b.u_min : b.v_min, hi = along_u ? b.u_max : b.v_max;
+  return pole(lo) && pole(hi) ? 2 : 1;
+}
+
+int count_for_size(double length, double size, const char* direction, int fewest) {
+  const double n = std::max(double(fewest), std::round(length / size));
   if (n > 1e7) {
     throw LimitExceeded(std::string("size is too small: ") + direction + " alone would need " +
                         std::to_string(static_cast<long long>(n)) + " panels");
@@ -126,11 +154,22 @@ GridLines iso_grid_lines(const SurfaceFace& face, const IsoGridParams& params) {
   int nu, nv;
   if (by_size) {
     check_size(params.size);
-    nu = count_for_size(cumulative_arc_length(face, true).back(), params.size, "u");
-    nv = count_for_size(cumulative_arc_length(face, false).back(), params.size, "v");
+    nu = count_for_size(cumulative_arc_length(face, true).back(), params.size, "u",
+                        fewest_cells(face, true));
+    nv = count_for_size(cumulative_arc_length(face, false).back(), params.size, "v",
+                        fewest_cells(face, false));
   } else {
     require_in_range("u_count", params.u_count, 1, 1e6);
     require_in_range("v_count", params.v_count, 1, 1e6);
+    for (const bool along_u : {true, false}) {
+      const int fewest = fewest_cells(face, along_u);
+      const int count = along_u ? params.u_count : params.v_count;
+      if (count < fewest)
+        throw InvalidParameter(std::string(along_u ? "u_count" : "v_count") + " must be at least " +
+                               std::to_string(fewest) + " on this face (" +
+                               (fewest == 3 ? "closed in that direction" : "a pole at both ends") +
+                               ": fewer cells give panels without area or panels that coincide)");
+    }
     nu = params.u_count;
     nv = params.v_count;
   }
@@ -148,8 +187,8 @@ GridLines equal_size_grid_lines(const SurfaceFace& face, const EqualSizeGridPara
   check_size(params.size);
   const std::vector<double> cu = cumulative_arc_length(face, true);
   const std::vector<double> cv = cumulative_arc_length(face, false);
-  const int nu = count_for_size(cu.back(), params.size, "u");
-  const int nv = count_for_size(cv.back(), params.size, "v");
+  const int nu = count_for_size(cu.back(), params.size, "u", fewest_cells(face, true));
+  const int nv = count_for_size(cv.back(), params.size, "v", fewest_cells(face, false));
   check_clip_params(params.clip, nu, nv);
   const UvBounds b = face.bounds();
   return {arc_length_lines(b.u_min, b.u_max, cu, nu), arc_length_lines(b.v_min, b.v_max, cv, nv)};
