@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <gp_Ax2d.hxx>
 #include <memory>
 #include <sstream>
@@ -271,54 +272,57 @@ TEST(MetricsThreads, AFailureOnAnyThreadReachesTheCaller) {
                std::runtime_error);
 }
 
+// The message of what run_chunks rethrows ("" if nothing).
+std::string failure_of(ChunkQueue& queue, int threads, const std::function<void(bool)>& worker) {
+  try {
+    run_chunks(queue, threads, worker);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(MetricsThreads, TheLowestFailingChunkIsReportedWhateverTheTiming) {
   // Chunk 3 fails late, chunk 7 at once: on two threads chunk 7's failure
   // comes first in time, but a single thread meets chunk 3's first, and so
   // must every thread count (a face set's error names the same face).
   for (int threads : {1, 2, 3}) {
     ChunkQueue queue(10, 1);
-    std::string message;
-    try {
-      run_chunks(queue, threads, [&](bool) {
-        std::size_t b, e;
-        while (queue.next(b, e)) {
-          if (b == 3) {
-            std::this_thread::sleep_for(std::chrono::milliseconds(150));
-            throw std::runtime_error("chunk 3");
-          }
-          if (b == 7) throw std::runtime_error("chunk 7");
-        }
-      });
-    } catch (const std::runtime_error& e) {
-      message = e.what();
-    }
-    EXPECT_EQ(message, "chunk 3") << threads << " threads";
+    EXPECT_EQ(failure_of(queue, threads,
+                         [&](bool) {
+                           std::size_t b, e;
+                           while (queue.next(b, e)) {
+                             if (b == 3) {
+                               std::this_thread::sleep_for(std::chrono::milliseconds(150));
+                               throw std::runtime_error("chunk 3");
+                             }
+                             if (b == 7) throw std::runtime_error("chunk 7");
+                           }
+                         }),
+              "chunk 3")
+        << threads << " threads";
   }
   // A nested loop on a worker keeps its own claims: the outer failure is
   // still ranked by the outer chunk.
   ChunkQueue outer(6, 1);
-  std::string message;
-  try {
-    run_chunks(outer, 2, [&](bool) {
-      std::size_t b, e;
-      while (outer.next(b, e)) {
-        ChunkQueue inner(4, 1);
-        run_chunks(inner, 2, [&](bool) {
-          std::size_t ib, ie;
-          while (inner.next(ib, ie)) {
-          }
-        });
-        if (b == 1) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(150));
-          throw std::runtime_error("outer 1");
-        }
-        if (b == 4) throw std::runtime_error("outer 4");
-      }
-    });
-  } catch (const std::runtime_error& e) {
-    message = e.what();
-  }
-  EXPECT_EQ(message, "outer 1");
+  EXPECT_EQ(failure_of(outer, 2,
+                       [&](bool) {
+                         std::size_t b, e;
+                         while (outer.next(b, e)) {
+                           ChunkQueue inner(4, 1);
+                           run_chunks(inner, 2, [&](bool) {
+                             std::size_t ib, ie;
+                             while (inner.next(ib, ie)) {
+                             }
+                           });
+                           if (b == 1) {
+                             std::this_thread::sleep_for(std::chrono::milliseconds(150));
+                             throw std::runtime_error("outer 1");
+                           }
+                           if (b == 4) throw std::runtime_error("outer 4");
+                         }
+                       }),
+            "outer 1");
 }
 
 TEST(MetricsThreads, CancelStopsTheParallelMetrics) {
