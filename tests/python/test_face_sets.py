@@ -272,6 +272,30 @@ def test_boundary_driven_takes_faces_smaller_than_its_size():
     assert check_conforming(shape, r) > 50
 
 
+def test_a_band_closed_on_itself_between_two_caps():
+    # A B-spline band closed in v but not flagged periodic (its seam is two
+    # (u,v) lines), both of whose rims take the caps' nodes: the seam's two
+    # copies of a rim node keep their own (u,v) in each panel. (OCCT's
+    # Pump_TopCover, a band of this kind between a sphere and a plane, took
+    # 47% "overlap" before; this band built here panelizes on either build,
+    # so it guards the case rather than reproducing that defect.)
+    band_surface = Part.makeCylinder(1000, 1500).toNurbs().Faces[0].Surface
+    band_surface.exchangeUV()
+    band_surface.setVNotPeriodic()
+    assert not band_surface.isVPeriodic()
+    band = Part.Face(band_surface)
+    assert any(e.isSeam(band) for e in band.Edges)
+    rims = [e for e in band.Edges if e.isClosed() and not e.isSeam(band)]
+    assert len(rims) == 2
+    shell = Part.Shell([band] + [Part.Face(Part.Wire(e)) for e in rims])
+    for method in ("iso_grid", "walking_agent"):
+        kw = {"size": 300.0} if method == "iso_grid" else {"max_size": 300.0, "max_deviation": 10.0}
+        r = tessella.panelize_faces(shell, method=method, **kw)
+        assert r.summary["shared_edges"] == 2
+        assert r.summary["overlap_fraction"] < 1e-3 and r.summary["gap_fraction"] < 1e-2
+        assert check_conforming(shell, r) >= 2 * 12
+
+
 def test_periodic_side_next_to_a_planar_top():
     shape = cylinder_and_top()
     assert len(shape.Faces) == 2

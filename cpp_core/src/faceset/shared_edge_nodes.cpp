@@ -1,10 +1,13 @@
 #include "faceset/shared_edge_nodes.h"
 
+#include <BRep_Tool.hxx>
 #include <BndLib_Add2dCurve.hxx>
 #include <Bnd_Box.hxx>
 #include <Bnd_Box2d.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <algorithm>
 #include <cmath>
 #include <gp_Pnt2d.hxx>
@@ -41,6 +44,7 @@ class EdgeSide {
       : curve_(e.pcurve[static_cast<std::size_t>(side)]),
         first_(e.first),
         last_(e.last),
+        closed_(e.closed),
         face_(face),
         mesh_(mesh),
         box3d_(e.box) {
@@ -135,6 +139,16 @@ class EdgeSide {
   // uv of the curve at t, shifted by whole periods to lie nearest `near`.
   Vec2 uv_near(double t, const Vec2& near) const {
     Vec2 q = uv_at(t);
+    // A closed edge's two ends are one point in space but may be two in
+    // (u,v): across a seam of a surface not flagged periodic (a B-spline
+    // band closed on itself). The end nearer `near`, as a period shift does
+    // on a periodic face (which keeps its shift below).
+    const double eps = 1e-9 * std::abs(last_ - first_);
+    if (closed_ && !face_.u_periodic() && !face_.v_periodic() &&
+        (std::abs(t - first_) <= eps || std::abs(t - last_) <= eps)) {
+      const Vec2 other = uv_at(std::abs(t - first_) <= eps ? last_ : first_);
+      if ((other - near).norm() < (q - near).norm()) q = other;
+    }
     if (face_.u_periodic()) {
       const double p = face_.u_period();
       q.x() += p * std::round((near.x() - q.x()) / p);
@@ -173,6 +187,7 @@ class EdgeSide {
 
   Handle(Geom2d_Curve) curve_;
   double first_, last_;
+  bool closed_;
   const SurfaceFace& face_;
   PanelMesh& mesh_;
   Bnd_Box2d box_;
@@ -198,6 +213,13 @@ SideUse edge_use(const PanelMesh& mesh) {
       ++use[{std::min(a, b), std::max(a, b)}];
     }
   return use;
+}
+
+// Whether the face has a seam edge (one edge on two sides of it).
+bool has_seam(const TopoDS_Face& face) {
+  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next())
+    if (BRep_Tool::IsClosed(TopoDS::Edge(ex.Current()), face)) return true;
+  return false;
 }
 
 void set_node(PanelMesh& mesh, int v) {
@@ -379,8 +401,13 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
     // panel keeps its corners' (u,v) from here on (without them a seam
     // panel spanned the whole period in (u,v) and the coverage check
     // found a hole the width of the face).
-    if (m.corner_uv.empty() && (face[static_cast<std::size_t>(s)]->u_periodic() ||
-                                face[static_cast<std::size_t>(s)]->v_periodic())) {
+    // So on a face with a seam whose surface is not periodic (a B-spline
+    // band closed on itself: the seam's two sides are two (u,v) lines; OCCT's
+    // Pump_TopCover took 47% "overlap" once both of its rims took nodes).
+    const std::size_t fs = static_cast<std::size_t>(e.faces[static_cast<std::size_t>(s)]);
+    if (m.corner_uv.empty() &&
+        (face[static_cast<std::size_t>(s)]->u_periodic() ||
+         face[static_cast<std::size_t>(s)]->v_periodic() || has_seam(set.occt[fs]))) {
       m.corner_uv.reserve(m.panels.size());
       for (std::size_t p = 0; p < m.panels.size(); ++p)
         m.corner_uv.push_back(panel_corner_uv(m, p));
