@@ -3,14 +3,12 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Curve2d.hxx>
 #include <BRepBndLib.hxx>
-#include <BRepGProp.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
-#include <GProp_GProps.hxx>
 #include <Geom2d_Curve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Surface.hxx>
@@ -31,6 +29,7 @@
 #include <optional>
 
 #include "geometry/brep_string.h"
+#include "geometry/face_area.h"
 #include "geometry/pcurve_projection.h"
 #include "geometry/second_derivative_bounds.h"
 #include "geometry/span_adaptors.h"
@@ -202,9 +201,7 @@ SurfaceFace SurfaceFace::from_occt_face(const TopoDS_Face& face) {
     box.Get(x0, y0, z0, x1, y1, z1);
     impl->model_size =
         std::sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0) + (z1 - z0) * (z1 - z0));
-    GProp_GProps props;
-    BRepGProp::SurfaceProperties(face, props);
-    impl->area = std::abs(props.Mass());
+    impl->area = face_area(face);
   } catch (const Standard_Failure& e) {
     throw InvalidGeometry(std::string("the face cannot be evaluated: ") + e.GetMessageString());
   }
