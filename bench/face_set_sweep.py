@@ -39,9 +39,10 @@ def load(path):
     import Part
 
     if path.lower().endswith(".fcstd"):
+        from freecad_workbench.cli import top_level_shapes
+
         doc = FreeCAD.openDocument(path)
-        shapes = [o.Shape for o in doc.Objects
-                  if hasattr(o, "Shape") and not o.InList and o.Shape.Faces]
+        shapes = top_level_shapes(doc)
         return Part.Compound(shapes) if shapes else None
     shape = Part.Shape()
     shape.read(path)

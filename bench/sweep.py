@@ -76,6 +76,8 @@ def load_shape(path):
     import FreeCAD
     import Part
 
+    from freecad_workbench.cli import top_level_shapes
+
     if path.lower().endswith(".gz"):
         tmp = tempfile.mkdtemp()
         plain = os.path.join(tmp, os.path.basename(path)[:-3])
@@ -85,9 +87,7 @@ def load_shape(path):
     if path.lower().endswith(".fcstd"):
         doc = FreeCAD.openDocument(path)
         try:
-            shapes = [o.Shape.copy() for o in doc.Objects
-                      if isinstance(getattr(o, "Shape", None), Part.Shape)
-                      and not o.Shape.isNull() and not o.InList and o.Shape.Faces]
+            shapes = [s.copy() for s in top_level_shapes(doc)]
         finally:
             FreeCAD.closeDocument(doc.Name)
         return Part.makeCompound(shapes)

@@ -43,6 +43,21 @@ def _parse_params(pairs):
     return params
 
 
+def _has_faces(obj):
+    shape = getattr(obj, "Shape", None)
+    return shape is not None and not shape.isNull() and bool(shape.Faces)
+
+
+def top_level_shapes(doc):
+    """The shapes of a document's objects with faces that no other shape is
+    built from: a Cut, not the boxes it cuts. An object that only refers to
+    one without a shape of its own (a group, a FEM analysis or constraint)
+    does not hide it."""
+    return [o.Shape for o in doc.Objects
+            if _has_faces(o) and not o.TypeId.startswith("App::FeaturePython")
+            and not any(_has_faces(user) for user in o.InList)]
+
+
 def load_shape(path):
     """The shape to panelize from a STEP/IGES/BRep file or an FCStd document."""
     import FreeCAD
@@ -54,9 +69,7 @@ def load_shape(path):
     elif ext == ".fcstd":
         doc = FreeCAD.openDocument(path, True)  # hidden
         try:
-            shapes = [o.Shape for o in doc.Objects
-                      if hasattr(o, "Shape") and not o.InList and not o.Shape.isNull()
-                      and o.Shape.Faces and not o.TypeId.startswith("App::FeaturePython")]
+            shapes = top_level_shapes(doc)
         finally:
             FreeCAD.closeDocument(doc.Name)
         if not shapes:

@@ -4,6 +4,7 @@ one a folder with the document, the schedules and the DXF, read back; a non-zero
 exit status and no folder (nor a temporary one) for the broken file."""
 
 import csv
+import math
 import os
 import subprocess
 import sys
@@ -74,3 +75,31 @@ def test_outputs_read_back(batch):
 def test_bad_arguments():
     proc = run_cli("x.step", "--out", "/tmp/never", "--param", "size")
     assert proc.returncode == 2 and "name=value" in proc.stderr
+
+
+def test_a_document_s_shapes_are_those_no_other_shape_is_built_from(tmp_path):
+    # A Cut of two boxes is one shape (not the boxes); a part that a FEM
+    # constraint refers to is still a shape of its own (the constraint has
+    # none). The old rule took only objects referred to by nothing, so a
+    # document with a FEM analysis on its part had "no object with faces".
+    from freecad_workbench.cli import load_shape
+
+    doc = FreeCAD.newDocument("cli_top_level")
+    try:
+        a = doc.addObject("Part::Box", "A")
+        b = doc.addObject("Part::Box", "B")
+        b.Placement.Base = FreeCAD.Vector(5, 5, 5)
+        cut = doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = a, b
+        held = doc.addObject("Part::Cylinder", "Held")
+        held.Placement.Base = FreeCAD.Vector(100, 0, 0)
+        doc.addObject("Fem::ConstraintFixed", "Fixed").References = [(held, "Face2")]
+        doc.recompute()
+        path = str(tmp_path / "parts.FCStd")
+        doc.saveAs(path)
+        expected = len(cut.Shape.Faces) + len(held.Shape.Faces)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    shape = load_shape(path)
+    assert len(shape.Faces) == expected == 9 + 3
+    assert abs(shape.Volume - (1000 - 125 + math.pi * 2 * 2 * 10)) < 1e-6
