@@ -293,6 +293,59 @@ def test_cylinder_side_face_with_seam_does_not_crash():
     assert r.metrics["panel_area"].sum() == pytest.approx(face.Area, rel=0.05)
 
 
+def _round_positions(r):
+    """How many distinct angles round the z axis the panels' centres take."""
+    c = np.array([r.vertices[list(p)].mean(axis=0) for p in r.panels])
+    a = np.sort(np.mod(np.arctan2(c[:, 1], c[:, 0]), 2 * math.pi))
+    steps = np.diff(np.append(a, a[0] + 2 * math.pi))
+    return max(1, int(np.sum(steps > 1e-6)))
+
+
+def _no_two_panels_in_one_place(r):
+    c = np.array([r.vertices[list(p)].mean(axis=0) for p in r.panels])
+    d = np.linalg.norm(c[:, None] - c[None], axis=2) + np.eye(len(c)) * 1e9
+    return d.min() > 1e-6
+
+
+@pytest.mark.parametrize("quadrangulate", [True, False])
+def test_a_column_at_a_size_beyond_a_third_of_its_girth(quadrangulate):
+    # A 300 mm column 3 m high at 500-1500 mm: too few curves went round it,
+    # so it was 89-100% unmeshed ("too coarse"), or (not quadrangulated, at
+    # 500 mm) two flat panels through its axis in each row, the same in
+    # space. Round a closed direction the curves now go at most a half (every
+    # cell split in two round it) or a third of a rim apart: four or three
+    # panels round, flat rectangles of an inscribed prism.
+    radius, height = 150.0, 3000.0
+    face = Part.makeCylinder(radius, height).Faces[0]
+    for size in (500.0, 1500.0):
+        r = tessella.panelize(face, method="boundary_driven", size=size,
+                              quadrangulate=quadrangulate)
+        n = _round_positions(r)
+        assert n == (4 if quadrangulate else 3)
+        assert all(len(p) == 4 for p in r.panels) and _no_two_panels_in_one_place(r)
+        # n sides round, each a chord 2 R sin(pi / n) wide, the full height.
+        prism = n * 2 * radius * math.sin(math.pi / n) * height
+        assert r.metrics["panel_area"].sum() == pytest.approx(prism, rel=1e-6)
+        assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
+
+
+@pytest.mark.parametrize("solid, quadrangulate, size", [
+    (lambda: Part.makeCone(400, 100, 2000), False, 800.0),  # its smaller rim: 628 mm
+    (lambda: Part.makeSphere(500, FreeCAD.Vector(), FreeCAD.Vector(0, 0, 1), 0, 90),
+     True, 800.0),  # a dome: two curves round met at the apex in one line
+])
+def test_closed_faces_coarser_than_their_rims(solid, quadrangulate, size):
+    face = solid().Faces[0]
+    r = tessella.panelize(face, method="boundary_driven", size=size,
+                          quadrangulate=quadrangulate)
+    assert r.summary["gap_fraction"] < 1e-3 and r.summary["overlap_fraction"] < 1e-3
+    assert _round_positions(r) >= 3 and _no_two_panels_in_one_place(r)
+    worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*p)))[0] for p in r.vertices)
+    assert worst < 1e-6 * face.BoundBox.DiagonalLength
+    # Flat panels on the convex face: less area than it, but not much less.
+    assert 0.75 < r.metrics["panel_area"].sum() / face.Area < 1.0
+
+
 def test_too_coarse_a_size_is_a_clear_error_not_a_wrong_mesh():
     face = _load("vault_openings")
     with pytest.raises(RuntimeError, match="too coarse") as err:

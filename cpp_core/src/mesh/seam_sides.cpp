@@ -102,6 +102,45 @@ bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b) {
                face.v_period(), bounds.v_min, bounds.v_max, a.y(), b.y());
 }
 
+std::vector<double> rim_lengths(const SurfaceFace& face, const std::vector<TrimLoop>& loops) {
+  std::vector<double> out;
+  const double periods[2] = {face.u_period(), face.v_period()};
+  const double tiny = 1e-9 * face.model_size();
+  for (int axis = 0; axis < 2; ++axis) {
+    if (!closed_along(face, axis)) continue;
+    for (const TrimLoop& loop : loops) {
+      const std::size_t n = loop.uv.size();
+      if (n < 2) continue;
+      auto seam = [&](std::size_t k) {
+        return runs_along_seam(face, loop.uv[k % n], loop.uv[(k + 1) % n]);
+      };
+      // Start right after a seam segment, so no run wraps past the end.
+      std::size_t start = 0;
+      for (std::size_t k = 0; k < n; ++k)
+        if (seam(k)) {
+          start = k + 1;
+          break;
+        }
+      double length = 0, lo = loop.uv[start % n][axis], hi = lo;
+      for (std::size_t j = 0; j < n; ++j) {
+        const std::size_t k = start + j;
+        const bool ends = seam(k) || j + 1 == n;
+        if (!seam(k)) {
+          length += (loop.xyz[(k + 1) % n] - loop.xyz[k % n]).norm();
+          const double x = loop.uv[(k + 1) % n][axis];
+          lo = std::min(lo, x), hi = std::max(hi, x);
+        }
+        if (!ends) continue;
+        if (hi - lo >= (1 - 1e-6) * periods[axis] && length > tiny) out.push_back(length);
+        length = 0;
+        lo = hi = loop.uv[(k + 1) % n][axis];
+      }
+    }
+  }
+  std::sort(out.rbegin(), out.rend());
+  return out;
+}
+
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
   if (!closed_round_a_seam(face)) return;
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());

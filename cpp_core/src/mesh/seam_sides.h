@@ -6,11 +6,12 @@
 // vertex between its ends (no T-junction, one rod per segment).
 #pragma once
 
+#include <vector>
+
 #include "tessella/panel_mesh.h"
+#include "tessella/surface_face.h"
 
 namespace tessella {
-
-class SurfaceFace;
 
 // Whether the face's (u,v) domain spans a whole period in u or in v (its
 // seam lies inside it).
@@ -22,6 +23,12 @@ bool closed_along(const SurfaceFace& face, int axis);
 // Whether the (u,v) segment a-b runs along the seam of a face closed round its
 // period (either copy of it): a trim there is no edge of the surface.
 bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b);
+
+// The 3D lengths of the trim runs that go once round a closed direction
+// between two seam crossings (a full cylinder's or a cone's two rims, a
+// dome's rim; a pole's collapsed stretch does not count), longest first;
+// none on a face not closed round a seam.
+std::vector<double> rim_lengths(const SurfaceFace& face, const std::vector<TrimLoop>& loops);
 
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
 // (u,v)) and inserts into each panel side along the seam the seam vertices

@@ -304,10 +304,37 @@ BoundaryDrivenResult build_boundary_driven(const SurfaceFace& face,
   return r;
 }
 
+// The size at which `round` curves go round a rim: curves are a size apart,
+// two sizes when quadrangulated (each cell then splits in two).
+double size_for_curves_round(const BoundaryDrivenParams& params, double rim, double round) {
+  return rim / (round * (params.quadrangulate ? 2.0 : 1.0));
+}
+
+// Round a closed direction at least three curves, two where every cell is
+// split in two round it, so that three or four panels go round, as the grids
+// take three cells at least: with fewer, a 300 mm column at 500 mm was two
+// flat panels through its axis in each row, the same in space (unbuildable,
+// and unseen by the coverage in (u,v)), and at 800 mm 100% unmeshed. Counted
+// as bd_curves places seeds along the longest rim (the nearest whole number
+// of spacings); the size, not only the spacing, is reduced, so that the
+// later stages (slivers against size^2) see the panels' real size.
+BoundaryDrivenParams with_curves_round(const BoundaryDrivenParams& params,
+                                       const std::vector<double>& rims) {
+  BoundaryDrivenParams p = params;
+  const double round = params.quadrangulate ? 2.0 : 3.0;
+  const double spacing = params.quadrangulate ? 2.0 * params.size : params.size;
+  if (!rims.empty() && std::lround(rims.front() / spacing) < round)
+    p.size = size_for_curves_round(params, rims.front(), round);
+  return p;
+}
+
 }  // namespace
 
 BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
-                                            const BoundaryDrivenParams& params) {
+                                            const BoundaryDrivenParams& asked) {
+  const std::vector<double> rims =
+      rim_lengths(face, face.trim_loops(trim_deflection(face, asked.trim_deflection)));
+  const BoundaryDrivenParams params = with_curves_round(asked, rims);
   try {
     return build_boundary_driven(face, params);
   } catch (const GeometryFailure& e) {
@@ -326,6 +353,19 @@ BoundaryDrivenResult boundary_driven_stages(const SurfaceFace& face,
       } catch (const GeometryFailure&) {
       }
     }
+    // On a closed face, curves as far apart as a smaller rim allows (a
+    // cone's: three round its larger rim are too few for the smaller one),
+    // the coarsest first.
+    for (double rim : rims)
+      for (double round : {2.0, 3.0}) {
+        BoundaryDrivenParams smaller = params;
+        smaller.size = size_for_curves_round(params, rim, round);
+        if ((round == 2.0 && !params.quadrangulate) || !(smaller.size < params.size)) continue;
+        try {
+          return build_boundary_driven(face, smaller);
+        } catch (const GeometryFailure&) {
+        }
+      }
     for (double factor : {0.75, 0.56, 0.42, 0.32, 0.25}) {
       BoundaryDrivenParams smaller = params;
       smaller.size = params.size * factor;
