@@ -141,6 +141,40 @@ std::vector<double> rim_lengths(const SurfaceFace& face, const std::vector<TrimL
   return out;
 }
 
+double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh) {
+  double widest = 0;
+  const double periods[2] = {face.u_period(), face.v_period()};
+  for (int axis = 0; axis < 2; ++axis) {
+    if (!closed_along(face, axis)) continue;
+    const double period = periods[axis];
+    for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+      // A corner at a pole (the whole iso-line one point) has no place round
+      // the axis: left out.
+      std::vector<Vec2> q;
+      for (const Vec2& c : panel_corner_uv(mesh, p)) {
+        const SurfacePoint d = face.derivatives(c.x(), c.y());
+        const double along = (axis == 0 ? d.du : d.dv).norm();
+        const double across = (axis == 0 ? d.dv : d.du).norm();
+        if (along > 1e-9 * across) q.push_back(c);
+      }
+      if (q.empty()) continue;
+      // A jump of more than three quarters of a period is the seam.
+      double x = q[0][axis], lo = x, hi = x;
+      for (std::size_t k = 1; k < q.size(); ++k) {
+        double step = q[k][axis] - q[k - 1][axis];
+        if (step > 0.75 * period)
+          step -= period;
+        else if (step < -0.75 * period)
+          step += period;
+        x += step;
+        lo = std::min(lo, x), hi = std::max(hi, x);
+      }
+      widest = std::max(widest, (hi - lo) / period);
+    }
+  }
+  return widest;
+}
+
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
   if (!closed_round_a_seam(face)) return;
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());

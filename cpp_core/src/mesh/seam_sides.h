@@ -30,6 +30,13 @@ bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b);
 // none on a face not closed round a seam.
 std::vector<double> rim_lengths(const SurfaceFace& face, const std::vector<TrimLoop>& loops);
 
+// The largest share of a period that one panel spans round a closed
+// direction (its corners' own (u,v), unwrapped as the coverage check does);
+// 0 on a face not closed round a seam. At half or more a panel is no sheet a
+// workshop can bend: two such make a cylinder two flat panels through its
+// axis, one a ring.
+double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh);
+
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
 // (u,v)) and inserts into each panel side along the seam the seam vertices
 // strictly between its ends. Nothing for a face not closed round a seam.

@@ -276,6 +276,13 @@ void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, do
   // A face closed round its period (a full cylinder) has its seam traced
   // from both sides: joined as two faces along a shared edge.
   join_seam_sides(face, m);
+  // Too few curves round a closed direction somewhere (a cone's smaller rim
+  // at a size near its girth): one cell went round the whole top as a ring
+  // panel, which the boundary pieces then split across the seam.
+  if (widest_panel_round(face, m) >= 0.5 - 1e-9)
+    throw GeometryFailure(
+        "boundary-driven mesh: a panel goes half way round the closed face (size " +
+        std::to_string(params.size) + " mm is too coarse for its girth" + kCoarseTail);
   if (static_cast<long long>(m.panels.size()) > params.max_panels)
     throw LimitExceeded(std::to_string(m.panels.size()) +
                         " panels exceed max_panels = " + std::to_string(params.max_panels));
