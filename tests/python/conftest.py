@@ -1,4 +1,6 @@
 """Shared fixtures: FreeCAD must be imported before Part (else segfault)."""
+import math
+
 import FreeCAD  # noqa: F401  (first, always)
 import Part  # noqa: F401
 import pytest
@@ -104,6 +106,22 @@ def independent_coverage(face, r, samples=3000):
     gap = (weight * (inside & (count == 0))).sum() / total
     extra = (weight * (np.maximum(count - 1, 0) + ((~inside) & (count > 0)))).sum() / total
     return gap, extra
+
+
+def widest_turn_round_z(r):
+    """The largest angle round the z axis one panel's corners span (those off
+    the axis): per panel 2 pi less the largest gap between their sorted
+    angles. A panel at pi or more is half way round a closed face."""
+    import numpy as np
+
+    out = []
+    for p in r.panels:
+        x = r.vertices[list(p)]
+        x = x[np.hypot(x[:, 0], x[:, 1]) > 1e-6]
+        a = np.sort(np.mod(np.arctan2(x[:, 1], x[:, 0]), 2 * math.pi))
+        gaps = np.diff(np.append(a, a[0] + 2 * math.pi))
+        out.append(2 * math.pi - gaps.max())
+    return max(out)
 
 
 def diagonal_distance(p):

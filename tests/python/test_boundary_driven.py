@@ -19,7 +19,7 @@ import numpy as np  # noqa: E402
 
 import freecad_workbench as tessella  # noqa: E402
 from freecad_workbench import core  # noqa: E402
-from conftest import independent_coverage  # noqa: E402
+from conftest import independent_coverage, widest_turn_round_z  # noqa: E402
 
 SIZE = 900.0
 
@@ -301,19 +301,6 @@ def _round_positions(r):
     return max(1, int(np.sum(steps > 1e-6)))
 
 
-def _widest_turn(r):
-    """Per panel, the angle round the z axis its corners span (those off the
-    axis): 2 pi less the largest gap between their sorted angles."""
-    out = []
-    for p in r.panels:
-        x = r.vertices[list(p)]
-        x = x[np.hypot(x[:, 0], x[:, 1]) > 1e-6]
-        a = np.sort(np.mod(np.arctan2(x[:, 1], x[:, 0]), 2 * math.pi))
-        gaps = np.diff(np.append(a, a[0] + 2 * math.pi))
-        out.append(2 * math.pi - gaps.max())
-    return out
-
-
 def _no_two_panels_in_one_place(r):
     c = np.array([r.vertices[list(p)].mean(axis=0) for p in r.panels])
     d = np.linalg.norm(c[:, None] - c[None], axis=2) + np.eye(len(c)) * 1e9
@@ -338,7 +325,7 @@ def test_a_column_at_a_size_beyond_a_third_of_its_girth(quadrangulate):
         assert all(len(p) == 4 for p in r.panels) and _no_two_panels_in_one_place(r)
         # No panel half way round (corners across a diameter): at 300 mm,
         # quadrangulated, some rows were two such panels.
-        assert max(_widest_turn(r)) < 0.99 * math.pi
+        assert widest_turn_round_z(r) < 0.99 * math.pi
         # n sides round, each a chord 2 R sin(pi / n) wide, the full height.
         prism = n * 2 * radius * math.sin(math.pi / n) * height
         assert r.metrics["panel_area"].sum() == pytest.approx(prism, rel=1e-6)
@@ -359,7 +346,7 @@ def test_closed_faces_coarser_than_their_rims(solid, quadrangulate, size):
                           quadrangulate=quadrangulate)
     assert r.summary["gap_fraction"] < 1e-3 and r.summary["overlap_fraction"] < 1e-3
     assert _round_positions(r) >= 3 and _no_two_panels_in_one_place(r)
-    assert max(_widest_turn(r)) < 0.99 * math.pi  # no panel half way round
+    assert widest_turn_round_z(r) < 0.99 * math.pi  # no panel half way round
     worst = max(face.distToShape(Part.Vertex(FreeCAD.Vector(*p)))[0] for p in r.vertices)
     assert worst < 1e-6 * face.BoundBox.DiagonalLength
     # Flat panels on the convex face: less area than it, but not much less.

@@ -188,3 +188,19 @@ def test_the_folds_and_the_fold_angles_stay_consistent(face):
         # A fold is the diagonal two triangles share.
         assert sum(1 for t in tris if a in t and b in t) == 2
         assert np.isfinite(angle)
+
+
+@pytest.mark.parametrize("method", ["iso_grid", "equal_size_grid", "walking_agent"])
+def test_no_merge_makes_a_panel_go_half_way_round(method):
+    # A cone at 1.5 m: its top rim (628 mm round) had three rods of 173 mm,
+    # under min_rod_length; collapsing one left two round it and a panel
+    # turning 240 degrees (iso_grid, equal_size_grid; walking_agent 211): no
+    # sheet to bend. Such a collapse is refused; the short rods stay.
+    from conftest import widest_turn_round_z
+
+    face = Part.makeCone(400, 100, 2000).Faces[0]
+    kw = ({"max_size": 1500.0, "max_deviation": 300.0} if method == "walking_agent"
+          else {"size": 1500.0})
+    r = tessella.panelize(face, method=method, **kw)
+    assert widest_turn_round_z(r) < 0.99 * math.pi
+    assert r.summary["gap_fraction"] < 1e-3 and r.summary["overlap_fraction"] < 1e-3

@@ -141,37 +141,43 @@ std::vector<double> rim_lengths(const SurfaceFace& face, const std::vector<TrimL
   return out;
 }
 
-double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh) {
+double panel_turn(const SurfaceFace& face, const std::vector<Vec2>& corner_uv) {
   double widest = 0;
   const double periods[2] = {face.u_period(), face.v_period()};
   for (int axis = 0; axis < 2; ++axis) {
     if (!closed_along(face, axis)) continue;
     const double period = periods[axis];
-    for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
-      // A corner at a pole (the whole iso-line one point) has no place round
-      // the axis: left out.
-      std::vector<Vec2> q;
-      for (const Vec2& c : panel_corner_uv(mesh, p)) {
-        const SurfacePoint d = face.derivatives(c.x(), c.y());
-        const double along = (axis == 0 ? d.du : d.dv).norm();
-        const double across = (axis == 0 ? d.dv : d.du).norm();
-        if (along > 1e-9 * across) q.push_back(c);
+    bool first = true;
+    double x = 0, lo = 0, hi = 0, last = 0;
+    for (const Vec2& c : corner_uv) {
+      const SurfacePoint d = face.derivatives(c.x(), c.y());
+      const double along = (axis == 0 ? d.du : d.dv).norm();
+      const double across = (axis == 0 ? d.dv : d.du).norm();
+      if (!(along > 1e-9 * across)) continue;  // a pole: no place round the axis
+      if (first) {
+        first = false;
+        x = lo = hi = last = c[axis];
+        continue;
       }
-      if (q.empty()) continue;
-      // A jump of more than three quarters of a period is the seam.
-      double x = q[0][axis], lo = x, hi = x;
-      for (std::size_t k = 1; k < q.size(); ++k) {
-        double step = q[k][axis] - q[k - 1][axis];
-        if (step > 0.75 * period)
-          step -= period;
-        else if (step < -0.75 * period)
-          step += period;
-        x += step;
-        lo = std::min(lo, x), hi = std::max(hi, x);
-      }
-      widest = std::max(widest, (hi - lo) / period);
+      double step = c[axis] - last;
+      if (step > 0.75 * period)
+        step -= period;
+      else if (step < -0.75 * period)
+        step += period;
+      last = c[axis];
+      x += step;
+      lo = std::min(lo, x), hi = std::max(hi, x);
     }
+    widest = std::max(widest, (hi - lo) / period);
   }
+  return widest;
+}
+
+double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh) {
+  double widest = 0;
+  if (!closed_round_a_seam(face)) return widest;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p)
+    widest = std::max(widest, panel_turn(face, panel_corner_uv(mesh, p)));
   return widest;
 }
 

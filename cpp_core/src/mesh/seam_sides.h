@@ -30,11 +30,15 @@ bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b);
 // none on a face not closed round a seam.
 std::vector<double> rim_lengths(const SurfaceFace& face, const std::vector<TrimLoop>& loops);
 
-// The largest share of a period that one panel spans round a closed
-// direction (its corners' own (u,v), unwrapped as the coverage check does);
-// 0 on a face not closed round a seam. At half or more a panel is no sheet a
-// workshop can bend: two such make a cylinder two flat panels through its
-// axis, one a ring.
+// The largest share of a period that a panel with these corners spans
+// round a closed direction (corners at a pole left out; a jump of more than
+// three quarters of a period taken as the seam, as the coverage check
+// does); 0 on a face not closed round a seam. At half or more a panel is no
+// sheet a workshop can bend: two such make a cylinder two flat panels
+// through its axis, one a ring.
+double panel_turn(const SurfaceFace& face, const std::vector<Vec2>& corner_uv);
+
+// The largest panel_turn of the mesh's panels.
 double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh);
 
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own

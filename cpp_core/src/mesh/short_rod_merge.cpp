@@ -19,6 +19,7 @@
 
 #include "common/parallel_chunks.h"
 #include "mesh/panel_model.h"
+#include "mesh/seam_sides.h"
 #include "tessella/errors.h"
 #include "tessella/panel_metrics.h"
 #include "tessella/surface_face.h"
@@ -98,6 +99,7 @@ class Merger {
         }
     }
     alive_.assign(np, 1);
+    closed_ = closed_round_a_seam(face);
     all_quads_ =
         params.keep_quads && std::all_of(m_.panels.begin(), m_.panels.end(),
                                          [](const std::vector<int>& p) { return p.size() == 4; });
@@ -606,6 +608,9 @@ class Merger {
             return why("quad not convex", p), false;
       // An all-quad layout stays one (keep_quads).
       if (all_quads_ && v.size() != 4) return why("not a quad", p), false;
+      // No panel half way round a closed face (a cone's top rim of three
+      // short rods collapsed to two: a panel turning 240 degrees).
+      if (closed_ && panel_turn(face_, q) >= 0.5 - 1e-9) return why("half way round", p), false;
       if (nodes_of(p).size() < std::min<std::size_t>(3, nodes_before(p)))
         return why("nodes", p), false;
       for (std::size_t k = 0; k < v.size(); ++k) {
@@ -828,6 +833,7 @@ class Merger {
   double sign_ = 1.0;
   bool all_quads_ = false;
   double area_eps_ = 0.0;
+  bool closed_ = false;  // the face is closed round a seam
   std::vector<char> alive_;
   std::vector<std::vector<int>> vpanels_;
   std::map<Edge, int> owner_;  // boundary edge -> the panel that has it
