@@ -412,3 +412,24 @@ def test_lines_stop_without_a_gap_at_a_periodic_seam():
     for e, n in uses.items():
         if n == 1:  # on the bottom (z = 0) or top (z = 7000) circle
             assert all(min(abs(z[v]), abs(z[v] - 7000.0)) < 1e-6 for v in e), e
+
+
+def test_a_bound_beyond_a_column_s_radius_still_goes_round_it():
+    # A 300 mm column 3 m high at a bound of 300 mm: the agents' lines round
+    # it were one or two cells (corners joined across the whole face), 100%
+    # uncovered. At least three cells round, none half way: flat rectangles
+    # of an inscribed prism, each under a half turn.
+    from conftest import widest_turn_round_z
+
+    radius, height = 150.0, 3000.0
+    face = Part.makeCylinder(radius, height).Faces[0]
+    for max_size in (300.0, 3000.0):
+        r = tessella.panelize(face, method="walking_agent", max_size=max_size,
+                              max_deviation=300.0)
+        assert widest_turn_round_z(r) < 0.99 * math.pi
+        assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
+        centres = np.array([r.vertices[list(p)].mean(axis=0) for p in r.panels])
+        n = len({round(math.atan2(c[1], c[0]) % (2 * math.pi), 6) for c in centres})
+        assert n >= 3
+        prism = n * 2 * radius * math.sin(math.pi / n) * height
+        assert r.metrics["panel_area"].sum() == pytest.approx(prism, rel=1e-6)
