@@ -433,3 +433,21 @@ def test_a_bound_beyond_a_column_s_radius_still_goes_round_it():
         assert n >= 3
         prism = n * 2 * radius * math.sin(math.pi / n) * height
         assert r.metrics["panel_area"].sum() == pytest.approx(prism, rel=1e-6)
+
+
+def test_a_bound_beyond_a_sphere_s_radius_still_has_two_cells_pole_to_pole():
+    # A 1 m sphere at max_size 2.6 m and a bound of 650 mm: one cell from pole
+    # to pole (its corners two points), "157% uncovered". At least two cells
+    # between the poles and three round, as the grids take.
+    from conftest import widest_turn_round_z
+
+    radius = 500.0
+    face = Part.makeSphere(radius).Faces[0]
+    r = tessella.panelize(face, method="walking_agent", max_size=2600.0, max_deviation=650.0)
+    assert widest_turn_round_z(r) < 0.99 * math.pi
+    assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
+    z = r.vertices[:, 2]
+    assert np.any(np.abs(z) < 1e-6 * radius)  # a row of nodes on the equator
+    # Every node on the sphere, and flat panels inside it: less area than it.
+    assert np.allclose(np.linalg.norm(r.vertices, axis=1), radius, rtol=1e-9)
+    assert 0.3 < r.metrics["panel_area"].sum() / (4 * math.pi * radius ** 2) < 1.0

@@ -181,6 +181,28 @@ double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh) {
   return widest;
 }
 
+int fewest_cells_along(const SurfaceFace& face, bool along_u) {
+  const UvBounds b = face.bounds();
+  const bool periodic = along_u ? face.u_periodic() : face.v_periodic();
+  const double span = along_u ? b.u_max - b.u_min : b.v_max - b.v_min;
+  if (periodic && span >= (along_u ? face.u_period() : face.v_period()) * (1 - 1e-9)) return 3;
+  // Both ends of the direction poles: the iso-curves there have no length.
+  auto pole = [&](double at) {
+    double length = 0;
+    const int n = 8;
+    for (int i = 0; i <= n; ++i) {
+      const double c =
+          along_u ? b.v_min + (b.v_max - b.v_min) * i / n : b.u_min + (b.u_max - b.u_min) * i / n;
+      const SurfacePoint d = along_u ? face.derivatives(at, c) : face.derivatives(c, at);
+      length +=
+          (along_u ? d.dv : d.du).norm() * (along_u ? b.v_max - b.v_min : b.u_max - b.u_min) / n;
+    }
+    return length <= 1e-9 * face.model_size();
+  };
+  const double lo = along_u ? b.u_min : b.v_min, hi = along_u ? b.u_max : b.v_max;
+  return pole(lo) && pole(hi) ? 2 : 1;
+}
+
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
   if (!closed_round_a_seam(face)) return;
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());

@@ -41,6 +41,15 @@ double panel_turn(const SurfaceFace& face, const std::vector<Vec2>& corner_uv);
 // The largest panel_turn of the mesh's panels.
 double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh);
 
+// The fewest cells a grid (iso_grid, equal_size_grid, walking_agent's lines)
+// takes along u (along_u) or v: across a face closed in it (the whole
+// period) three, since one cell's corners coincide and two make the same
+// flat panel twice (a plane through the axis); between two poles (a
+// sphere's v) two, since one cell spans pole to pole and its corners are two
+// points. A size coarser than that (a fillet's small sphere in a face set)
+// gets these counts, not an empty grid.
+int fewest_cells_along(const SurfaceFace& face, bool along_u);
+
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
 // (u,v)) and inserts into each panel side along the seam the seam vertices
 // strictly between its ends. Nothing for a face not closed round a seam.

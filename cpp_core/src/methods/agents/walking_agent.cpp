@@ -77,15 +77,18 @@ Lines walk_lines(const SurfaceFace& face, const UvTrimClassifier& trim, double s
     // Keep strictly increasing lines; the ends exactly on the bounds.
     std::vector<double>& l = dir == 0 ? lines.u : lines.v;
     l = increasing_lines(nodes, lo, hi);
-    // Round a closed direction at least three cells, none half way round, as
-    // the grids take: with one or two, corners join across the whole face (a
-    // 300 mm column at a bound of 300 mm was 100% uncovered). Lines through
-    // the widest cells.
-    while (closed_along(face, dir) && l.size() >= 2) {
+    // At least the cells a grid takes (three round a closed direction, two
+    // between two poles), none half way round, lines through the widest
+    // cells: with one or two round, corners joined across the whole face (a
+    // 300 mm column at a bound of 300 mm was 100% uncovered; a sphere at one
+    // cell pole to pole 157%).
+    const bool closed = closed_along(face, dir);
+    const std::size_t fewest = static_cast<std::size_t>(fewest_cells_along(face, dir == 0));
+    while (l.size() >= 2) {
       std::size_t widest = 0;
       for (std::size_t k = 1; k + 1 < l.size(); ++k)
         if (l[k + 1] - l[k] > l[widest + 1] - l[widest]) widest = k;
-      if (l.size() >= 4 && l[widest + 1] - l[widest] < 0.5 * (hi - lo)) break;
+      if (l.size() > fewest && (!closed || l[widest + 1] - l[widest] < 0.5 * (hi - lo))) break;
       l.insert(l.begin() + static_cast<std::ptrdiff_t>(widest) + 1,
                0.5 * (l[widest] + l[widest + 1]));
     }

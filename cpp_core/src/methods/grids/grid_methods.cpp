@@ -6,6 +6,7 @@
 #include "geometry/trim_deflection.h"
 #include "geometry/uv_trim_classifier.h"
 #include "mesh/grid_clipping.h"
+#include "mesh/seam_sides.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
@@ -52,34 +53,6 @@ std::vector<double> cumulative_arc_length(const SurfaceFace& face, bool along_u)
   for (int i = 1; i <= kAlong; ++i)
     cumulative[i] = cumulative[i - 1] + 0.5 * h * (speed[i - 1] + speed[i]);
   return cumulative;
-}
-
-// The fewest cells a direction of the grid takes: across a face closed in
-// it (the whole period) three, since one cell's corners coincide and two
-// make the same flat panel twice (a plane through the axis); between two
-// poles (a sphere's v) two, since one cell spans pole to pole and its corners
-// are two points. A size coarser than that (a fillet's small sphere in a face
-// set) gets these counts, not an empty grid.
-int fewest_cells(const SurfaceFace& face, bool along_u) {
-  const UvBounds b = face.bounds();
-  const bool periodic = along_u ? face.u_periodic() : face.v_periodic();
-  const double span = along_u ? b.u_max - b.u_min : b.v_max - b.v_min;
-  if (periodic && span >= (along_u ? face.u_period() : face.v_period()) * (1 - 1e-9)) return 3;
-  // Both ends of the direction poles: the iso-curves there have no length.
-  auto pole = [&](double at) {
-    double length = 0;
-    const int n = 8;
-    for (int i = 0; i <= n; ++i) {
-      const double c =
-          along_u ? b.v_min + (b.v_max - b.v_min) * i / n : b.u_min + (b.u_max - b.u_min) * i / n;
-      const SurfacePoint d = along_u ? face.derivatives(at, c) : face.derivatives(c, at);
-      length +=
-          (along_u ? d.dv : d.du).norm() * (along_u ? b.v_max - b.v_min : b.u_max - b.u_min) / n;
-    }
-    return length <= 1e-9 * face.model_size();
-  };
-  const double lo = along_u ? b.u_min : b.v_min, hi = along_u ? b.u_max : b.v_max;
-  return pole(lo) && pole(hi) ? 2 : 1;
 }
 
 int count_for_size(double length, double size, const char* direction, int fewest) {
@@ -155,14 +128,14 @@ GridLines iso_grid_lines(const SurfaceFace& face, const IsoGridParams& params) {
   if (by_size) {
     check_size(params.size);
     nu = count_for_size(cumulative_arc_length(face, true).back(), params.size, "u",
-                        fewest_cells(face, true));
+                        fewest_cells_along(face, true));
     nv = count_for_size(cumulative_arc_length(face, false).back(), params.size, "v",
-                        fewest_cells(face, false));
+                        fewest_cells_along(face, false));
   } else {
     require_in_range("u_count", params.u_count, 1, 1e6);
     require_in_range("v_count", params.v_count, 1, 1e6);
     for (const bool along_u : {true, false}) {
-      const int fewest = fewest_cells(face, along_u);
+      const int fewest = fewest_cells_along(face, along_u);
       const int count = along_u ? params.u_count : params.v_count;
       if (count < fewest)
         throw InvalidParameter(std::string(along_u ? "u_count" : "v_count") + " must be at least " +
@@ -187,8 +160,8 @@ GridLines equal_size_grid_lines(const SurfaceFace& face, const EqualSizeGridPara
   check_size(params.size);
   const std::vector<double> cu = cumulative_arc_length(face, true);
   const std::vector<double> cv = cumulative_arc_length(face, false);
-  const int nu = count_for_size(cu.back(), params.size, "u", fewest_cells(face, true));
-  const int nv = count_for_size(cv.back(), params.size, "v", fewest_cells(face, false));
+  const int nu = count_for_size(cu.back(), params.size, "u", fewest_cells_along(face, true));
+  const int nv = count_for_size(cv.back(), params.size, "v", fewest_cells_along(face, false));
   check_clip_params(params.clip, nu, nv);
   const UvBounds b = face.bounds();
   return {arc_length_lines(b.u_min, b.u_max, cu, nu), arc_length_lines(b.v_min, b.v_max, cv, nv)};
