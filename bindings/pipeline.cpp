@@ -253,7 +253,8 @@ void bind_pipeline(py::module_& m) {
       .def_readonly("shared_edge_nodes", &FaceSetResult::shared_edge_nodes)
       .def_readonly("shared_nodes_taken_over", &FaceSetResult::shared_nodes_taken_over)
       .def_readonly("faces_traced_across", &FaceSetResult::faces_traced_across)
-      .def_readonly("faces_traced_across_surfaces", &FaceSetResult::faces_traced_across_surfaces);
+      .def_readonly("faces_traced_across_surfaces", &FaceSetResult::faces_traced_across_surfaces)
+      .def_readonly("smaller_size", &FaceSetResult::smaller_size);
   m.def(
       "panelize_faces",
       [](std::shared_ptr<FaceSet> set, const std::string& method, const ParamValues& values,

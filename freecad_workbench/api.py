@@ -470,6 +470,10 @@ def _face_set_result(r, method, values, params, face_set):
     result.summary["shared_nodes_taken_over"] = r.shared_nodes_taken_over
     result.summary["faces_traced_across"] = r.faces_traced_across
     result.summary["faces_traced_across_surfaces"] = r.faces_traced_across_surfaces
+    # boundary_driven: faces the set's size was too coarse for, meshed at the
+    # first smaller size that works: {face index: size in mm}.
+    result.summary["faces_at_a_smaller_size"] = {
+        f: float(s) for f, s in enumerate(r.smaller_size) if s > 0}
     return result
 
 

@@ -466,6 +466,13 @@ class Panelization(_StateMixin):
         # where they leave it uncovered or overlap (summary coverage_warning).
         if s.get("coverage_warning"):
             FreeCAD.Console.PrintWarning(f"Tessella: {obj.Label}: {s['coverage_warning']}\n")
+        # boundary_driven on a set: faces its size was too coarse for.
+        smaller = s.get("faces_at_a_smaller_size") or {}
+        if smaller:
+            listed = ", ".join(f"face {f + 1} at {size:.4g} mm" for f, size in smaller.items())
+            FreeCAD.Console.PrintWarning(
+                f"Tessella: {obj.Label}: the size is too coarse for {len(smaller)} face(s), "
+                f"meshed finer: {listed}\n")
 
 
 class PanelizationPart(_StateMixin):

@@ -320,6 +320,42 @@ def test_a_nurbs_cylinder_with_its_caps(method):
     assert 0.985 < alone.metrics["panel_area"].sum() / (math.pi * radius ** 2) < 1.0
 
 
+def test_boundary_driven_meshes_a_face_too_small_for_the_size_finer():
+    # A 300 mm column with its caps at 300 mm: each cap (a disk as wide as
+    # the size) is too coarse for boundary_driven's curves, and the whole set
+    # was refused ("face 2: ... size 300 mm is too coarse ... size X works";
+    # 39 sets of small STEP parts in the corpus sweep). In a set, such a face
+    # is meshed at the first smaller size that works, reported per face.
+    shape = Part.makeCylinder(150, 3000)
+    caps = [i for i, f in enumerate(shape.Faces) if f.Surface.__class__.__name__ == "Plane"]
+    with pytest.raises(RuntimeError, match="too coarse"):
+        tessella.panelize(shape.Faces[caps[0]], method="boundary_driven", size=300.0)
+    r = tessella.panelize_faces(shape, method="boundary_driven", size=300.0)
+    smaller = r.summary["faces_at_a_smaller_size"]
+    # The caps, and the column itself: four panels round its 942 mm girth.
+    side = next(i for i in range(3) if i not in caps)
+    assert sorted(smaller) == [0, 1, 2]
+    assert smaller[side] == pytest.approx(2 * math.pi * 150 / 4, rel=1e-5)  # the rim polyline
+    assert all(0 < smaller[f] < 300.0 for f in caps)
+    assert check_conforming(shape, r) >= 2 * 4
+    assert set(r.panel_face.tolist()) == {0, 1, 2}
+    # Each cap alone at the size taken: the same panels as in the set (the
+    # join only inserts the column's rim nodes into the cap's outline).
+    for f in caps:
+        size = smaller[f]
+        alone = tessella.panelize(shape.Faces[f], method="boundary_driven", size=size)
+        in_set = np.sum(r.panel_face == f)
+        assert in_set == len(alone.panels)
+    # The side at least an inscribed square prism (its end panels take the
+    # caps' rim nodes into their outlines: bent pieces, a little more), at
+    # most the cylinder; the caps flat disks with their outlines on the rim.
+    area = r.metrics["panel_area"]
+    prism = 4 * 2 * 150 * math.sin(math.pi / 4) * 3000
+    assert prism * (1 - 1e-9) < area[r.panel_face == side].sum() < 2 * math.pi * 150 * 3000
+    disks = area[r.panel_face != side].sum() / (2 * math.pi * 150 ** 2)
+    assert 0.95 < disks <= 1.0
+
+
 def test_periodic_side_next_to_a_planar_top():
     shape = cylinder_and_top()
     assert len(shape.Faces) == 2

@@ -114,6 +114,11 @@ struct BoundaryDrivenParams {
   bool principal_directions = false;
   double boundary_blend = 0.25;
   double field_smoothness = 0.25;
+  // Where `size` is too coarse for the face's openings and notches: return
+  // the mesh at the first smaller size that works (its nominal_area is that
+  // size squared) instead of an error naming that size. A face set takes it
+  // for each face, so that one small face of a part does not refuse the set.
+  bool take_a_smaller_size = false;
 };
 
 // curvature_lines' parameters: boundary_driven's, along the principal

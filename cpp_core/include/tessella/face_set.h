@@ -60,6 +60,10 @@ struct FaceSetResult {
   // boundary_driven: faces on different surfaces, joined by smooth edges,
   // meshed from curves traced across them (bd_across_surfaces.h).
   int faces_traced_across_surfaces = 0;
+  // boundary_driven: per face, the smaller size it was meshed at where the
+  // set's size is too coarse for its openings and notches (a small face of a
+  // STEP part), else 0.
+  std::vector<double> smaller_size;
 };
 
 // The pipeline on every face of `set` (faces side by side on `threads`

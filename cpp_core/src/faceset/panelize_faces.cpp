@@ -615,6 +615,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     across = curves_across_faces(set, values, workers);
   }
   std::vector<char> traced_alone(n, 0), walked_alone(n, 0);
+  std::vector<double> smaller_size(n, 0.0);
   std::vector<FaceInGroup> smooth_groups;
   if (method == "boundary_driven") {
     report_stage(0.0, "tracing curves across faces that join smoothly");
@@ -683,6 +684,18 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
                                           : equal_size_grid_params(face_values[f]).clip;
           modelled[f] = run_method_with(face, decl, face_values[f],
                                         [&] { return grid_on_lines(face, *grid_lines[f], clip); });
+          done = true;
+        }
+        if (!done && method == "boundary_driven") {
+          // A face the set's size is too coarse for (a notch or an opening
+          // of a small STEP part: 39 sets of the corpus sweep were refused whole)
+          // is meshed at the first smaller size that works, and reported.
+          BoundaryDrivenParams p = boundary_driven_params(face_values[f]);
+          p.take_a_smaller_size = true;
+          modelled[f] =
+              run_method_with(face, decl, face_values[f], [&] { return boundary_driven(face, p); });
+          const double taken = std::sqrt(modelled[f].mesh.nominal_area);
+          if (taken < p.size * (1 - 1e-9)) smaller_size[f] = taken;
           done = true;
         }
         if (!done) modelled[f] = run_method(face, decl, face_values[f]);
@@ -785,6 +798,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     for (std::size_t f = 0; f < across.size(); ++f)
       out.faces_traced_across += across[f] && !traced_alone[f] ? 1 : 0;
     for (std::size_t f = 0; f < n; ++f) out.faces_traced_across_surfaces += group_traced[f];
+    out.smaller_size = smaller_size;
     for (std::size_t f = 0; f < walked.size(); ++f)
       out.faces_traced_across += walked[f] && !walked_alone[f] ? 1 : 0;
     join(results, out);
