@@ -356,6 +356,29 @@ def test_boundary_driven_meshes_a_face_too_small_for_the_size_finer():
     assert 0.95 < disks <= 1.0
 
 
+def test_boundary_driven_a_tiny_face_on_the_union_s_surface():
+    # A 2 mm square cut from the corner of a 1 m plate, both faces on one
+    # plane: the union's curves are traced at the set's spacing, and the
+    # square's edges shorter than the collapse length raised a parameter
+    # error that refused the set ("face 2: min edge length (mm) must be in
+    # [0, 2.83], got 18.06"; a 0.05 mm face of OCCT's Pump_Nut likewise).
+    # The square now traces on its own.
+    V = FreeCAD.Vector
+    plane = Part.Plane()
+    plate = Part.Face(plane, Part.makePolygon([V(0, 0, 0), V(1000, 0, 0), V(1000, 998, 0),
+                                               V(998, 998, 0), V(998, 1000, 0), V(0, 1000, 0),
+                                               V(0, 0, 0)]))
+    corner = Part.Face(plane, Part.makePolygon([V(998, 998, 0), V(1000, 998, 0),
+                                                V(1000, 1000, 0), V(998, 1000, 0),
+                                                V(998, 998, 0)]))
+    shell = Part.Shell([plate, corner])
+    r = tessella.panelize_faces(shell, method="boundary_driven", size=25.8)
+    assert r.summary["faces_traced_across"] == 1  # the plate on the union's curves
+    assert set(r.panel_face.tolist()) == {0, 1}
+    assert check_conforming(shell, r) >= 2
+    assert r.metrics["panel_area"].sum() == pytest.approx(1e6, rel=1e-9)  # flat panels
+
+
 def test_periodic_side_next_to_a_planar_top():
     shape = cylinder_and_top()
     assert len(shape.Faces) == 2

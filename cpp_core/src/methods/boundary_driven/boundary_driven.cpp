@@ -247,6 +247,12 @@ void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, do
     throw GeometryFailure("the boundary-driven curve network has no faces");
 
   BdNetwork net = r.network;
+  // A face of a union or a smooth group traced at the group's spacing may be
+  // smaller than the edges it would collapse (a 0.05 mm face of OCCT's
+  // Pump_Nut at 1.5 mm: a parameter error refused the whole set); a
+  // geometric failure lets it trace on its own.
+  if (!(params.min_edge_fraction * spacing <= ms))
+    throw GeometryFailure("boundary-driven mesh: the face is smaller than its curves' spacing");
   r.collapsed_edges = collapse_short_edges(face, net, params.min_edge_fraction * spacing);
   r.removed_triangles = remove_skewed_triangles(net, params.skew_ratio);
   pin_shared_edge_nodes(net, pinned, false);
