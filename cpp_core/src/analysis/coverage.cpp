@@ -213,20 +213,12 @@ std::vector<Vec2> region_outline(const SurfaceFace& face, const std::vector<Vec2
 // dome), a panel beside the seam may have corners on both sides of it (a
 // merge moved a seam node off the seam, or a vertex on the seam has one (u,v)
 // for both sides): its corners are unwrapped into one run before the pole
-// substitution, and the region is then cut into the period's strip with its
-// shifted copies. A corner moves by a period only where it is more than
-// three quarters of one from the previous: a panel across the seam has a
-// jump of nearly a period, while a coarse panel may span half of one
-// exactly (a cylinder cut in two; rounding there collapsed it).
+// substitution (seam_shift: rounding at half a period collapsed a cylinder
+// cut in two), and the region is then cut into the period's strip with its
+// shifted copies.
 void unwrap(std::vector<Vec2>& q, int axis, double period) {
-  for (std::size_t k = 1; k < q.size(); ++k) {
-    double& c = q[k][axis];
-    const double jump = c - q[k - 1][axis];
-    if (jump > 0.75 * period)
-      c -= period;
-    else if (jump < -0.75 * period)
-      c += period;
-  }
+  for (std::size_t k = 1; k < q.size(); ++k)
+    q[k][axis] += seam_shift(q[k - 1][axis], q[k][axis], period);
 }
 
 // The part of polygon q with lo <= coordinate `axis` <= hi (Sutherland-Hodgman).

@@ -159,13 +159,8 @@ double panel_turn(const SurfaceFace& face, const std::vector<Vec2>& corner_uv) {
         x = lo = hi = last = c[axis];
         continue;
       }
-      double step = c[axis] - last;
-      if (step > 0.75 * period)
-        step -= period;
-      else if (step < -0.75 * period)
-        step += period;
+      x += (c[axis] - last) + seam_shift(last, c[axis], period);
       last = c[axis];
-      x += step;
       lo = std::min(lo, x), hi = std::max(hi, x);
     }
     widest = std::max(widest, (hi - lo) / period);

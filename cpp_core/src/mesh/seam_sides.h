@@ -30,10 +30,22 @@ bool runs_along_seam(const SurfaceFace& face, const Vec2& a, const Vec2& b);
 // none on a face not closed round a seam.
 std::vector<double> rim_lengths(const SurfaceFace& face, const std::vector<TrimLoop>& loops);
 
+// What to add to a corner's coordinate along a closed direction to read it
+// on the previous corner's side of the seam: a period less or more where it
+// is more than three quarters of one from the previous, else 0 (a panel
+// across the seam jumps by nearly a period, while a coarse panel may span
+// half of one exactly: a cylinder cut in two). The coverage check and
+// panel_turn read corners by this one rule.
+inline double seam_shift(double previous, double next, double period) {
+  const double step = next - previous;
+  if (step > 0.75 * period) return -period;
+  if (step < -0.75 * period) return period;
+  return 0.0;
+}
+
 // The largest share of a period that a panel with these corners spans
-// round a closed direction (corners at a pole left out; a jump of more than
-// three quarters of a period taken as the seam, as the coverage check
-// does); 0 on a face not closed round a seam. At half or more a panel is no
+// round a closed direction (corners at a pole left out; corners read by
+// seam_shift); 0 on a face not closed round a seam. At half or more a panel is no
 // sheet a workshop can bend: two such make a cylinder two flat panels
 // through its axis, one a ring.
 double panel_turn(const SurfaceFace& face, const std::vector<Vec2>& corner_uv);
