@@ -233,7 +233,9 @@ void bind_pipeline(py::module_& m) {
              return std::const_pointer_cast<SurfaceFace>(s.face(i));
            })
       .def_property_readonly("shared_edge_count", &FaceSet::shared_edge_count)
-      .def_property_readonly("sewn", &FaceSet::sewn);
+      .def_property_readonly("sewn", &FaceSet::sewn)
+      .def_property_readonly("given_count", &FaceSet::given_count)
+      .def("given_index", &FaceSet::given_index, py::arg("i"));
   py::class_<FaceSetResult>(m, "FaceSetResult")
       .def_readonly("combined", &FaceSetResult::combined)
       .def_property_readonly(
@@ -254,7 +256,12 @@ void bind_pipeline(py::module_& m) {
       .def_readonly("shared_nodes_taken_over", &FaceSetResult::shared_nodes_taken_over)
       .def_readonly("faces_traced_across", &FaceSetResult::faces_traced_across)
       .def_readonly("faces_traced_across_surfaces", &FaceSetResult::faces_traced_across_surfaces)
-      .def_readonly("smaller_size", &FaceSetResult::smaller_size);
+      .def_readonly("smaller_size", &FaceSetResult::smaller_size)
+      .def_property_readonly("skipped", [](const FaceSetResult& r) {
+        py::dict out;
+        for (const FaceSet::Skipped& s : r.skipped) out[py::int_(s.face)] = s.why;
+        return out;
+      });
   m.def(
       "panelize_faces",
       [](std::shared_ptr<FaceSet> set, const std::string& method, const ParamValues& values,

@@ -474,6 +474,7 @@ def _face_set_result(r, method, values, params, face_set):
     # first smaller size that works: {face index: size in mm}.
     result.summary["faces_at_a_smaller_size"] = {
         f: float(s) for f, s in enumerate(r.smaller_size) if s > 0}
+    result.summary["skipped_faces"] = dict(r.skipped)
     return result
 
 

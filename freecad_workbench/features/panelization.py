@@ -473,6 +473,12 @@ class Panelization(_StateMixin):
             FreeCAD.Console.PrintWarning(
                 f"Tessella: {obj.Label}: the size is too coarse for {len(smaller)} face(s), "
                 f"meshed finer: {listed}\n")
+        # A set's faces that enclose no area (slits of a STEP export): left out.
+        skipped = s.get("skipped_faces") or {}
+        if skipped:
+            listed = ", ".join(f"face {f + 1} ({why})" for f, why in skipped.items())
+            FreeCAD.Console.PrintWarning(
+                f"Tessella: {obj.Label}: {len(skipped)} face(s) without area left out: {listed}\n")
 
 
 class PanelizationPart(_StateMixin):

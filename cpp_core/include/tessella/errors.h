@@ -18,6 +18,13 @@ struct InvalidGeometry : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// A face that encloses no area (a slit: its parameter range is empty in
+// one direction, or its area vanishes against its size). A face set leaves
+// such a face out (there is nothing to panel) instead of refusing the set.
+struct FaceWithoutArea : InvalidGeometry {
+  using InvalidGeometry::InvalidGeometry;
+};
+
 // The requested result would be too large (e.g. more panels than the cap).
 struct LimitExceeded : std::length_error {
   using std::length_error::length_error;

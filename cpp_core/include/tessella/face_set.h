@@ -16,16 +16,29 @@ namespace tessella {
 class FaceSet {
  public:
   // Every face of the shape, in OCCT's explorer order (a face met twice, as
-  // in a compound holding it twice, once). Faces that touch along edges they
-  // do not share (faces of several objects, an unsewn STEP shell) are sewn
-  // first, so those edges are shared (sewn() tells). Throws InvalidGeometry
-  // for a shape without faces or a face that cannot be evaluated (naming it:
-  // "face 3: ...").
+  // in a compound holding it twice, once), but faces that enclose no area
+  // (slits a STEP exporter left between two faces: skipped()). Faces that
+  // touch along edges they do not share (faces of several objects, an
+  // unsewn STEP shell, the two sides of a slit left out) are sewn first, so
+  // those edges are shared (sewn() tells). Throws InvalidGeometry for a
+  // shape without faces, a face that cannot be evaluated (naming it: "face
+  // 3: ...", numbered as given) or a shape of no face with an area.
   static FaceSet from_brep_string(const std::string& brep);
 
+  // The faces panelized (the faces given but those skipped).
   std::size_t size() const;
   // Face i (its own copy of the geometry: threads evaluate faces side by side).
   std::shared_ptr<const SurfaceFace> face(std::size_t i) const;
+  // How many faces the shape has, and face i's index among them (0-based):
+  // results and messages name faces as given.
+  std::size_t given_count() const;
+  int given_index(std::size_t i) const;
+  // The faces left out, by their index as given, and why.
+  struct Skipped {
+    int face = 0;
+    std::string why;
+  };
+  const std::vector<Skipped>& skipped() const;
   // Edges bounding exactly two different faces of the set.
   std::size_t shared_edge_count() const;
   // Whether faces were sewn along edges they did not share.
@@ -39,6 +52,8 @@ class FaceSet {
   std::shared_ptr<Impl> impl_;
 };
 
+// Face indices in a result (panel_face, face_summaries, ...) and in its
+// messages are the faces' as given (FaceSet::given_index).
 struct FaceSetResult {
   // All faces' panels in one mesh (face order, then each face's own order),
   // welded along the shared edges; `face` is null, the summary adds up the
@@ -64,6 +79,8 @@ struct FaceSetResult {
   // set's size is too coarse for its openings and notches (a small face of a
   // STEP part), else 0.
   std::vector<double> smaller_size;
+  // The faces the set left out (FaceSet::skipped): no panel, an empty summary.
+  std::vector<FaceSet::Skipped> skipped;
 };
 
 // The pipeline on every face of `set` (faces side by side on `threads`

@@ -9,10 +9,10 @@
 #include <string>
 #include <utility>
 
+#include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
 #include "tessella/panel_mesh.h"
-#include "mesh/panel_model.h"
 #include "tessella/surface_face.h"
 
 namespace tessella {
@@ -219,14 +219,20 @@ std::vector<FlatPatch> flatten_face_set_panels(const FaceSet& set, const PanelMe
                                                const FlattenParams& params) {
   if (panel_face.size() != mesh.panels.size())
     throw InvalidParameter("flatten: one face index per panel expected");
+  // panel_face names faces as given; the set holds those it did not skip.
+  std::vector<int> held(set.given_count(), -1);
+  for (std::size_t f = 0; f < set.size(); ++f)
+    held[static_cast<std::size_t>(set.given_index(f))] = static_cast<int>(f);
   std::vector<FlatPatch> out;
   out.reserve(mesh.panels.size());
   for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
     const int f = panel_face[p];
-    if (f < 0 || std::size_t(f) >= set.size())
+    if (f < 0 || std::size_t(f) >= held.size() || held[std::size_t(f)] < 0)
       throw InvalidParameter("flatten: panel " + std::to_string(p + 1) + " names face " +
-                             std::to_string(f + 1) + " of a set of " + std::to_string(set.size()));
-    out.push_back(flatten_patch(*set.face(std::size_t(f)), panel_corner_uv(mesh, p), params));
+                             std::to_string(f + 1) + ", not a face of the set's " +
+                             std::to_string(set.given_count()));
+    out.push_back(flatten_patch(*set.face(std::size_t(held[std::size_t(f)])),
+                                panel_corner_uv(mesh, p), params));
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <cmath>
+#include <cstdio>
 
 #include "faceset/face_set_impl.h"
 #include "faceset/touching_faces.h"
@@ -24,6 +25,9 @@ FaceSet::FaceSet(std::shared_ptr<Impl> impl) : impl_(std::move(impl)) {}
 std::size_t FaceSet::size() const { return impl_->faces.size(); }
 std::shared_ptr<const SurfaceFace> FaceSet::face(std::size_t i) const { return impl_->faces.at(i); }
 std::size_t FaceSet::shared_edge_count() const { return impl_->shared.size(); }
+std::size_t FaceSet::given_count() const { return impl_->given_count; }
+int FaceSet::given_index(std::size_t i) const { return impl_->given_index.at(i); }
+const std::vector<FaceSet::Skipped>& FaceSet::skipped() const { return impl_->skipped; }
 
 namespace {
 
@@ -37,48 +41,107 @@ constexpr double kSewFraction = 1e-5;
 
 bool FaceSet::sewn() const { return impl_->sewn; }
 
+namespace {
+
+// The faces, sewn where they touch along edges they do not share, each
+// copied with its geometry (BRepBuilderAPI_Copy): faces built on one surface
+// would otherwise share it across threads. The copier maps every edge to
+// its copy, whose curve on the copied face is looked up. `shape` and
+// `face_map` become the faces' compound where they were sewn or some left
+// out (else the shape's own edge order stays). A face without area is
+// recorded in `without_area` (its index in `faces`) when `skip` is
+// set, else refused.
+std::vector<std::unique_ptr<BRepBuilderAPI_Copy>> build_faces(
+    std::vector<TopoDS_Face> faces, const std::vector<int>& given, double tolerance, bool skip,
+    FaceSet::Impl& impl, TopoDS_Shape& shape, TopTools_IndexedMapOfShape& face_map,
+    std::vector<FaceSet::Skipped>& without_area) {
+  const bool sew = faces.size() > 1 && tolerance > 0 && have_touching_free_edges(faces, tolerance);
+  if (sew) {
+    faces = sew_faces(faces, tolerance);
+    impl.sewn = true;
+  }
+  if (sew || face_map.Extent() != static_cast<int>(faces.size())) {
+    // The shape is now these faces (sewn, or some left out).
+    TopoDS_Compound compound;
+    BRep_Builder builder;
+    builder.MakeCompound(compound);
+    face_map.Clear();
+    for (const TopoDS_Face& f : faces) builder.Add(compound, f), face_map.Add(f);
+    shape = compound;
+  }
+  std::vector<std::unique_ptr<BRepBuilderAPI_Copy>> copies;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const std::string name = "face " + std::to_string(given[i] + 1) + ": ";
+    try {
+      copies.push_back(std::make_unique<BRepBuilderAPI_Copy>(faces[i], true));
+      const TopoDS_Face copy = TopoDS::Face(copies.back()->Shape());
+      auto face = std::make_shared<SurfaceFace>(SurfaceFace::from_occt_face(copy));
+      // A sliver narrower than the sewing tolerance (its area over its
+      // extent bounds its width) is a slit as far as the set goes: its two
+      // sides are within the tolerance of each other.
+      if (skip && face->area() < tolerance * face->model_size()) {
+        char width[64];
+        std::snprintf(width, sizeof width, "%.3g", face->area() / face->model_size());
+        throw FaceWithoutArea(std::string("the face is a sliver about ") + width +
+                              " mm wide, narrower than the set's sewing tolerance");
+      }
+      impl.original.push_back(faces[i]);
+      impl.occt.push_back(copy);
+      impl.faces.push_back(std::move(face));
+    } catch (const FaceWithoutArea& e) {
+      if (!skip) throw FaceWithoutArea(name + e.what());
+      without_area.push_back({static_cast<int>(i), e.what()});
+    } catch (const InvalidGeometry& e) {
+      throw InvalidGeometry(name + e.what());
+    } catch (const Standard_Failure& e) {
+      throw InvalidGeometry(name + "cannot be copied: " + e.GetMessageString());
+    }
+  }
+  return copies;
+}
+
+}  // namespace
+
 FaceSet FaceSet::from_brep_string(const std::string& brep) {
   TopoDS_Shape shape = shape_from_brep_string(brep);
   TopTools_IndexedMapOfShape face_map;
   TopExp::MapShapes(shape, TopAbs_FACE, face_map);
   if (face_map.IsEmpty()) throw InvalidGeometry("the shape has no face: select faces");
+  std::vector<TopoDS_Face> faces;
+  std::vector<int> given;
+  for (int i = 1; i <= face_map.Extent(); ++i)
+    faces.push_back(TopoDS::Face(face_map(i))), given.push_back(i - 1);
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box);
+  const double tolerance = box.IsVoid() ? 0.0 : kSewFraction * std::sqrt(box.SquareExtent());
   auto impl = std::make_shared<Impl>();
-  if (face_map.Extent() > 1) {
-    std::vector<TopoDS_Face> faces;
-    for (int i = 1; i <= face_map.Extent(); ++i) faces.push_back(TopoDS::Face(face_map(i)));
-    Bnd_Box box;
-    BRepBndLib::Add(shape, box);
-    const double tolerance = box.IsVoid() ? 0.0 : kSewFraction * std::sqrt(box.SquareExtent());
-    if (tolerance > 0 && have_touching_free_edges(faces, tolerance)) {
-      faces = sew_faces(faces, tolerance);
-      TopoDS_Compound sewn;
-      BRep_Builder builder;
-      builder.MakeCompound(sewn);
-      face_map.Clear();
-      for (const TopoDS_Face& f : faces) builder.Add(sewn, f), face_map.Add(f);
-      shape = sewn;
-      impl->sewn = true;
+  impl->given_count = faces.size();
+  const bool skip = faces.size() > 1;
+  std::vector<Skipped> without_area;
+  auto copies = build_faces(faces, given, tolerance, skip, *impl, shape, face_map, without_area);
+  if (!without_area.empty()) {
+    // Left out, the slit's two neighbours touch along edges they shared
+    // with it: built again, without it, they are sewn to each other.
+    std::vector<TopoDS_Face> kept;
+    std::vector<int> kept_given;
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      if (next < without_area.size() && without_area[next].face == static_cast<int>(i)) {
+        impl->skipped.push_back({given[i], without_area[next].why});
+        ++next;
+        continue;
+      }
+      kept.push_back(faces[i]), kept_given.push_back(given[i]);
     }
+    if (kept.empty())
+      throw FaceWithoutArea("no face of the shape encloses an area (" + impl->skipped[0].why + ")");
+    Impl& again = *impl;
+    again.occt.clear(), again.faces.clear(), again.original.clear(), again.sewn = false;
+    without_area.clear();
+    given = kept_given;
+    copies = build_faces(kept, given, tolerance, false, again, shape, face_map, without_area);
   }
-  // Each face copied with its geometry (BRepBuilderAPI_Copy): faces built on
-  // one surface would otherwise share it across threads. The copier maps
-  // every edge to its copy, whose curve on the copied face is looked up.
-  std::vector<std::unique_ptr<BRepBuilderAPI_Copy>> copies;
-  for (int i = 1; i <= face_map.Extent(); ++i) {
-    const TopoDS_Face& face = TopoDS::Face(face_map(i));
-    impl->original.push_back(face);
-    try {
-      copies.push_back(std::make_unique<BRepBuilderAPI_Copy>(face, true));
-      const TopoDS_Face copy = TopoDS::Face(copies.back()->Shape());
-      impl->occt.push_back(copy);
-      impl->faces.push_back(std::make_shared<SurfaceFace>(SurfaceFace::from_occt_face(copy)));
-    } catch (const InvalidGeometry& e) {
-      throw InvalidGeometry("face " + std::to_string(i) + ": " + e.what());
-    } catch (const Standard_Failure& e) {
-      throw InvalidGeometry("face " + std::to_string(i) +
-                            ": cannot be copied: " + e.GetMessageString());
-    }
-  }
+  impl->given_index = given;
   TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
   TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
   for (int e = 1; e <= edge_faces.Extent(); ++e) {

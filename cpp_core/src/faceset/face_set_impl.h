@@ -35,6 +35,9 @@ struct FaceSet::Impl {
   std::vector<TopoDS_Face> occt;  // the copies the SurfaceFaces were built from
   std::vector<std::shared_ptr<const SurfaceFace>> faces;
   std::vector<SharedEdge> shared;
+  std::size_t given_count = 0;
+  std::vector<int> given_index;  // per face, its index in the shape as given
+  std::vector<FaceSet::Skipped> skipped;
   bool sewn = false;  // faces touching along edges they did not share were sewn
   // The faces as given (sewn), sharing their edges: what surface_groups unifies.
   std::vector<TopoDS_Face> original;

@@ -54,8 +54,8 @@ void for_each_face(const FaceSet& set, int threads, const Work& work) {
 // work() for face f, a failure saying which face it was ("face 3: ..."): in
 // a set of tens of faces a message without it leaves the user to guess.
 template <class Work>
-void naming_the_face(std::size_t f, const Work& work) {
-  const std::string face = "face " + std::to_string(f + 1) + ": ";
+void naming_the_face(const FaceSet& set, std::size_t f, const Work& work) {
+  const std::string face = "face " + std::to_string(set.given_index(f) + 1) + ": ";
   try {
     work();
   } catch (const GeometryFailure& e) {
@@ -67,6 +67,23 @@ void naming_the_face(std::size_t f, const Work& work) {
   } catch (const InvalidParameter& e) {
     throw InvalidParameter(face + e.what());
   }
+}
+
+// The result's face indices as the faces were given (a face the set left
+// out has no panel and an empty summary).
+void name_faces_as_given(const FaceSet& set, FaceSetResult& out) {
+  for (auto* index : {&out.panel_face, &out.vertex_face, &out.rod_face})
+    for (int& f : *index) f = set.given_index(static_cast<std::size_t>(f));
+  std::vector<PanelizeSummary> summaries(set.given_count());
+  std::vector<double> smaller(set.given_count(), 0.0);
+  for (std::size_t f = 0; f < set.size(); ++f) {
+    const auto g = static_cast<std::size_t>(set.given_index(f));
+    summaries[g] = std::move(out.face_summaries[f]);
+    smaller[g] = out.smaller_size[f];
+  }
+  out.face_summaries = std::move(summaries);
+  out.smaller_size = std::move(smaller);
+  out.skipped = set.skipped();
 }
 
 // The faces' results as one: vertices, panels and their data in face order;
@@ -213,7 +230,8 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
 
 // The set's summary: counts over all panels, rods and nodes; the faces' sums
 // and area-weighted coverage.
-void summarize_set(const std::vector<PanelizeResult>& faces, FaceSetResult& out, double seconds) {
+void summarize_set(const FaceSet& set, const std::vector<PanelizeResult>& faces, FaceSetResult& out,
+                   double seconds) {
   PanelizeResult& c = out.combined;
   PanelizeSummary& s = c.summary;
   const PanelMesh& m = c.mesh;
@@ -252,7 +270,7 @@ void summarize_set(const std::vector<PanelizeResult>& faces, FaceSetResult& out,
     model += x.model_area_ratio * x.face_area;
     if (!x.coverage_warning.empty())
       s.coverage_warning += (s.coverage_warning.empty() ? "" : "; ") + std::string("face ") +
-                            std::to_string(f + 1) + ": " + x.coverage_warning;
+                            std::to_string(set.given_index(f) + 1) + ": " + x.coverage_warning;
     out.face_summaries.push_back(x);
   }
   if (s.face_area > 0) {
@@ -635,7 +653,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
   for (int attempt = 0;; ++attempt) {
     report_stage(0.0, "panelizing the faces");
     for_each_face(set, workers, [&](std::size_t f) {
-      naming_the_face(f, [&] {
+      naming_the_face(set, f, [&] {
         const SurfaceFace& face = *set.face(f);
         const SurfaceFace::FastEvaluation fast(face);
         face.reset_global_projections();
@@ -714,7 +732,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
       modelled[f].coverage_allowance = 1.5 * shared.strip_area[f];  // a margin on 2/3 c h
     report_stage(0.0, "measuring the faces' panels");
     for_each_face(set, workers, [&](std::size_t f) {
-      naming_the_face(f, [&] {
+      naming_the_face(set, f, [&] {
         const SurfaceFace& face = *set.face(f);
         const SurfaceFace::FastEvaluation fast(face);
         model_and_measure(face, decl, face_values[f], modelled[f]);
@@ -775,8 +793,8 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
         int over = 0;
         for (double d : modelled[f].metrics.deviation) over += d <= bound ? 0 : 1;
         if (over > 0)
-          throw GeometryFailure("walking_agent: face " + std::to_string(f + 1) + ": " +
-                                std::to_string(over) +
+          throw GeometryFailure("walking_agent: face " + std::to_string(set.given_index(f) + 1) +
+                                ": " + std::to_string(over) +
                                 " panel(s) deviate more than max_deviation: the bound cannot be "
                                 "met on this face; raise max_deviation or max_refinements");
       }
@@ -785,7 +803,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     report_stage(0.0, "checking the faces' coverage");
     for_each_face(set, workers, [&](std::size_t f) {
       const SurfaceFace::FastEvaluation fast(*set.face(f));
-      naming_the_face(f, [&] {
+      naming_the_face(set, f, [&] {
         results[f] =
             finish_result(set.face(f), decl, face_values[f], std::move(modelled[f]), started);
       });
@@ -803,8 +821,9 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
       out.faces_traced_across += walked[f] && !walked_alone[f] ? 1 : 0;
     join(results, out);
     summarize_set(
-        results, out,
+        set, results, out,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    if (!set.skipped().empty()) name_faces_as_given(set, out);
     return out;
   }
 }

@@ -207,13 +207,14 @@ SurfaceFace SurfaceFace::from_occt_face(const TopoDS_Face& face) {
   }
   const UvBounds& b = impl->bounds;
   const double du = b.u_max - b.u_min, dv = b.v_max - b.v_min;
-  if (!(du > 0) || !(dv > 0) || !std::isfinite(du) || !std::isfinite(dv)) {
-    throw InvalidGeometry("the face is degenerate: its parameter range is empty or infinite");
-  }
-  if (!(impl->model_size > 0) || !std::isfinite(impl->model_size) ||
-      !(impl->area > 1e-12 * impl->model_size * impl->model_size)) {
-    throw InvalidGeometry("the face is degenerate: it has no area");
-  }
+  if (!std::isfinite(du) || !std::isfinite(dv))
+    throw InvalidGeometry("the face is degenerate: its parameter range is infinite");
+  if (!(du > 0) || !(dv > 0))
+    throw FaceWithoutArea("the face is degenerate: its parameter range is empty");
+  if (!std::isfinite(impl->model_size))
+    throw InvalidGeometry("the face is degenerate: it has no finite extent");
+  if (!(impl->model_size > 0) || !(impl->area > 1e-12 * impl->model_size * impl->model_size))
+    throw FaceWithoutArea("the face is degenerate: it has no area");
   double su0, su1, sv0, sv1;
   impl->surface->Bounds(su0, su1, sv0, sv1);
   impl->search = {std::max(su0, b.u_min - 0.1 * du), std::min(su1, b.u_max + 0.1 * du),
