@@ -23,8 +23,9 @@ struct FieldDir {
 
 struct Pole {
   Vec3 xyz;
-  Vec2 uv;       // one (u,v) of it
-  bool along_u;  // the collapsed iso-line runs along u (v is the pole's)
+  Vec2 uv;        // one (u,v) of it
+  bool along_u;   // the collapsed iso-line runs along u (v is the pole's)
+  int loop = -1;  // the boundary loop holding its stretch
 };
 
 // A face the curves run on: its trims, their segment grid, its field and
@@ -122,7 +123,8 @@ class Tracer {
           bool known = false;
           for (const Pole& pole : c.poles) known = known || (pole.xyz - line.xyz[i]).norm() <= tiny;
           if (!known)
-            c.poles.push_back({line.xyz[i], line.uv[i], std::abs(duv.x()) > std::abs(duv.y())});
+            c.poles.push_back({line.xyz[i], line.uv[i], std::abs(duv.x()) > std::abs(duv.y()),
+                               static_cast<int>(&line - boundary.data())});
         }
       }
       charts_.push_back(std::move(c));
@@ -288,6 +290,7 @@ class Tracer {
       // much of the parameter range: the curve ends at the pole, reached
       // straight across the collapsed iso-line from p.
       for (const Pole& pole : ch.poles) {
+        if (&pole == leaving_) continue;
         if ((q3 - pole.xyz).norm() >= p_.stop_fraction * p_.spacing) continue;
         const Vec2 aim = pole.along_u ? Vec2(p.x(), pole.uv.y()) : Vec2(pole.uv.x(), p.y());
         if (first_crossing(c, p, p + 1.05 * (aim - p), false, pts, end, next)) return End::Boundary;
@@ -296,8 +299,23 @@ class Tracer {
       arc += h_ * arc_sign;
       // parallel lines nearby (other lines; this one only far back along it)
       const bd::HashedPoint* nearest = nullptr;
+      // A curve leaving a pole runs among the lines that reached it, which
+      // converge there, until it is a spacing away.
+      const bool by_pole = leaving_ && (q3 - leaving_->xyz).norm() < p_.spacing;
+      // Round a pole the lines of one family converge: at the stop distance
+      // they would join each other until one or two go on, and the cells
+      // between two parallels there go round the face as rings. Where the
+      // girth round the closed direction is under eight stop distances,
+      // lines keep an eighth of it apart instead.
       double nearest_d = p_.stop_fraction * p_.spacing;
+      if (!ch.poles.empty() && (ch.wrap_u || ch.wrap_v)) {
+        const SurfacePoint d = ch.face->derivatives(q.x(), q.y());
+        const double girth =
+            ch.wrap_u ? d.du.norm() * ch.face->u_period() : d.dv.norm() * ch.face->v_period();
+        nearest_d = std::min(nearest_d, girth / 8);
+      }
       hash_.near(q3, [&](const bd::HashedPoint& hp) {
+        if (by_pole) return;
         if (std::abs(hp.dir.dot(ref)) <= kSameFamily) return;
         if (hp.chart == c && across_seam(c, q, hp.uv)) return;
         if (hp.line == id && std::abs(arc - hp.arc) <= 4 * p_.spacing) return;
@@ -426,6 +444,7 @@ class Tracer {
         }
       }
     }
+    seed_at_poles();
     // 2. offset seeds, line by line (boundary loops first, then curves as
     //    made); none beside a smooth edge to another chart
     for (std::size_t ci = 0; ci < charts_.size(); ++ci) {
@@ -442,6 +461,87 @@ class Tracer {
       const TracedCurve t = curves_[c];  // copy: curves_ grows
       for (std::size_t i = 0; i < t.pieces.size(); ++i)
         offset_seeds_along(t.chart[i], t.pieces[i].uv, false);
+    }
+  }
+
+  // A face closed round a pole (a cone's apex, a dome's top) needs at
+  // least three curves from the pole: else the cell round it is one panel
+  // going all the way round (a ring with a slit to the pole, refused; the
+  // curves that come up from the rim converge and stop a stop distance
+  // from each other, before the pole's own capture radius, on any cone
+  // steeper than about 1:2). Curves are added from the pole, a third of a
+  // turn apart, starting from one that reached it, each traced from a
+  // hundredth of a spacing off the pole (its frame is undefined at the
+  // point itself) and starting at the pole.
+  void seed_at_poles() {
+    for (std::size_t ci = 0; ci < charts_.size(); ++ci) {
+      const Chart& ch = charts_[ci];
+      const SurfaceFace& face = *ch.face;
+      for (const Pole& pole : ch.poles) {
+        if (pole.loop < 0 || !(pole.along_u ? ch.wrap_u : ch.wrap_v)) continue;
+        const int axis = pole.along_u ? 0 : 1;
+        const double period = axis == 0 ? face.u_period() : face.v_period();
+        const double near = 1e-6 * p_.spacing;
+        std::vector<double> reached;
+        for (const TracedCurve& t : curves_)
+          for (std::size_t i = 0; i < t.pieces.size(); ++i) {
+            if (t.chart[i] != static_cast<int>(ci) || t.pieces[i].uv.empty()) continue;
+            const BdCurve& piece = t.pieces[i];
+            if (piece.start.loop == pole.loop && (piece.xyz.front() - pole.xyz).norm() <= near)
+              reached.push_back(piece.uv.front()[axis]);
+            if (piece.end.loop == pole.loop && (piece.xyz.back() - pole.xyz).norm() <= near)
+              reached.push_back(piece.uv.back()[axis]);
+          }
+        if (reached.size() >= 3) continue;
+        const BdPolyline& line = (*ch.boundary)[static_cast<std::size_t>(pole.loop)];
+        const double base = reached.empty() ? pole.uv[axis] + period / 6 : reached.front();
+        for (int j = 0; j < 3; ++j) {
+          const double at = base + period * j / 3;
+          bool taken = false;
+          for (double r : reached) {
+            const double d = std::remainder(at - r, period);
+            taken = taken || std::abs(d) < period / 6;
+          }
+          if (!taken) seed_at_pole(static_cast<int>(ci), pole, line, at, period);
+        }
+      }
+    }
+  }
+
+  void seed_at_pole(int c, const Pole& pole, const BdPolyline& line, double at, double period) {
+    const int axis = pole.along_u ? 0 : 1;
+    const SurfaceFace& face = *charts_[static_cast<std::size_t>(c)].face;
+    for (int i = 0; i < line.segment_count(); ++i) {
+      if (!line.collapsed(i) ||
+          (line.xyz[static_cast<std::size_t>(i)] - pole.xyz).norm() > 1e-9 * face.model_size())
+        continue;
+      const Vec2 a = line.uv[static_cast<std::size_t>(i)], b = line.seg_end_uv(i);
+      const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
+      double x = lo + std::fmod(std::fmod(at - lo, period) + period, period);
+      if (x > hi) continue;
+      const double t = (x - a[axis]) / (b[axis] - a[axis]);
+      const Vec2 on_pole = a + t * (b - a);
+      // Off the pole, inward (the face lies left of its loop in (u,v)).
+      const Vec2 along = (b - a).normalized();
+      const Vec2 inward_uv(-along.y(), along.x());
+      const SurfacePoint dp = face.derivatives(on_pole.x(), on_pole.y());
+      const double speed = (dp.du * inward_uv.x() + dp.dv * inward_uv.y()).norm();
+      if (!(speed > 0)) return;
+      const Vec2 start = on_pole + (0.01 * p_.spacing / speed) * inward_uv;
+      if (!charts_[static_cast<std::size_t>(c)].inside.contains(start)) return;
+      const SurfacePoint ds = face.derivatives(start.x(), start.y());
+      const Vec3 inward = ds.du * inward_uv.x() + ds.dv * inward_uv.y();
+      const FieldDir fd = dir_at(c, start, inward);
+      if (fd.d3.dot(inward.normalized()) < 0.3) return;
+      leaving_ = &pole;
+      add_curve(c, start, fd.d3, {pole.loop, line.s_at(i, t)}, true);
+      leaving_ = nullptr;
+      TracedCurve& made = curves_.back();
+      if (!made.pieces.empty() && made.chart[0] == c) {
+        made.pieces[0].uv.insert(made.pieces[0].uv.begin(), on_pole);
+        made.pieces[0].xyz.insert(made.pieces[0].xyz.begin(), pole.xyz);
+      }
+      return;
     }
   }
 
@@ -592,6 +692,7 @@ class Tracer {
   double h_;
   bd::PointHash hash_;
   std::vector<Chart> charts_;
+  const Pole* leaving_ = nullptr;  // the pole the curve being traced starts at
   int max_steps_ = 0;
   std::vector<TracedCurve> curves_;
 };
