@@ -354,17 +354,20 @@ def test_closed_faces_coarser_than_their_rims(solid, quadrangulate, size):
 
 
 @pytest.mark.parametrize("nurbs", [False, True])
-@pytest.mark.parametrize("size", [63.0, 126.0, 251.0])
-def test_a_cone_with_its_apex(size, nurbs):
-    # A cone 400 mm round at its base, 1200 mm high, up to its apex: the
-    # curves from the rim converged and joined each other until one or
-    # two went on, so the cells near the top went round it as rings ("a
-    # panel goes half way round", every size refused; 4.3% uncovered when
-    # the check was off). Now lines keep an eighth of the girth apart where
-    # that is less than their stop distance, and at least three curves
-    # leave the apex: a fan of panels round it.
-    height = 1200.0
-    face = [f for f in Part.makeCone(400, 0, height).Faces
+@pytest.mark.parametrize("radius, height, size", [(400.0, 1200.0, 63.0), (400.0, 1200.0, 126.0),
+                                                  (400.0, 1200.0, 251.0), (300.0, 3000.0, 94.0),
+                                                  (300.0, 3000.0, 188.0)])
+def test_a_cone_with_its_apex(radius, height, size, nurbs):
+    # A cone up to its apex (1:3, and a 1:10 spire): the curves from the
+    # rim converged and joined each other until one or two went on, so the
+    # cells near the top went round it as rings ("a panel goes half way
+    # round", every size refused; 4.3% uncovered when the check was off).
+    # Now lines keep an eighth of the girth apart where that is less than
+    # their stop distance, at least three curves leave the apex (a fan of
+    # panels round it), and no short edge's collapse widens a cell round
+    # the spire past 0.3 of a turn (the spire's last lines are closer than
+    # the collapse length).
+    face = [f for f in Part.makeCone(radius, 0, height).Faces
             if f.Surface.__class__.__name__ == "Cone"][0]
     if nurbs:
         face = face.toNurbs().Faces[0]

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <set>
 
+#include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_geometry.h"
 #include "tessella/errors.h"
 
@@ -67,6 +68,31 @@ bool merge_keeps_panels(const BdNetwork& net, const std::vector<int>& panels, in
       a += bd::cross2(p0, p1);
     }
     if (!(a > 0)) return false;
+  }
+  return true;
+}
+
+// Whether replacing node v by w (w moved to w_uv) widens no panel around
+// them past 0.3 of a turn round a face closed round a seam (panel_turn):
+// near a spire's apex the few lines that reach it are closer than the
+// collapse length, and merging two of them made the cells between them
+// rings (a 1:10 cone); later stages (the skewed triangles' removal,
+// quadrangulation, smoothing) widen a cell further, so the bound is kept
+// well under the half turn the method refuses. A panel already as wide (a
+// column three panels round) may stay so.
+bool merge_keeps_panels_narrow_round(const SurfaceFace& face, const BdNetwork& net,
+                                     const std::vector<int>& panels, int v, int w,
+                                     const Vec2& w_uv) {
+  constexpr double kWidest = 0.3;
+  for (int pi : panels) {
+    std::vector<Vec2> before, after;
+    for (int x : net.panels[static_cast<std::size_t>(pi)]) {
+      const Vec2& uv = net.nodes[static_cast<std::size_t>(x)].uv;
+      before.push_back(uv);
+      after.push_back(x == v || x == w ? w_uv : uv);
+    }
+    const double turn = panel_turn(face, after);
+    if (turn >= kWidest && turn > panel_turn(face, before) + 1e-9) return false;
   }
   return true;
 }
@@ -217,6 +243,7 @@ int remove_skewed_triangles(BdNetwork& net, double ratio) {
 
 int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_length) {
   require_in_range("min edge length (mm)", min_length, 0.0, face.model_size());
+  const bool closed = closed_round_a_seam(face);
   int merged_total = 0;
   for (int pass = 0; pass < 20; ++pass) {
     // candidate edges, shortest first
@@ -267,6 +294,7 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
       std::vector<int> around = incident[v];
       around.insert(around.end(), incident[w].begin(), incident[w].end());
       if (!merge_keeps_panels(net, around, v, w, w_uv)) continue;
+      if (closed && !merge_keeps_panels_narrow_round(face, net, around, v, w, w_uv)) continue;
       if (both_inside) net.nodes[w].uv = moved.uv, net.nodes[w].xyz = moved.point;
       if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
       rep[v] = w;
