@@ -13,7 +13,9 @@ unfolded panels). The folder is written under a temporary name and renamed
 when complete, so a failed or interrupted run never leaves a half-written one
 (an existing folder of that name is replaced only on success).
 
-Progress goes to stderr, one line per input and stage; the exit status is 0
+Progress goes to stderr, one line per input and stage, with the warnings a
+Panelization gives in the Report view (faces left out or meshed finer, a
+coverage warning); the exit status is 0
 when every input succeeded, 1 when any failed (the others still run), 2 for
 bad arguments.
 """
@@ -88,6 +90,7 @@ def run_one(path, out_dir, method, params, log):
 
     import freecad_workbench as tessella
     from freecad_workbench.export import schedule_csv
+    from freecad_workbench.features.panelization import result_warnings
 
     name = os.path.splitext(os.path.basename(path))[0]
     final = os.path.join(out_dir, name)
@@ -105,6 +108,9 @@ def run_one(path, out_dir, method, params, log):
         p = tessella.make_panelization(source if len(shape.Faces) > 1 else (source, "Face1"),
                                        method=method, **params)
         res = p.Proxy.result(p).result
+        # The Report view's warnings, which a headless run does not show.
+        for warning in result_warnings(res.summary):
+            log(f"{name}: warning: {warning}")
         log(f"{name}: {len(res.panels)} panels, {len(res.rods)} rods, {len(res.nodes)} nodes; "
             "writing schedules and DXF")
         schedule_csv.write_panel_schedule(res, os.path.join(work, "panels.csv"))

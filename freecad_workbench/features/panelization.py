@@ -462,24 +462,28 @@ class Panelization(_StateMixin):
         obj.QuadShare = float(s.get("quad_share", 0.0))
         if "Folds" in obj.PropertiesList:
             obj.Folds = int(s.get("fold_count", 0))
-        # Methods that need not tile the face (the guide-line methods) say
-        # where they leave it uncovered or overlap (summary coverage_warning).
-        if s.get("coverage_warning"):
-            FreeCAD.Console.PrintWarning(f"Tessella: {obj.Label}: {s['coverage_warning']}\n")
-        # boundary_driven on a set: faces its size was too coarse for.
-        smaller = s.get("faces_at_a_smaller_size") or {}
-        if smaller:
-            listed = ", ".join(f"face {f + 1} at {size:.4g} mm" for f, size in smaller.items())
-            FreeCAD.Console.PrintWarning(
-                f"Tessella: {obj.Label}: the size is too coarse for {len(smaller)} face(s), "
-                f"meshed finer: {listed}\n")
-        # A set's faces that enclose no area (slits of a STEP export): left out.
-        skipped = s.get("skipped_faces") or {}
-        if skipped:
-            listed = ", ".join(f"face {f + 1} ({why})" for f, why in skipped.items())
-            FreeCAD.Console.PrintWarning(
-                f"Tessella: {obj.Label}: {len(skipped)} face(s) without area left out: {listed}\n")
+        for warning in result_warnings(s):
+            FreeCAD.Console.PrintWarning(f"Tessella: {obj.Label}: {warning}\n")
 
+
+def result_warnings(summary):
+    """What a user should know of a result that holds (the Report view shows
+    them; the batch CLI prints them): where a method that need not tile the
+    face (the guide-line methods) leaves it uncovered or overlaps; a set's
+    faces boundary_driven's size was too coarse for, meshed finer; a set's
+    faces without area, left out."""
+    out = []
+    if summary.get("coverage_warning"):
+        out.append(summary["coverage_warning"])
+    smaller = summary.get("faces_at_a_smaller_size") or {}
+    if smaller:
+        listed = ", ".join(f"face {f + 1} at {size:.4g} mm" for f, size in smaller.items())
+        out.append(f"the size is too coarse for {len(smaller)} face(s), meshed finer: {listed}")
+    skipped = summary.get("skipped_faces") or {}
+    if skipped:
+        listed = ", ".join(f"face {f + 1} ({why})" for f, why in skipped.items())
+        out.append(f"{len(skipped)} face(s) without area left out: {listed}")
+    return out
 
 class PanelizationPart(_StateMixin):
     """Proxy of the Panels, Rods and Nodes children (Role tells which)."""
