@@ -257,6 +257,7 @@ void bind_pipeline(py::module_& m) {
       .def_readonly("faces_traced_across", &FaceSetResult::faces_traced_across)
       .def_readonly("faces_traced_across_surfaces", &FaceSetResult::faces_traced_across_surfaces)
       .def_readonly("smaller_size", &FaceSetResult::smaller_size)
+      .def_readonly("retraced_alone", &FaceSetResult::retraced_alone)
       .def_property_readonly("skipped", [](const FaceSetResult& r) {
         py::dict out;
         for (const FaceSet::Skipped& s : r.skipped) out[py::int_(s.face)] = s.why;

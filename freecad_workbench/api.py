@@ -475,6 +475,9 @@ def _face_set_result(r, method, values, params, face_set):
     result.summary["faces_at_a_smaller_size"] = {
         f: float(s) for f, s in enumerate(r.smaller_size) if s > 0}
     result.summary["skipped_faces"] = dict(r.skipped)
+    # boundary_driven: faces whose share of curves traced across faces failed
+    # the final check, meshed from their own curves (rows stop at their edges).
+    result.summary["faces_retraced_alone"] = list(r.retraced_alone)
     return result
 
 

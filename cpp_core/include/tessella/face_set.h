@@ -81,6 +81,9 @@ struct FaceSetResult {
   std::vector<double> smaller_size;
   // The faces the set left out (FaceSet::skipped): no panel, an empty summary.
   std::vector<FaceSet::Skipped> skipped;
+  // boundary_driven: faces whose share of the curves traced across faces
+  // failed the final check, meshed from their own curves instead.
+  std::vector<int> retraced_alone;
 };
 
 // The pipeline on every face of `set` (faces side by side on `threads`
