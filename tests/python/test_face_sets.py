@@ -467,6 +467,15 @@ def test_boundary_driven_retraces_a_face_alone_where_the_shared_curves_fail():
     assert one.summary["faces"][38]["panel_count"] > 0
     assert one.summary["gap_fraction"] < 1e-3 and one.summary["overlap_fraction"] < 1e-3
     assert one.metrics["panel_area"].sum() == pytest.approx(shape.Area, rel=1e-3)
+    # Its vertices meet within tolerances of up to 2e-4 mm (faces of a few
+    # mm, edges of 2e-6 mm): the join welds nodes of faces within 1e-6 of
+    # the size (three pairs 1e-8 to 1.2e-5 mm apart were two nodes), and a
+    # panel whose micro-edge vertices became one takes that corner once.
+    nodes = one.vertices[one.nodes]
+    order = np.lexsort(nodes.T)
+    gaps = np.linalg.norm(np.diff(nodes[order], axis=0), axis=1)
+    assert gaps.min() > 1e-6 * shape.BoundBox.DiagonalLength
+    assert all(len(set(map(int, p))) == len(p) for p in one.panels)
     two = tessella.panelize_faces(shape, method="boundary_driven", size=size, threads=2)
     assert_same_result(one, two)
 

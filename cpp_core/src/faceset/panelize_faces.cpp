@@ -86,6 +86,48 @@ void name_faces_as_given(const FaceSet& set, FaceSetResult& out) {
   out.skipped = set.skipped();
 }
 
+// A panel of a face whose vertices along a trim edge shorter than the join's
+// tolerance (a B-rep's micro edge: OCCT's shell1 has edges of 2e-6 mm) all
+// became one earlier face's vertex: that corner once, with its (u,v) and
+// the bend lines' corner indices kept in step. False for a panel left with
+// fewer than three corners (a micro face's, all within the tolerance).
+bool drop_repeated_corners(std::vector<int>& panel, std::vector<Vec2>& uv,
+                           std::vector<std::array<int, 2>>& bends) {
+  const std::size_t n = panel.size();
+  std::vector<int> at(n);  // old corner index -> new
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!kept.empty() && panel[i] == panel[kept.back()]) {
+      at[i] = static_cast<int>(kept.size()) - 1;
+      continue;
+    }
+    at[i] = static_cast<int>(kept.size());
+    kept.push_back(i);
+  }
+  // The last run may be the first corner again.
+  while (kept.size() > 1 && panel[kept.back()] == panel[kept.front()]) {
+    for (std::size_t i = kept.back(); i < n; ++i) at[i] = 0;
+    kept.pop_back();
+  }
+  if (kept.size() < 3) return false;
+  if (kept.size() == n) return true;
+  std::vector<int> p;
+  std::vector<Vec2> q;
+  for (std::size_t i : kept) {
+    p.push_back(panel[i]);
+    if (!uv.empty()) q.push_back(uv[i]);
+  }
+  std::vector<std::array<int, 2>> b;
+  for (const auto& bend : bends) {
+    const int x = at[static_cast<std::size_t>(bend[0])], y = at[static_cast<std::size_t>(bend[1])];
+    if (x != y) b.push_back({std::min(x, y), std::max(x, y)});
+  }
+  panel = std::move(p);
+  if (!uv.empty()) uv = std::move(q);
+  bends = std::move(b);
+  return true;
+}
+
 // The faces' results as one: vertices, panels and their data in face order;
 // the vertices two faces share (identical positions, made so along shared
 // edges) once.
@@ -94,10 +136,12 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
   PanelMesh& m = c.mesh;
   // Vertices of two faces closer than this are one (along a shared edge the
   // join put them at one position; a corner of three faces computed on two
-  // surfaces may differ by rounding).
+  // surfaces may differ by rounding, or by the B-rep's vertex tolerance
+  // where faces meet only at a vertex: OCCT's shell1, 1.2e-5 mm on an 83 mm
+  // shell). 1e-6 of the size: what the face sets' tests call one position.
   double size = 0;
   for (const PanelizeResult& r : faces) size = std::max(size, r.summary.model_size);
-  const double tol = 1e-7 * size;
+  const double tol = 1e-6 * size;
   using Cell = std::array<long long, 3>;
   struct CellHash {
     std::size_t operator()(const Cell& c) const {
@@ -168,23 +212,37 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
       c.nodes.normal.push_back(r.nodes.normal[v]);
       out.vertex_face.push_back(static_cast<int>(f));
     }
+    std::vector<char> dropped(fm.panels.size(), 0);
     for (std::size_t p = 0; p < fm.panels.size(); ++p) {
       std::vector<int> panel;
       for (int v : fm.panels[p]) panel.push_back(index[static_cast<std::size_t>(v)]);
+      std::vector<Vec2> uv = keep_corner_uv ? panel_corner_uv(fm, p) : std::vector<Vec2>{};
+      std::vector<std::array<int, 2>> bends =
+          p < fm.bends.size() ? fm.bends[p] : std::vector<std::array<int, 2>>{};
+      if (!drop_repeated_corners(panel, uv, bends)) {
+        dropped[p] = 1;  // all its corners one or two places: no panel
+        continue;
+      }
       m.panels.push_back(std::move(panel));
-      if (keep_corner_uv) m.corner_uv.push_back(panel_corner_uv(fm, p));
-      m.bends.push_back(p < fm.bends.size() ? fm.bends[p] : std::vector<std::array<int, 2>>{});
+      if (keep_corner_uv) m.corner_uv.push_back(std::move(uv));
+      m.bends.push_back(std::move(bends));
       out.panel_face.push_back(static_cast<int>(f));
     }
-    for (const auto& fold : fm.folds) {
-      const int a = index[static_cast<std::size_t>(fold[0])],
-                b = index[static_cast<std::size_t>(fold[1])];
+    for (std::size_t k = 0; k < fm.folds.size(); ++k) {
+      const int a = index[static_cast<std::size_t>(fm.folds[k][0])],
+                b = index[static_cast<std::size_t>(fm.folds[k][1])];
+      if (a == b) continue;
       m.folds.push_back({std::min(a, b), std::max(a, b)});
+      if (k < r.fold_angle.size()) c.fold_angle.push_back(r.fold_angle[k]);
     }
     m.merged_slivers += fm.merged_slivers;
     const PanelMetrics& pm = r.metrics;
     PanelMetrics& cm = c.metrics;
-    auto add = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+    // Per panel, the panels kept.
+    auto add = [&dropped](auto& to, const auto& from) {
+      for (std::size_t p = 0; p < from.size(); ++p)
+        if (p >= dropped.size() || !dropped[p]) to.push_back(from[p]);
+    };
     add(cm.deviation, pm.deviation);
     add(cm.deviation_unreliable, pm.deviation_unreliable);
     add(cm.planarity, pm.planarity);
@@ -192,7 +250,6 @@ void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
     add(cm.min_angle, pm.min_angle);
     add(cm.max_angle, pm.max_angle);
     add(c.irregular, r.irregular);
-    add(c.fold_angle, r.fold_angle);
   }
   m.nominal_area = faces.empty() ? 0.0 : faces.front().mesh.nominal_area;
   m.regular_corners = faces.empty() ? 4 : faces.front().mesh.regular_corners;
