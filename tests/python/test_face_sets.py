@@ -480,6 +480,25 @@ def test_boundary_driven_retraces_a_face_alone_where_the_shared_curves_fail():
     assert_same_result(one, two)
 
 
+def test_faces_meeting_at_a_vertex_within_the_tolerance_share_its_node():
+    # Two plates touching only at a corner, 4e-7 of the size apart there
+    # (a B-rep's vertex tolerance; no edge to sew): one node at that corner,
+    # not two (the join welded vertices within 1e-7 of the size only).
+    def plate(x0, y0):
+        return Part.Face(Part.makePolygon([V(x0, y0, 0), V(x0 + 1000, y0, 0),
+                                           V(x0 + 1000, y0 + 1000, 0), V(x0, y0 + 1000, 0),
+                                           V(x0, y0, 0)]))
+    shape = Part.Compound([plate(0, 0), plate(1000.0008, 1000.0008)])
+    size = shape.BoundBox.DiagonalLength
+    assert 1e-7 * size < 0.0008 * math.sqrt(2) < 1e-6 * size
+    r = tessella.panelize_faces(shape, method="iso_grid", size=250.0)
+    nodes = r.vertices[r.nodes]
+    near = np.linalg.norm(nodes - np.array([1000, 1000, 0]), axis=1) < 0.01
+    assert near.sum() == 1
+    k = int(r.nodes[np.where(near)[0][0]])
+    assert {int(r.panel_face[i]) for i, p in enumerate(r.panels) if k in set(map(int, p))} == {0, 1}
+
+
 def test_a_face_wider_than_the_sewing_tolerance_stays():
     # 1 mm: five times the set's sewing tolerance (1e-5 of its 19 m): a
     # face, however narrow, that the set cannot sew shut stays.
