@@ -19,7 +19,10 @@ it, and the sweep goes on). Outcomes per file and method:
 - DIFFERENT / error mismatch: the thread count changed the result or the
   message (a defect);
 - crash / timeout.
-Prints a line per mismatch and the counts.
+Prints a line per mismatch and the counts. For every result also the
+invariants the face-set tests assert on built shapes: pairs of nodes within
+1e-6 of the shape's diagonal (one position taken twice) and panels with a
+corner twice; files with any are listed.
 """
 
 import argparse
@@ -59,6 +62,27 @@ def same(a, b):
                     for k in ("gap_fraction", "overlap_fraction", "model_area_ratio")))
 
 
+def duplicate_nodes(r, tol):
+    """Pairs of nodes closer than tol (a grid of tol-sized cells, each node
+    against the nodes of its own and the neighbouring cells)."""
+    import numpy as np
+
+    nodes = r.vertices[r.nodes]
+    cells = {}
+    for k, key in enumerate(map(tuple, np.floor(nodes / tol).astype(np.int64))):
+        cells.setdefault(key, []).append(k)
+    pairs = 0
+    for (x, y, z), members in cells.items():
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for dz in (-1, 0, 1):
+                    for j in cells.get((x + dx, y + dy, z + dz), ()):
+                        for i in members:
+                            if i < j and np.linalg.norm(nodes[i] - nodes[j]) <= tol:
+                                pairs += 1
+    return pairs
+
+
 def worker(path, methods, max_faces):
     """One file, in this process: a JSON line per method (or one for the file)."""
     import FreeCAD  # noqa: F401  (before Part)
@@ -95,6 +119,8 @@ def worker(path, methods, max_faces):
         else:
             out["outcome"] = "identical" if same(a, b) else "DIFFERENT"
             out["panels"] = len(a.panels)
+            out["duplicate_nodes"] = duplicate_nodes(a, 1e-6 * shape.BoundBox.DiagonalLength)
+            out["repeated_corners"] = sum(len(set(map(int, p))) < len(p) for p in a.panels)
         print(json.dumps(out), flush=True)
 
 
@@ -138,6 +164,12 @@ def main(argv=None):
     for line in results:
         counts[line["outcome"]] = counts.get(line["outcome"], 0) + 1
     print(f"{len(files)} files: " + ", ".join(f"{n} {k}" for k, n in sorted(counts.items())))
+    flawed = [x for x in results if x.get("duplicate_nodes") or x.get("repeated_corners")]
+    for x in flawed:
+        print(f"  {os.path.relpath(x['file'], args.folder)} {x['method']}: "
+              f"{x['duplicate_nodes']} node pair(s) within 1e-6 of the size, "
+              f"{x['repeated_corners']} panel(s) with a corner twice")
+    print(f"{len(flawed)} result(s) with nodes at one position or a corner twice")
     bad = sum(n for k, n in counts.items() if k not in ("identical", "same error", "skipped",
                                                           "unreadable"))
     return 1 if bad else 0
