@@ -132,3 +132,21 @@ def diagonal_distance(p):
     d1, d2 = p[2] - p[0], p[3] - p[1]
     n = np.cross(d1, d2)
     return abs(np.dot(p[1] - p[0], n)) / np.linalg.norm(n)
+
+
+def close_node_pairs(nodes, tol):
+    """Index pairs of points closer than tol (a grid of tol-sized cells)."""
+    import numpy as np
+
+    cells = {}
+    for k, key in enumerate(map(tuple, np.floor(nodes / tol).astype(np.int64))):
+        cells.setdefault(key, []).append(k)
+    pairs = []
+    for (x, y, z), members in cells.items():
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for dz in (-1, 0, 1):
+                    for j in cells.get((x + dx, y + dy, z + dz), ()):
+                        pairs += [(i, j) for i in members
+                                  if i < j and np.linalg.norm(nodes[i] - nodes[j]) <= tol]
+    return pairs

@@ -115,6 +115,7 @@ FaceSet FaceSet::from_brep_string(const std::string& brep) {
   BRepBndLib::Add(shape, box);
   const double tolerance = box.IsVoid() ? 0.0 : kSewFraction * std::sqrt(box.SquareExtent());
   auto impl = std::make_shared<Impl>();
+  impl->model_size = box.IsVoid() ? 0.0 : std::sqrt(box.SquareExtent());
   impl->given_count = faces.size();
   const bool skip = faces.size() > 1;
   std::vector<Skipped> without_area;

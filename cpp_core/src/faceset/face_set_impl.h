@@ -35,6 +35,9 @@ struct FaceSet::Impl {
   std::vector<TopoDS_Face> occt;  // the copies the SurfaceFaces were built from
   std::vector<std::shared_ptr<const SurfaceFace>> faces;
   std::vector<SharedEdge> shared;
+  // The diagonal of the shape's B-rep box (OCCT's, as FreeCAD's BoundBox):
+  // the set's model size.
+  double model_size = 0;
   std::size_t given_count = 0;
   std::vector<int> given_index;  // per face, its index in the shape as given
   std::vector<FaceSet::Skipped> skipped;

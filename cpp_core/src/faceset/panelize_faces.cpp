@@ -131,17 +131,17 @@ bool drop_repeated_corners(std::vector<int>& panel, std::vector<Vec2>& uv,
 // The faces' results as one: vertices, panels and their data in face order;
 // the vertices two faces share (identical positions, made so along shared
 // edges) once.
-void join(const std::vector<PanelizeResult>& faces, FaceSetResult& out) {
+void join(const std::vector<PanelizeResult>& faces, double model_size, FaceSetResult& out) {
   PanelizeResult& c = out.combined;
   PanelMesh& m = c.mesh;
   // Vertices of two faces closer than this are one (along a shared edge the
   // join put them at one position; a corner of three faces computed on two
   // surfaces may differ by rounding, or by the B-rep's vertex tolerance
   // where faces meet only at a vertex: OCCT's shell1, 1.2e-5 mm on an 83 mm
-  // shell). 1e-6 of the size: what the face sets' tests call one position.
-  double size = 0;
-  for (const PanelizeResult& r : faces) size = std::max(size, r.summary.model_size);
-  const double tol = 1e-6 * size;
+  // shell). Twice 1e-6 of the set's model size (its B-rep box's diagonal,
+  // as FreeCAD's BoundBox: 83 mm for shell1, whose points span 40 mm),
+  // 1e-6 being what the face sets' tests call one position.
+  const double tol = model_size > 0 ? 2e-6 * model_size : 1.0;  // (no places to weld)
   using Cell = std::array<long long, 3>;
   struct CellHash {
     std::size_t operator()(const Cell& c) const {
@@ -901,7 +901,7 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
       if (alone[f]) out.retraced_alone.push_back(set.given_index(f));
     for (std::size_t f = 0; f < walked.size(); ++f)
       out.faces_traced_across += walked[f] && !walked_alone[f] ? 1 : 0;
-    join(results, out);
+    join(results, set.impl().model_size, out);
     summarize_set(
         set, results, out,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
