@@ -62,32 +62,15 @@ def same(a, b):
                     for k in ("gap_fraction", "overlap_fraction", "model_area_ratio")))
 
 
-def duplicate_nodes(r, tol):
-    """Pairs of nodes closer than tol (a grid of tol-sized cells, each node
-    against the nodes of its own and the neighbouring cells)."""
-    import numpy as np
-
-    nodes = r.vertices[r.nodes]
-    cells = {}
-    for k, key in enumerate(map(tuple, np.floor(nodes / tol).astype(np.int64))):
-        cells.setdefault(key, []).append(k)
-    pairs = 0
-    for (x, y, z), members in cells.items():
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                for dz in (-1, 0, 1):
-                    for j in cells.get((x + dx, y + dy, z + dz), ()):
-                        for i in members:
-                            if i < j and np.linalg.norm(nodes[i] - nodes[j]) <= tol:
-                                pairs += 1
-    return pairs
-
-
 def worker(path, methods, max_faces):
     """One file, in this process: a JSON line per method (or one for the file)."""
     import FreeCAD  # noqa: F401  (before Part)
 
     import freecad_workbench as tessella
+
+    # The face-set tests' own check of one position taken twice.
+    sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+    from conftest import close_node_pairs
 
     try:
         shape = load(path)
@@ -119,7 +102,8 @@ def worker(path, methods, max_faces):
         else:
             out["outcome"] = "identical" if same(a, b) else "DIFFERENT"
             out["panels"] = len(a.panels)
-            out["duplicate_nodes"] = duplicate_nodes(a, 1e-6 * shape.BoundBox.DiagonalLength)
+            out["duplicate_nodes"] = len(
+                close_node_pairs(a.vertices[a.nodes], 1e-6 * shape.BoundBox.DiagonalLength))
             out["repeated_corners"] = sum(len(set(map(int, p))) < len(p) for p in a.panels)
         print(json.dumps(out), flush=True)
 
