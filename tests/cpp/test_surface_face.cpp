@@ -2,12 +2,18 @@
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepGProp.hxx>
+#include <BRep_Builder.hxx>
+#include <GC_MakeSegment.hxx>
 #include <GProp_GProps.hxx>
+#include <Geom_Curve.hxx>
 #include <cmath>
 #include <gp_Circ.hxx>
+#include <gp_Pln.hxx>
 
 #include "geometry/face_area.h"
 #include "tessella/errors.h"
@@ -154,6 +160,45 @@ TEST(SurfaceFace, ALoopOfOneClosedEdgeIsDiscretized) {
   EXPECT_GT(loops[0].uv.size(), 100u);
   // Inscribed polygon: its area is under the disc's by at most the chord sagittas.
   EXPECT_NEAR(loop_area(loops[0].uv), kPi * 500.0 * 500.0, 2 * kPi * 500.0 * 0.01);
+}
+
+// A wire may close with a gap within its first vertex's tolerance (a STEP
+// face, 3.8e-7 mm on a 0.5 mm face): the last edge's end is that vertex
+// again, as every other edge's start is its previous one's end, and is not
+// kept as a loop point of its own (a rod of the gap's length at the corner).
+TEST(SurfaceFace, AWireClosingWithinItsVertexToleranceHasOnePointThere) {
+  const double gap = 4e-4;  // on a 100 mm plate: 2.8e-6 of the model, over 1e-9
+  BRep_Builder b;
+  const TopoDS_Vertex v0 = BRepBuilderAPI_MakeVertex(gp_Pnt(0, 0, 0));
+  b.UpdateVertex(v0, gap);
+  const TopoDS_Vertex v1 = BRepBuilderAPI_MakeVertex(gp_Pnt(100, 0, 0));
+  const TopoDS_Vertex v2 = BRepBuilderAPI_MakeVertex(gp_Pnt(100, 100, 0));
+  const TopoDS_Vertex v3 = BRepBuilderAPI_MakeVertex(gp_Pnt(0, 100, 0));
+  auto line = [](const gp_Pnt& a, const gp_Pnt& c) {
+    return Handle(Geom_Curve)(GC_MakeSegment(a, c).Value());
+  };
+  // The last edge's curve ends gap short of the first vertex's point.
+  BRepBuilderAPI_MakeWire wire;
+  wire.Add(BRepBuilderAPI_MakeEdge(v0, v1).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(v1, v2).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(v2, v3).Edge());
+  const Handle(Geom_Curve) last = line(gp_Pnt(0, 100, 0), gp_Pnt(0, gap, 0));
+  wire.Add(BRepBuilderAPI_MakeEdge(last, v3, v0, 0.0, last->LastParameter()).Edge());
+  ASSERT_TRUE(wire.IsDone());
+  BRepBuilderAPI_MakeFace plate(gp_Pln(), wire.Wire());
+  ASSERT_TRUE(plate.IsDone());
+  const SurfaceFace f = SurfaceFace::from_brep_string(brep(plate.Face()));
+  const auto loops = f.trim_loops(1e-3);
+  ASSERT_EQ(loops.size(), 1u);
+  const auto& xyz = loops[0].xyz;
+  double shortest = 1e300;
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+    shortest = std::min(shortest, (xyz[(i + 1) % xyz.size()] - xyz[i]).norm());
+  EXPECT_GT(shortest, 1.0);  // the plate's sides, not the gap
+  EXPECT_NEAR(std::abs(loop_area(loops[0].uv)), 100.0 * 100.0, 1.0);
+  int corners = 0;
+  for (char c : loops[0].corner) corners += c ? 1 : 0;
+  EXPECT_EQ(corners, 4);
 }
 
 // FastEvaluation (OCCT's span cache) gives the closed-form surface, its

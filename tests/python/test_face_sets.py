@@ -534,6 +534,29 @@ def test_freecad_s_sod_323_with_its_slits():
     assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * shape.BoundBox.DiagonalLength)
 
 
+@pytest.mark.parametrize("method", ["iso_grid", "equal_size_grid", "boundary_driven",
+                                    "walking_agent"])
+def test_a_face_whose_wire_closes_within_its_vertex_tolerance(method):
+    # SOD_323's face 19 (0.48 x 0.25 mm): its wire closes 3.8e-7 mm short of
+    # the vertex it starts at (the vertex's tolerance). boundary_driven put a
+    # node at each end of that gap and one between: three nodes within
+    # 3.8e-7 mm, two rods of 1.9e-7 mm.
+    path = "/usr/share/freecad/Mod/Idf/Idflibs/SOD_323.stp"
+    if not os.path.exists(path):
+        pytest.skip("FreeCAD's IDF library is not installed")
+    face = Part.read(path).Faces[19]
+    start = face.OuterWire.OrderedVertexes[0]
+    assert 1e-7 < start.Tolerance < 1e-6  # the file is still the one described
+    size = face.BoundBox.DiagonalLength
+    kw = (dict(max_deviation=0.01, max_size=0.2) if method == "walking_agent"
+          else dict(size=0.2))
+    r = tessella.panelize(face, method=method, **kw)
+    assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * size)
+    lengths = [np.linalg.norm(r.vertices[a] - r.vertices[b]) for a, b in r.rods]
+    assert min(lengths) > 1e-3 * size
+    assert r.metrics["panel_area"].sum() == pytest.approx(face.Area, rel=1e-3)
+
+
 def test_periodic_side_next_to_a_planar_top():
     shape = cylinder_and_top()
     assert len(shape.Faces) == 2
