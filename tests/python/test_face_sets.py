@@ -534,6 +534,28 @@ def test_freecad_s_sod_323_with_its_slits():
     assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * shape.BoundBox.DiagonalLength)
 
 
+@pytest.mark.parametrize("method", ["iso_grid", "boundary_driven"])
+def test_a_micro_edge_of_a_step_part_is_one_node(method):
+    # SOD_323's face 4 has an edge of 1.47e-6 mm (its vertices' tolerance
+    # 1.4e-7), face 71 one of 7.8e-6 mm beside a face 0.002 mm wide: their
+    # ends were two nodes within 1e-6 of the part's size, and a panel of
+    # face 74 ran out to a node and back (a corner twice). Within the join's
+    # tolerance the vertices of one face are one too, and a run out and
+    # back is dropped.
+    path = "/usr/share/freecad/Mod/Idf/Idflibs/SOD_323.stp"
+    if not os.path.exists(path):
+        pytest.skip("FreeCAD's IDF library is not installed")
+    shape = Part.read(path)
+    assert min(e.Length for e in shape.Faces[4].Edges) < 2e-6
+    r = tessella.panelize_faces(shape, method=method, size=0.11)
+    assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * shape.BoundBox.DiagonalLength)
+    assert all(len(set(map(int, p))) == len(p) for p in r.panels)
+    used = {int(v) for p in r.panels for v in p}
+    assert used == set(range(len(r.vertices)))
+    kept = sum(f.Area for k, f in enumerate(shape.Faces) if k not in r.summary["skipped_faces"])
+    assert r.metrics["panel_area"].sum() == pytest.approx(kept, rel=1e-3)
+
+
 @pytest.mark.parametrize("method", ["iso_grid", "equal_size_grid", "boundary_driven",
                                     "walking_agent"])
 def test_a_face_whose_wire_closes_within_its_vertex_tolerance(method):

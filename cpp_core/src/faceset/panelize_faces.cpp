@@ -88,29 +88,53 @@ void name_faces_as_given(const FaceSet& set, FaceSetResult& out) {
 
 // A panel of a face whose vertices along a trim edge shorter than the join's
 // tolerance (a B-rep's micro edge: OCCT's shell1 has edges of 2e-6 mm) all
-// became one earlier face's vertex: that corner once, with its (u,v) and
-// the bend lines' corner indices kept in step. False for a panel left with
-// fewer than three corners (a micro face's, all within the tolerance).
+// became one vertex: that corner once, with its (u,v) and the bend lines'
+// corner indices kept in step. A run out and back (corners A, B, A: the far
+// end of a micro edge between two vertices welded into one, FreeCAD's
+// SOD_323) goes too, A kept once. False for a panel left with fewer than
+// three corners (a micro face's, all within the tolerance).
 bool drop_repeated_corners(std::vector<int>& panel, std::vector<Vec2>& uv,
                            std::vector<std::array<int, 2>>& bends) {
   const std::size_t n = panel.size();
-  std::vector<int> at(n);  // old corner index -> new
-  std::vector<std::size_t> kept;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!kept.empty() && panel[i] == panel[kept.back()]) {
-      at[i] = static_cast<int>(kept.size()) - 1;
-      continue;
+  std::vector<std::size_t> kept(n), to(n);  // to: a dropped corner -> the one it became
+  for (std::size_t i = 0; i < n; ++i) kept[i] = to[i] = i;
+  for (bool changed = true; changed && kept.size() >= 3;) {
+    // Each run of one vertex once; the last run may be the first corner again.
+    std::vector<std::size_t> runs;
+    for (std::size_t i : kept) {
+      if (!runs.empty() && panel[i] == panel[runs.back()]) {
+        to[i] = runs.back();
+        continue;
+      }
+      runs.push_back(i);
     }
-    at[i] = static_cast<int>(kept.size());
-    kept.push_back(i);
-  }
-  // The last run may be the first corner again.
-  while (kept.size() > 1 && panel[kept.back()] == panel[kept.front()]) {
-    for (std::size_t i = kept.back(); i < n; ++i) at[i] = 0;
-    kept.pop_back();
+    while (runs.size() > 1 && panel[runs.back()] == panel[runs.front()]) {
+      to[runs.back()] = runs.front();
+      runs.pop_back();
+    }
+    changed = runs.size() != kept.size();
+    kept = std::move(runs);
+    // One run out and back at a time, then the runs again.
+    const std::size_t m = kept.size();
+    for (std::size_t k = 0; m > 3 && k < m; ++k) {
+      const std::size_t a = kept[(k + m - 1) % m], b = kept[k], c = kept[(k + 1) % m];
+      if (panel[a] != panel[c]) continue;
+      to[b] = to[c] = a;
+      kept.erase(
+          std::remove_if(kept.begin(), kept.end(), [&](std::size_t i) { return i == b || i == c; }),
+          kept.end());
+      changed = true;
+      break;
+    }
   }
   if (kept.size() < 3) return false;
   if (kept.size() == n) return true;
+  std::vector<int> place(n, -1);  // kept corner -> its new index
+  for (std::size_t k = 0; k < kept.size(); ++k) place[kept[k]] = static_cast<int>(k);
+  auto at = [&](std::size_t i) {
+    while (to[i] != i) i = to[i];
+    return place[i];
+  };
   std::vector<int> p;
   std::vector<Vec2> q;
   for (std::size_t i : kept) {
@@ -119,7 +143,7 @@ bool drop_repeated_corners(std::vector<int>& panel, std::vector<Vec2>& uv,
   }
   std::vector<std::array<int, 2>> b;
   for (const auto& bend : bends) {
-    const int x = at[static_cast<std::size_t>(bend[0])], y = at[static_cast<std::size_t>(bend[1])];
+    const int x = at(static_cast<std::size_t>(bend[0])), y = at(static_cast<std::size_t>(bend[1]));
     if (x != y) b.push_back({std::min(x, y), std::max(x, y)});
   }
   panel = std::move(p);
@@ -140,7 +164,10 @@ void join(const std::vector<PanelizeResult>& faces, double model_size, FaceSetRe
   // where faces meet only at a vertex: OCCT's shell1, 1.2e-5 mm on an 83 mm
   // shell). Twice 1e-6 of the set's model size (its B-rep box's diagonal,
   // as FreeCAD's BoundBox: 83 mm for shell1, whose points span 40 mm),
-  // 1e-6 being what the face sets' tests call one position.
+  // 1e-6 being what the face sets' tests call one position. Two vertices
+  // of one face that close are one as well (the ends of a micro edge, in
+  // their face's panels and in its neighbour's), where the face meets
+  // another (only those vertices are indexed).
   const double tol = model_size > 0 ? 2e-6 * model_size : 1.0;  // (no places to weld)
   using Cell = std::array<long long, 3>;
   struct CellHash {
@@ -193,8 +220,7 @@ void join(const std::vector<PanelizeResult>& faces, double model_size, FaceSetRe
             const auto it = grid.find({key[0] + dx, key[1] + dy, key[2] + dz});
             if (it == grid.end()) continue;
             for (int w : it->second)
-              if (out.vertex_face[static_cast<std::size_t>(w)] != static_cast<int>(f) &&
-                  (m.xyz[static_cast<std::size_t>(w)] - fm.xyz[v]).norm() <= tol) {
+              if ((m.xyz[static_cast<std::size_t>(w)] - fm.xyz[v]).norm() <= tol) {
                 found = w;
                 break;
               }
