@@ -72,8 +72,10 @@ void remove_unused_vertices(PanelMesh& mesh);
 
 // Merges vertices closer than `tolerance` in 3D (a periodic seam, a pole), then
 // drops repeated corners and panels left with fewer than three. Fills
-// mesh.corner_uv from the (u,v) the corners had before welding.
-void weld_coincident_vertices(PanelMesh& mesh, double tolerance);
+// mesh.corner_uv from the (u,v) the corners had before welding. With `only`
+// (a flag per vertex), only flagged vertices are merged.
+void weld_coincident_vertices(PanelMesh& mesh, double tolerance,
+                              const std::vector<char>& only = {});
 
 // Corner (u,v)s of panel p (mesh.corner_uv if filled, else the vertices' uv).
 std::vector<Vec2> panel_corner_uv(const PanelMesh& mesh, std::size_t p);

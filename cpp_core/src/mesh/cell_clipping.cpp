@@ -29,6 +29,7 @@
 #include "geometry/uv_trim_classifier.h"
 #include "mesh/clip_to_box.h"
 #include "mesh/panel_model.h"
+#include "mesh/seam_sides.h"
 #include "mesh/sliver_merge.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
@@ -663,6 +664,7 @@ PanelMesh clip_cells(const SurfaceFace& face, const std::vector<Vec2>& nodes, in
   }
   mesh.merged_slivers = merge_slivers(mesh, params.sliver_fraction, cell_area);
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  weld_loose_seam(face, mesh);
   if (face.reversed()) reverse_panels(mesh);
   remove_unused_vertices(mesh);
   build_rods(mesh);

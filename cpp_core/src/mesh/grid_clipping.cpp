@@ -31,6 +31,7 @@
 #include "geometry/trim_deflection.h"
 #include "mesh/clip_to_box.h"
 #include "mesh/panel_model.h"
+#include "mesh/seam_sides.h"
 #include "tessella/errors.h"
 #include "tessella/progress.h"
 #include "tessella/surface_face.h"
@@ -647,6 +648,7 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
   drop_straight_boundary_points(mesh);
   mesh.merged_slivers = merge_slivers(mesh, params.sliver_fraction, cell_area);
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  weld_loose_seam(face, mesh);
   if (face.reversed()) reverse_panels(mesh);
   remove_unused_vertices(mesh);
   build_rods(mesh);

@@ -64,7 +64,7 @@ void remove_unused_vertices(PanelMesh& mesh) {
   }
 }
 
-void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {
+void weld_coincident_vertices(PanelMesh& mesh, double tolerance, const std::vector<char>& only) {
   // Bucket by a grid of cell `tolerance`; compare with the 27 neighbours.
   // (Only looked up, never iterated: a hash map gives the same result.)
   using Key = std::tuple<long long, long long, long long>;
@@ -84,6 +84,7 @@ void weld_coincident_vertices(PanelMesh& mesh, double tolerance) {
   std::vector<int> target(mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     target[v] = int(v);
+    if (!only.empty() && !only[v]) continue;
     const Key k = key(mesh.xyz[v]);
     bool found = false;
     for (long long dx = -1; dx <= 1 && !found; ++dx)

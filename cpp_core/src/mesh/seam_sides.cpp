@@ -198,14 +198,64 @@ int fewest_cells_along(const SurfaceFace& face, bool along_u) {
   return pole(lo) && pole(hi) ? 2 : 1;
 }
 
+namespace {
+
+// The hair by which the face's range along `axis` exceeds (or falls short
+// of) a period where it spans one, 0 where exact or not closed.
+double seam_hair(const SurfaceFace& face, int axis) {
+  const UvBounds b = face.bounds();
+  const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
+  const double period = axis == 0 ? face.u_period() : face.v_period();
+  const bool periodic = axis == 0 ? face.u_periodic() : face.v_periodic();
+  if (!spans_period(periodic, lo, hi, period)) return 0.0;
+  const double hair = hi - lo - period;
+  return std::abs(hair) > 1e-9 * period && std::abs(hair) <= 1e-6 * period ? hair : 0.0;
+}
+
+}  // namespace
+
+void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh) {
+  const UvBounds b = face.bounds();
+  for (int axis = 0; axis < 2; ++axis) {
+    const double hair = seam_hair(face, axis);
+    if (hair == 0.0) continue;
+    const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
+    const double a0 = axis == 0 ? b.v_min : b.u_min, a1 = axis == 0 ? b.v_max : b.u_max;
+    // How far apart the two copies are in space, along the seam.
+    double gap = 0;
+    const int n = 16;
+    for (int i = 0; i <= n; ++i) {
+      const double t = a0 + (a1 - a0) * i / n;
+      const Vec3 p0 = axis == 0 ? face.point(lo, t) : face.point(t, lo);
+      const Vec3 p1 = axis == 0 ? face.point(hi, t) : face.point(t, hi);
+      gap = std::max(gap, (p1 - p0).norm());
+    }
+    const double tol = std::min(2 * gap, 1e-6 * face.model_size());
+    if (!(tol > 0)) continue;
+    // The vertices on either copy (a node a method traced onto the seam may
+    // sit within the hair of it).
+    const double near = std::abs(hair) + 1e-9 * (hi - lo);
+    std::vector<char> on_seam(mesh.vertex_count(), 0);
+    for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+      const std::vector<Vec2> uv = panel_corner_uv(mesh, p);
+      for (std::size_t i = 0; i < uv.size(); ++i)
+        if (std::abs(uv[i][axis] - lo) <= near || std::abs(uv[i][axis] - hi) <= near)
+          on_seam[static_cast<std::size_t>(mesh.panels[p][i])] = 1;
+    }
+    weld_coincident_vertices(mesh, tol, on_seam);
+  }
+}
+
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
   if (!closed_round_a_seam(face)) return;
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  weld_loose_seam(face, mesh);
   const UvBounds b = face.bounds();
+  // A loose seam's far copy is the face's own bound (weld_loose_seam).
   if (spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period()))
-    join_along(mesh, 0, b.u_min, face.u_period());
+    join_along(mesh, 0, b.u_min, face.u_period() + seam_hair(face, 0));
   if (spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period()))
-    join_along(mesh, 1, b.v_min, face.v_period());
+    join_along(mesh, 1, b.v_min, face.v_period() + seam_hair(face, 1));
 }
 
 }  // namespace tessella

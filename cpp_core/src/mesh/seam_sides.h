@@ -62,6 +62,14 @@ double widest_panel_round(const SurfaceFace& face, const PanelMesh& mesh);
 // gets these counts, not an empty grid.
 int fewest_cells_along(const SurfaceFace& face, bool along_u);
 
+// A closed face whose seam edge's two pcurves lie a hair more or less than a
+// period apart (up to 1e-6 of it; a STEP file's, FreeCAD's CAP_50SGV
+// capacitor: 5.9e-7 of its period, the two copies 4.6e-6 mm apart in space):
+// the vertices on the two copies closer than twice that distance (at most
+// 1e-6 of the face's size) are one, as an exact seam's are at 1e-9 (each
+// method put a node on each copy). Nothing on any other face.
+void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh);
+
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
 // (u,v)) and inserts into each panel side along the seam the seam vertices
 // strictly between its ends. Nothing for a face not closed round a seam.
