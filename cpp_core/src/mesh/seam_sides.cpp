@@ -200,16 +200,35 @@ int fewest_cells_along(const SurfaceFace& face, bool along_u) {
 
 namespace {
 
-// The hair by which the face's range along `axis` exceeds (or falls short
-// of) a period where it spans one, 0 where exact or not closed.
-double seam_hair(const SurfaceFace& face, int axis) {
+// A loose seam along `axis`: the hair by which the face's range exceeds
+// (or falls short of) the period it spans, and how far apart its two copies
+// are in space; {0, 0} where the copies are one within 1e-9 of the face's
+// size (the seam weld's own tolerance), the hair is over 1e-6 of the
+// period, or the face is not closed there. (FreeCAD's CAP_50SGV: one face
+// 5.9e-7 of its period over it, its copies 4.6e-6 mm apart; another within
+// 1e-9 of its period, its copies still 1.2e-8 mm apart on an 11 mm part.)
+struct LooseSeam {
+  double hair = 0, gap = 0;
+};
+LooseSeam loose_seam(const SurfaceFace& face, int axis) {
   const UvBounds b = face.bounds();
   const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
   const double period = axis == 0 ? face.u_period() : face.v_period();
   const bool periodic = axis == 0 ? face.u_periodic() : face.v_periodic();
-  if (!spans_period(periodic, lo, hi, period)) return 0.0;
+  if (!spans_period(periodic, lo, hi, period)) return {};
   const double hair = hi - lo - period;
-  return std::abs(hair) > 1e-9 * period && std::abs(hair) <= 1e-6 * period ? hair : 0.0;
+  if (hair == 0.0 || std::abs(hair) > 1e-6 * period) return {};
+  const double a0 = axis == 0 ? b.v_min : b.u_min, a1 = axis == 0 ? b.v_max : b.u_max;
+  double gap = 0;
+  const int n = 16;
+  for (int i = 0; i <= n; ++i) {
+    const double t = a0 + (a1 - a0) * i / n;
+    const Vec3 p0 = axis == 0 ? face.point(lo, t) : face.point(t, lo);
+    const Vec3 p1 = axis == 0 ? face.point(hi, t) : face.point(t, hi);
+    gap = std::max(gap, (p1 - p0).norm());
+  }
+  if (!(gap > 1e-9 * face.model_size())) return {};
+  return {hair, gap};
 }
 
 }  // namespace
@@ -217,24 +236,16 @@ double seam_hair(const SurfaceFace& face, int axis) {
 void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh) {
   const UvBounds b = face.bounds();
   for (int axis = 0; axis < 2; ++axis) {
-    const double hair = seam_hair(face, axis);
-    if (hair == 0.0) continue;
+    const LooseSeam seam = loose_seam(face, axis);
+    if (seam.gap == 0.0) continue;
     const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
-    const double a0 = axis == 0 ? b.v_min : b.u_min, a1 = axis == 0 ? b.v_max : b.u_max;
-    // How far apart the two copies are in space, along the seam.
-    double gap = 0;
-    const int n = 16;
-    for (int i = 0; i <= n; ++i) {
-      const double t = a0 + (a1 - a0) * i / n;
-      const Vec3 p0 = axis == 0 ? face.point(lo, t) : face.point(t, lo);
-      const Vec3 p1 = axis == 0 ? face.point(hi, t) : face.point(t, hi);
-      gap = std::max(gap, (p1 - p0).norm());
-    }
-    const double tol = std::min(2 * gap, 1e-6 * face.model_size());
-    if (!(tol > 0)) continue;
+    // One position by the face sets' and the tests' measure: the copies'
+    // distance alone leaves the trim corners where an edge meets the seam
+    // apart (their pcurves end within the vertex's tolerance, 4.9e-7 mm).
+    const double tol = 1e-6 * face.model_size();
     // The vertices on either copy (a node a method traced onto the seam may
     // sit within the hair of it).
-    const double near = std::abs(hair) + 1e-9 * (hi - lo);
+    const double near = std::abs(seam.hair) + 1e-9 * (hi - lo);
     std::vector<char> on_seam(mesh.vertex_count(), 0);
     for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
       const std::vector<Vec2> uv = panel_corner_uv(mesh, p);
@@ -278,11 +289,11 @@ void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
   // A loose seam's far copy is the face's own bound (weld_loose_seam), and
   // so is that of a face closed on itself.
   if (spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period()))
-    join_along(mesh, 0, b.u_min, face.u_period() + seam_hair(face, 0));
+    join_along(mesh, 0, b.u_min, face.u_period() + loose_seam(face, 0).hair);
   else if (on_itself[0])
     join_along(mesh, 0, b.u_min, b.u_max - b.u_min);
   if (spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period()))
-    join_along(mesh, 1, b.v_min, face.v_period() + seam_hair(face, 1));
+    join_along(mesh, 1, b.v_min, face.v_period() + loose_seam(face, 1).hair);
   else if (on_itself[1])
     join_along(mesh, 1, b.v_min, b.v_max - b.v_min);
 }

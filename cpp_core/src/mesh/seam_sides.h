@@ -64,10 +64,10 @@ int fewest_cells_along(const SurfaceFace& face, bool along_u);
 
 // A closed face whose seam edge's two pcurves lie a hair more or less than a
 // period apart (up to 1e-6 of it; a STEP file's, FreeCAD's CAP_50SGV
-// capacitor: 5.9e-7 of its period, the two copies 4.6e-6 mm apart in space):
-// the vertices on the two copies closer than twice that distance (at most
-// 1e-6 of the face's size) are one, as an exact seam's are at 1e-9 (each
-// method put a node on each copy). Nothing on any other face.
+// capacitor: 5.9e-7 of its period, the two copies 4.6e-6 mm apart in space)
+// and whose copies are farther apart in space than the seam weld's 1e-9 of
+// the face: the vertices on the two copies within 1e-6 of the face's size
+// are one (each method put a node on each copy). Nothing on any other face.
 void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh);
 
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
