@@ -353,37 +353,6 @@ def test_closed_faces_coarser_than_their_rims(solid, quadrangulate, size):
     assert 0.75 < r.metrics["panel_area"].sum() / face.Area < 1.0
 
 
-def test_a_band_closed_on_itself_but_not_periodic():
-    # A B-spline band interpolated round a circle, its last row the first
-    # (closed, not periodic: OCCT's Pump_TopCover has such a face): its
-    # seam edge is traced from both sides, and each side put its own node at
-    # each crossing (three pairs 1e-13 mm apart). Welded as a periodic
-    # face's seam is.
-    from FreeCAD import Vector
-    rows = []
-    for k in range(13):
-        a = 2 * math.pi * (k % 12) / 12
-        rows.append([Vector(1000 * math.cos(a), 1000 * math.sin(a), z)
-                     for z in (0, 500, 1000, 1500)])
-    surface = Part.BSplineSurface()
-    surface.interpolate(rows)
-    assert surface.isUClosed() and not surface.isUPeriodic()
-    face = Part.Face(surface)
-    r = tessella.panelize(face, method="boundary_driven", size=400.0)
-    assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * face.BoundBox.DiagonalLength)
-    # The nodes on the seam (x = 1000, y = 0) are each in panels of both sides.
-    seam = [k for k in r.nodes
-            if abs(r.vertices[k][1]) < 1e-6 and r.vertices[k][0] > 999.999]
-    assert len(seam) >= 3
-    for k in seam:
-        ys = [float(np.mean(r.vertices[list(map(int, p))][:, 1]))
-              for p in r.panels if k in p]
-        assert min(ys) < 0 < max(ys)
-    # Flat panels on a band of radius 1000 at 400 mm: a little under the area.
-    assert r.metrics["panel_area"].sum() / face.Area == pytest.approx(0.995, abs=0.005)
-    assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
-
-
 @pytest.mark.parametrize("nurbs", [False, True])
 @pytest.mark.parametrize("radius, height, size", [(400.0, 1200.0, 63.0), (400.0, 1200.0, 126.0),
                                                   (400.0, 1200.0, 251.0), (300.0, 3000.0, 94.0),

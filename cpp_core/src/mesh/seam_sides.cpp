@@ -257,45 +257,16 @@ void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh) {
   }
 }
 
-namespace {
-
-// Whether the face's two sides along `axis` (u = u_min and u = u_max, or
-// the same in v) are one curve in space while the surface is not periodic
-// there: a B-spline band closed on itself (OCCT's Pump_TopCover), whose
-// seam edge is traced from both sides as a periodic face's.
-bool closed_on_itself(const SurfaceFace& face, int axis) {
-  if (axis == 0 ? face.u_periodic() : face.v_periodic()) return false;
-  const UvBounds b = face.bounds();
-  const double tiny = 1e-9 * face.model_size();
-  const int n = 8;
-  for (int i = 0; i <= n; ++i) {
-    const double t =
-        axis == 0 ? b.v_min + (b.v_max - b.v_min) * i / n : b.u_min + (b.u_max - b.u_min) * i / n;
-    const Vec3 a = axis == 0 ? face.point(b.u_min, t) : face.point(t, b.v_min);
-    const Vec3 c = axis == 0 ? face.point(b.u_max, t) : face.point(t, b.v_max);
-    if (!((a - c).norm() <= tiny)) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
-  const bool on_itself[2] = {closed_on_itself(face, 0), closed_on_itself(face, 1)};
-  if (!closed_round_a_seam(face) && !on_itself[0] && !on_itself[1]) return;
+  if (!closed_round_a_seam(face)) return;
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());
   weld_loose_seam(face, mesh);
   const UvBounds b = face.bounds();
-  // A loose seam's far copy is the face's own bound (weld_loose_seam), and
-  // so is that of a face closed on itself.
+  // A loose seam's far copy is the face's own bound (weld_loose_seam).
   if (spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period()))
     join_along(mesh, 0, b.u_min, face.u_period() + loose_seam(face, 0).hair);
-  else if (on_itself[0])
-    join_along(mesh, 0, b.u_min, b.u_max - b.u_min);
   if (spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period()))
     join_along(mesh, 1, b.v_min, face.v_period() + loose_seam(face, 1).hair);
-  else if (on_itself[1])
-    join_along(mesh, 1, b.v_min, b.v_max - b.v_min);
 }
 
 }  // namespace tessella

@@ -72,8 +72,7 @@ void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh);
 
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
 // (u,v)) and inserts into each panel side along the seam the seam vertices
-// strictly between its ends. Nothing for a face not closed round a seam or
-// on itself (its two sides one curve in space, the surface not periodic).
+// strictly between its ends. Nothing for a face not closed round a seam.
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh);
 
 }  // namespace tessella

@@ -280,9 +280,8 @@ void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, do
   // The nodes a pole's stretch holds (one per (u,v) position along it, so the
   // network stayed planar in (u,v)) are one point in 3D: one vertex.
   if (has_pole(r.boundary)) weld_coincident_vertices(m, 1e-9 * ms);
-  // A face closed round its period (a full cylinder), or on itself (a band
-  // whose two sides are one curve), has its seam traced from both sides:
-  // joined as two faces along a shared edge.
+  // A face closed round its period (a full cylinder) has its seam traced
+  // from both sides: joined as two faces along a shared edge.
   join_seam_sides(face, m);
   // Too few curves round a closed direction somewhere (a cone's smaller rim
   // at a size near its girth): one cell went round the whole top as a ring
