@@ -52,14 +52,24 @@ def load(path):
     return shape
 
 
-def same(a, b):
+def first_difference(a, b):
+    """The first part in which two results differ (vertices, panels, rods, a
+    metric, a coverage figure), or None where they are the same bit for bit."""
     import numpy as np
 
-    return (np.array_equal(a.vertices, b.vertices) and a.panels == b.panels
-            and np.array_equal(a.rods, b.rods)
-            and all(np.array_equal(a.metrics[k], b.metrics[k], equal_nan=True) for k in a.metrics)
-            and all(a.summary[k] == b.summary[k]
-                    for k in ("gap_fraction", "overlap_fraction", "model_area_ratio")))
+    if not np.array_equal(a.vertices, b.vertices):
+        return "vertices"
+    if a.panels != b.panels:
+        return "panels"
+    if not np.array_equal(a.rods, b.rods):
+        return "rods"
+    for k in a.metrics:
+        if not np.array_equal(a.metrics[k], b.metrics[k], equal_nan=True):
+            return f"metrics.{k}"
+    for k in ("gap_fraction", "overlap_fraction", "model_area_ratio"):
+        if a.summary[k] != b.summary[k]:
+            return f"summary.{k}"
+    return None
 
 
 def worker(path, methods, max_faces):
@@ -100,7 +110,10 @@ def worker(path, methods, max_faces):
             out["outcome"] = "same error" if a == b else "error mismatch"
             out["message"] = [x if isinstance(x, str) else "ok" for x in (a, b)]
         else:
-            out["outcome"] = "identical" if same(a, b) else "DIFFERENT"
+            differs = first_difference(a, b)
+            out["outcome"] = "identical" if differs is None else "DIFFERENT"
+            if differs:
+                out["differs"] = differs
             out["panels"] = len(a.panels)
             out["duplicate_nodes"] = len(
                 close_node_pairs(a.vertices[a.nodes], 1e-6 * shape.BoundBox.DiagonalLength))
@@ -139,7 +152,8 @@ def main(argv=None):
             results.append(line)
             if line["outcome"] not in ("identical", "same error", "skipped"):
                 print(f"{os.path.relpath(line['file'], args.folder)} {line.get('method', '')}: "
-                      f"{line['outcome']} {line.get('message', '')}", flush=True)
+                      f"{line['outcome']} {line.get('differs', '')}{line.get('message', '')}",
+                      flush=True)
     if args.jsonl:
         with open(args.jsonl, "w") as out:
             for line in results:
