@@ -231,12 +231,10 @@ LooseSeam loose_seam(const SurfaceFace& face, int axis) {
   return {hair, gap};
 }
 
-}  // namespace
-
-void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh) {
+void weld_loose_seams(const SurfaceFace& face, PanelMesh& mesh, const LooseSeam (&seams)[2]) {
   const UvBounds b = face.bounds();
   for (int axis = 0; axis < 2; ++axis) {
-    const LooseSeam seam = loose_seam(face, axis);
+    const LooseSeam& seam = seams[axis];
     if (seam.gap == 0.0) continue;
     const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
     // One position by the face sets' and the tests' measure: the copies'
@@ -257,16 +255,25 @@ void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh) {
   }
 }
 
+}  // namespace
+
+void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh) {
+  const LooseSeam seams[2] = {loose_seam(face, 0), loose_seam(face, 1)};
+  weld_loose_seams(face, mesh, seams);
+}
+
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
   if (!closed_round_a_seam(face)) return;
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());
-  weld_loose_seam(face, mesh);
+  // Each seam's looseness measured once: it welds, and a loose seam's far
+  // copy is the face's own bound.
+  const LooseSeam seams[2] = {loose_seam(face, 0), loose_seam(face, 1)};
+  weld_loose_seams(face, mesh, seams);
   const UvBounds b = face.bounds();
-  // A loose seam's far copy is the face's own bound (weld_loose_seam).
   if (spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period()))
-    join_along(mesh, 0, b.u_min, face.u_period() + loose_seam(face, 0).hair);
+    join_along(mesh, 0, b.u_min, face.u_period() + seams[0].hair);
   if (spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period()))
-    join_along(mesh, 1, b.v_min, face.v_period() + loose_seam(face, 1).hair);
+    join_along(mesh, 1, b.v_min, face.v_period() + seams[1].hair);
 }
 
 }  // namespace tessella
