@@ -484,6 +484,29 @@ TEST(BdRefine, AStripAlongASharedEdgeIsSplitAlongItsLengthOnly) {
   EXPECT_NEAR(area, 1400.0 * 1200.0, 1e-6);
 }
 
+// A small quad with one corner on a shared edge: its two sides from that
+// corner are bare (one end on the edge, shorter than short_shared_edge), the
+// other two free (on one panel, short). No strip runs across it (a strip's
+// other two sides must not be bare), so it is kept whole. The check of the
+// strip across sides 1 and 3 read side 0 as side[4], a byte past its vector:
+// the heap's garbage decided, and the quad was mostly cut in two, giving a
+// bare side a midpoint its neighbour across the edge does not have.
+TEST(BdRefine, AQuadWithTwoBareSidesAtOneCornerIsKeptWhole) {
+  const SurfaceFace f = square_plate(2000);
+  BdNetwork net;
+  for (const Vec2& uv : {Vec2(0, 0), Vec2(300, 0), Vec2(300, 300), Vec2(0, 300)}) {
+    BdNode n;
+    n.uv = uv, n.xyz = f.point(uv.x(), uv.y());
+    n.shared = net.nodes.empty();  // the first corner lies on the shared edge
+    net.nodes.push_back(n);
+  }
+  net.panels = {{0, 1, 2, 3}};
+  quadrangulate(f, {}, net, 750.0);
+  ASSERT_EQ(net.panels.size(), 1u);
+  EXPECT_EQ(net.panels[0], (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(net.nodes.size(), 4u);
+}
+
 TEST(BdRefine, SmoothingRestoresARegularGridAndKeepsTrimNodesOnTheTrim) {
   const SurfaceFace f = square_plate(300);
   const BdSources s = sources_of(f);

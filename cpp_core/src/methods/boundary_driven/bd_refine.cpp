@@ -482,9 +482,13 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
       all_bare = all_bare && side[i] != 'M';
     }
     if (!any_bare) return static_cast<int>(kFull);
+    // A strip across sides i and i + 2 (bare or free), the other two (i + 1
+    // and i + 3 modulo 4: side 0 for i = 1) not bare. (Read as side[4], a
+    // byte past the vector, heap garbage decided for i = 1: a face set's
+    // result differed once between two runs.)
     if (n == 4)
       for (int i = 0; i < 2; ++i)
-        if (side[i] != 'M' && side[i + 2] != 'M' && side[i + 1] != 'B' && side[i + 3] != 'B')
+        if (side[i] != 'M' && side[i + 2] != 'M' && side[i + 1] != 'B' && side[(i + 3) % 4] != 'B')
           return i;
     return static_cast<int>(all_bare ? kWhole : kMixed);
   };
