@@ -353,6 +353,70 @@ def test_closed_faces_coarser_than_their_rims(solid, quadrangulate, size):
     assert 0.75 < r.metrics["panel_area"].sum() / face.Area < 1.0
 
 
+def _seam_nodes_on_both_sides(r, on_seam, across):
+    """Every node on the seam is a corner of panels on both of its sides
+    (`across`: the coordinate whose sign tells them apart): no T-junction,
+    the other side's nodes are in each panel side along it."""
+    seam = [int(k) for k in r.nodes if on_seam(r.vertices[k])]
+    for k in seam:
+        sides = [float(np.mean(r.vertices[list(map(int, p))][:, across]))
+                 for p in r.panels if k in p]
+        assert min(sides) < 0 < max(sides), (k, r.vertices[k])
+    return seam
+
+
+@pytest.mark.parametrize("method", ["boundary_driven", "iso_grid"])
+def test_a_band_closed_on_itself_but_not_periodic(method):
+    # A B-spline band interpolated round a circle, its last row the first
+    # (closed, not periodic: OCCT's Pump_TopCover has such a face): its
+    # seam edge is met from both sides, and boundary_driven put each side's
+    # node at each crossing (three pairs 1e-13 mm apart) and left the other
+    # side's between them out of its panel sides. Joined as a periodic
+    # face's seam is.
+    from FreeCAD import Vector
+    rows = []
+    for k in range(13):
+        a = 2 * math.pi * (k % 12) / 12
+        rows.append([Vector(1000 * math.cos(a), 1000 * math.sin(a), z)
+                     for z in (0, 500, 1000, 1500)])
+    surface = Part.BSplineSurface()
+    surface.interpolate(rows)
+    assert surface.isUClosed() and not surface.isUPeriodic()
+    face = Part.Face(surface)
+    r = tessella.panelize(face, method=method, size=400.0)
+    assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * face.BoundBox.DiagonalLength)
+    seam = _seam_nodes_on_both_sides(r, lambda x: abs(x[1]) < 1e-6 and x[0] > 999.999, 1)
+    assert len(seam) >= 3
+    # Flat panels on a band of radius 1000 at 400 mm: a little under the area.
+    assert r.metrics["panel_area"].sum() / face.Area == pytest.approx(0.995, abs=0.005)
+    assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
+
+
+@pytest.mark.parametrize("method", ["boundary_driven", "iso_grid"])
+def test_a_face_on_a_trimmed_periodic_surface_keeps_its_seam(method):
+    # A face whose surface is a rectangular trim of a cone, one whole turn
+    # (a face set sews OCCT's CrankArm.brep into such faces): the same points
+    # at the same (u,v), but OCCT calls the trim not periodic, so the seam
+    # was read as two sides of the face (in the set, boundary_driven's nodes
+    # twice along it). Its basis is periodic, and so is the face.
+    cone = Part.Cone(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(0, 0, 1500), 1200, 800)
+    slant = math.hypot(1500, 400)  # v runs along the cone's lines
+    face = Part.Face(Part.RectangularTrimmedSurface(cone, 0, 2 * math.pi, 0, slant))
+    # The B-rep keeps the trim (surface type 10 in OCCT's BRep format).
+    brep = face.exportBrepToString()
+    surfaces = brep.split("Surfaces", 1)[1].splitlines()[1:3]
+    assert surfaces[0].startswith("10 "), surfaces
+    assert core.SurfaceFace.from_brep_string(brep).u_periodic
+    r = tessella.panelize(face, method=method, size=300.0)
+    assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * face.BoundBox.DiagonalLength)
+    # The seam is the cone's line at u = 0 (x = 0, y < 0).
+    seam0 = cone.value(0, 0)
+    seam = _seam_nodes_on_both_sides(
+        r, lambda x: abs(x[0] - seam0.x) < 1e-6 and x[1] < -700, 0)
+    assert len(seam) >= 3
+    assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
+
+
 @pytest.mark.parametrize("nurbs", [False, True])
 @pytest.mark.parametrize("radius, height, size", [(400.0, 1200.0, 63.0), (400.0, 1200.0, 126.0),
                                                   (400.0, 1200.0, 251.0), (300.0, 3000.0, 94.0),

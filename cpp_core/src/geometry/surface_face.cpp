@@ -13,6 +13,7 @@
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_Surface.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
@@ -190,6 +191,15 @@ SurfaceFace SurfaceFace::from_occt_face(const TopoDS_Face& face) {
     impl->face = face;
     impl->surface = BRep_Tool::Surface(face);  // location applied
     if (impl->surface.IsNull()) throw InvalidGeometry("the face has no surface");
+    // A rectangular trim of a periodic surface (a face set's sewn cones of
+    // OCCT's CrankArm.brep: a cone trimmed to one whole turn) has the same
+    // points at the same (u,v) but is not periodic, so its seam was read as
+    // two sides of the face: its basis is taken (the face's wires bound it).
+    for (Handle(Geom_RectangularTrimmedSurface)
+             t = Handle(Geom_RectangularTrimmedSurface)::DownCast(impl->surface);
+         !t.IsNull() && (t->BasisSurface()->IsUPeriodic() || t->BasisSurface()->IsVPeriodic());
+         t = Handle(Geom_RectangularTrimmedSurface)::DownCast(impl->surface))
+      impl->surface = t->BasisSurface();
     impl->read_periods();
     impl->reversed = face.Orientation() == TopAbs_REVERSED;
     BRepTools::UVBounds(face, impl->bounds.u_min, impl->bounds.u_max, impl->bounds.v_min,

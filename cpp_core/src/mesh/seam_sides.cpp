@@ -262,8 +262,50 @@ void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh) {
   weld_loose_seams(face, mesh, seams);
 }
 
+namespace {
+
+// Whether the face's two sides along `axis` (u = u_min and u = u_max, or
+// the same in v) are one curve in space while the surface is not periodic
+// there: a B-spline band closed on itself (OCCT's Pump_TopCover), whose
+// seam edge each method meets from both sides. A face with a pole at an end
+// of its seam (a B-spline cone with its apex) is left as it was: no such
+// face was at hand to check the join on.
+bool closed_on_itself(const SurfaceFace& face, int axis) {
+  if (axis == 0 ? face.u_periodic() : face.v_periodic()) return false;
+  const UvBounds b = face.bounds();
+  const double tiny = 1e-9 * face.model_size();
+  const int n = 8;
+  // A point of the face at `along` across the seam and `across` along it.
+  auto at = [&](double along, double across) {
+    return axis == 0 ? face.point(along, across) : face.point(across, along);
+  };
+  const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
+  const double a0 = axis == 0 ? b.v_min : b.u_min, a1 = axis == 0 ? b.v_max : b.u_max;
+  double rim[2] = {0, 0};  // lengths round the face at the seam's two ends
+  for (int i = 0; i <= n; ++i) {
+    const double t = a0 + (a1 - a0) * i / n;
+    if (!((at(lo, t) - at(hi, t)).norm() <= tiny)) return false;
+    const double s = lo + (hi - lo) * i / n, s_next = lo + (hi - lo) * (i + 1) / n;
+    if (i < n)
+      for (int end = 0; end < 2; ++end)
+        rim[end] += (at(s_next, end ? a1 : a0) - at(s, end ? a1 : a0)).norm();
+  }
+  return rim[0] > tiny && rim[1] > tiny;
+}
+
+}  // namespace
+
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
-  if (!closed_round_a_seam(face)) return;
+  if (!closed_round_a_seam(face)) {
+    // A face closed on itself: its seam joined as a period's.
+    const bool on_itself[2] = {closed_on_itself(face, 0), closed_on_itself(face, 1)};
+    if (!on_itself[0] && !on_itself[1]) return;
+    weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+    const UvBounds b = face.bounds();
+    if (on_itself[0]) join_along(mesh, 0, b.u_min, b.u_max - b.u_min);
+    if (on_itself[1]) join_along(mesh, 1, b.v_min, b.v_max - b.v_min);
+    return;
+  }
   weld_coincident_vertices(mesh, 1e-9 * face.model_size());
   // Each seam's looseness measured once: it welds, and a loose seam's far
   // copy is the face's own bound.
