@@ -16,7 +16,7 @@ DEB_PACKAGES := g++ make cmake freecad freecad-python3 \
 # families' cover against the optimum), never for the build or the tests.
 BENCH_PACKAGES := python3-gmsh python3-scipy occt-misc
 
-.PHONY: all deps bench-deps build test test-cpp test-python test-gui demo bench screenshots install uninstall format clean
+.PHONY: all deps bench-deps build test test-cpp test-python test-gui sanitize demo bench screenshots install uninstall format clean
 
 all: build
 
@@ -51,6 +51,12 @@ test-python: build
 
 test-gui: build
 	$(PY) tests/run_all.py --only gui
+
+# The C++ tests, the fingerprint cases and the face-set / boundary_driven
+# Python tests under ASan + UBSan + libstdc++ assertions, built apart in
+# build-sanitize/ (about 25 minutes; SANITIZE_PYTEST=all for every Python test).
+sanitize: deps
+	bash tests/sanitize.sh
 
 demo: build
 	PYTHONPATH=$(FREECAD_LIB):$(CURDIR) $(PY) examples/demo.py --out out
