@@ -417,6 +417,84 @@ def test_a_face_on_a_trimmed_periodic_surface_keeps_its_seam(method):
     assert r.summary["gap_fraction"] < 1e-6 and r.summary["overlap_fraction"] < 1e-6
 
 
+def _closed_band_with_an_apex(kind):
+    """A surface round the z axis up to an apex, closed on itself along u
+    (its last row of poles its first) and not periodic: an interpolated
+    B-spline (read as periodic) or a Bezier surface (which has no periodic
+    form: its seam is joined after the method)."""
+    from FreeCAD import Vector
+    radii = ((1000, 0), (700, 500), (350, 1000), (0, 1500))
+    if kind == "bspline":
+        rows = [[Vector(r * math.cos(a), r * math.sin(a), z) for r, z in radii]
+                for a in (2 * math.pi * (k % 12) / 12 for k in range(13))]
+        surface = Part.BSplineSurface()
+        surface.interpolate(rows)
+    else:
+        surface = Part.BezierSurface()
+        surface.increase(8, len(radii) - 1)
+        for i in range(9):
+            a = 2 * math.pi * (i % 8) / 8
+            for j, (r, z) in enumerate(radii):
+                surface.setPole(i + 1, j + 1, Vector(r * math.cos(a), r * math.sin(a), z))
+    assert surface.isUClosed() and not surface.isUPeriodic()
+    return Part.Face(surface)
+
+
+@pytest.mark.parametrize("kind", ["bspline", "bezier"])
+@pytest.mark.parametrize("method", ["boundary_driven", "iso_grid"])
+def test_a_band_closed_on_itself_up_to_an_apex(method, kind):
+    # boundary_driven left T-junctions along the seam of such a face (nodes
+    # of one side missing from the other side's panel sides): the join of
+    # the two sides was kept from faces with a pole at an end of the seam.
+    # A B-spline is now read as periodic (same points, same (u,v)); a Bezier
+    # surface's seam is joined, pole and all.
+    face = _closed_band_with_an_apex(kind)
+    assert core.SurfaceFace.from_brep_string(face.exportBrepToString()).u_periodic() == (
+        kind == "bspline")
+    for size in (150.0, 300.0):
+        r = tessella.panelize(face, method=method, size=size)
+        assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * face.BoundBox.DiagonalLength)
+        seam = _seam_nodes_on_both_sides(
+            r, lambda x: abs(x[1]) < 1e-6 and x[0] > 1e-3, 1)
+        assert len(seam) >= 4
+        assert r.summary["gap_fraction"] < 1e-3 and r.summary["overlap_fraction"] < 1e-3
+        # Flat panels on a convex face: a little under its area.
+        assert 0.95 < r.metrics["panel_area"].sum() / face.Area < 1.0
+
+
+@pytest.mark.parametrize("method", ["boundary_driven", "iso_grid", "walking_agent"])
+def test_a_closed_bspline_not_marked_periodic_meshes_as_its_periodic_twin(method):
+    # The same NURBS surface of revolution, periodic and not (setUNotPeriodic
+    # keeps its points: its last row of poles repeats its first). Read as
+    # periodic, the second gives the first's panels. Before, boundary_driven
+    # traced curves from its seam (two sides of the face) and the grids put
+    # a node on each side.
+    from FreeCAD import Vector
+    profile = Part.BSplineCurve()
+    profile.interpolate([Vector(r, 0, z) for r, z in ((1000, 0), (700, 500), (350, 1000),
+                                                      (0, 1500))])
+    revolution = Part.SurfaceOfRevolution(profile, Vector(0, 0, 0), Vector(0, 0, 1))
+    periodic = revolution.toShape().toNurbs().Faces[0].Surface
+    assert periodic.isUPeriodic()
+    closed = periodic.copy()
+    closed.setUNotPeriodic()
+    assert closed.isUClosed() and not closed.isUPeriodic()
+    kw = {"max_size": 300.0, "max_deviation": 10.0} if method == "walking_agent" else {
+        "size": 300.0}
+    a = tessella.panelize(Part.Face(periodic), method=method, **kw)
+    b = tessella.panelize(Part.Face(closed), method=method, **kw)
+    assert not close_node_pairs(b.vertices[b.nodes], 1e-6 * 3000)
+    if method == "boundary_driven":
+        # setUNotPeriodic moves the surface by up to 2e-5 mm, and
+        # boundary_driven's smoothing carries such differences into its
+        # interior nodes: the same layout, compared by its counts.
+        assert len(b.panels) == len(a.panels)
+        assert sorted(map(len, b.panels)) == sorted(map(len, a.panels))
+        return
+    assert [list(p) for p in a.panels] == [list(p) for p in b.panels]
+    assert np.abs(a.vertices - b.vertices).max() < 1e-5
+
+
 @pytest.mark.parametrize("nurbs", [False, True])
 @pytest.mark.parametrize("radius, height, size", [(400.0, 1200.0, 63.0), (400.0, 1200.0, 126.0),
                                                   (400.0, 1200.0, 251.0), (300.0, 3000.0, 94.0),

@@ -30,6 +30,7 @@
 #include <optional>
 
 #include "geometry/brep_string.h"
+#include "geometry/closed_bspline.h"
 #include "geometry/face_area.h"
 #include "geometry/pcurve_projection.h"
 #include "geometry/second_derivative_bounds.h"
@@ -200,6 +201,10 @@ SurfaceFace SurfaceFace::from_occt_face(const TopoDS_Face& face) {
          !t.IsNull() && (t->BasisSurface()->IsUPeriodic() || t->BasisSurface()->IsVPeriodic());
          t = Handle(Geom_RectangularTrimmedSurface)::DownCast(impl->surface))
       impl->surface = t->BasisSurface();
+    // A B-spline surface closed on itself but not periodic: the same points
+    // at the same (u,v), read as periodic (a copy; the face keeps its own).
+    if (auto b = Handle(Geom_BSplineSurface)::DownCast(impl->surface))
+      impl->surface = periodic_where_closed(b);
     impl->read_periods();
     impl->reversed = face.Orientation() == TopAbs_REVERSED;
     BRepTools::UVBounds(face, impl->bounds.u_min, impl->bounds.u_max, impl->bounds.v_min,

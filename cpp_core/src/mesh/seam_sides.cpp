@@ -267,9 +267,11 @@ namespace {
 // Whether the face's two sides along `axis` (u = u_min and u = u_max, or
 // the same in v) are one curve in space while the surface is not periodic
 // there: a B-spline band closed on itself (OCCT's Pump_TopCover), whose
-// seam edge each method meets from both sides. A face with a pole at an end
-// of its seam (a B-spline cone with its apex) is left as it was: no such
-// face was at hand to check the join on.
+// seam edge each method meets from both sides. A pole at an end of the
+// seam (a B-spline cone with its apex) is no obstacle: the join along the
+// seam is the periodic face's, which meets such poles on every cone. The
+// seam itself must have a length: two sides collapsed into one point (a
+// spindle's) are no seam.
 bool closed_on_itself(const SurfaceFace& face, int axis) {
   if (axis == 0 ? face.u_periodic() : face.v_periodic()) return false;
   const UvBounds b = face.bounds();
@@ -281,16 +283,13 @@ bool closed_on_itself(const SurfaceFace& face, int axis) {
   };
   const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
   const double a0 = axis == 0 ? b.v_min : b.u_min, a1 = axis == 0 ? b.v_max : b.u_max;
-  double rim[2] = {0, 0};  // lengths round the face at the seam's two ends
+  double seam_length = 0;
   for (int i = 0; i <= n; ++i) {
     const double t = a0 + (a1 - a0) * i / n;
     if (!((at(lo, t) - at(hi, t)).norm() <= tiny)) return false;
-    const double s = lo + (hi - lo) * i / n, s_next = lo + (hi - lo) * (i + 1) / n;
-    if (i < n)
-      for (int end = 0; end < 2; ++end)
-        rim[end] += (at(s_next, end ? a1 : a0) - at(s, end ? a1 : a0)).norm();
+    if (i > 0) seam_length += (at(lo, t) - at(lo, a0 + (a1 - a0) * (i - 1) / n)).norm();
   }
-  return rim[0] > tiny && rim[1] > tiny;
+  return seam_length > tiny;
 }
 
 }  // namespace

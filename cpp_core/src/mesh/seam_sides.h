@@ -73,8 +73,8 @@ void weld_loose_seam(const SurfaceFace& face, PanelMesh& mesh);
 // Welds the two sides of the seam (mesh.corner_uv keeps each panel's own
 // (u,v)) and inserts into each panel side along the seam the seam vertices
 // strictly between its ends; likewise along the sides of a face closed on
-// itself (its two sides one curve in space, the surface not periodic there,
-// no pole at either end). Nothing for any other face.
+// itself (its two sides one curve in space, the surface not periodic there;
+// a pole at an end of that curve as on a cone). Nothing for any other face.
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh);
 
 }  // namespace tessella
