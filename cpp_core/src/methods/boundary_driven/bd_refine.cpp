@@ -190,23 +190,64 @@ bool split_big_panel(const std::vector<BdNode>& nodes, const std::vector<int>& p
   return found;
 }
 
+// One pass of node merges (v into w), the bookkeeping both merging passes
+// share: each node merges at most once a pass, and neither it nor a node of
+// its panels takes part in another merge of the same pass.
+struct MergePass {
+  explicit MergePass(const BdNetwork& net)
+      : rep(net.nodes.size()),
+        touched(net.nodes.size(), 0),
+        on_loop(loop_node_counts(net)),
+        incident(net.nodes.size()) {
+    std::iota(rep.begin(), rep.end(), 0);
+    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
+      for (int x : net.panels[pi]) incident[x].push_back(static_cast<int>(pi));
+  }
+
+  // Orders the pair so that v, the node removed, is of the lower rank, and
+  // says whether it may go at all: a corner never, a trim node only along
+  // its own loop and while the loop keeps kMinLoopNodes.
+  bool allowed(const BdNetwork& net, int& v, int& w) {
+    if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);
+    if (rank(net.nodes[v]) == 2) return false;
+    if (rank(net.nodes[v]) == 1 && !may_merge_along_loop(net, v, w)) return false;
+    if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) return false;
+    return true;
+  }
+
+  void take(const BdNetwork& net, int v, int w) {
+    if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
+    rep[v] = w;
+    touched[v] = touched[w] = 1;
+    for (int pi : incident[v])
+      for (int x : net.panels[pi]) touched[x] = 1;
+    ++merged;
+  }
+
+  // The merges applied to the panels.
+  void apply(BdNetwork& net) const {
+    for (auto& p : net.panels)
+      for (int& v : p) v = rep[v];
+    clean_panels(net.panels);
+  }
+
+  std::vector<int> rep;
+  std::vector<char> touched;
+  std::map<int, int> on_loop;
+  std::vector<std::vector<int>> incident;
+  int merged = 0;
+};
+
 }  // namespace
 
 int remove_skewed_triangles(BdNetwork& net, double ratio) {
   require_in_range("skew_ratio", ratio, 0.0, 1.0);
   int removed = 0;
   for (int pass = 0; pass < 20; ++pass) {
-    std::vector<int> rep(net.nodes.size());
-    std::iota(rep.begin(), rep.end(), 0);
-    std::vector<char> touched(net.nodes.size(), 0);
-    std::map<int, int> on_loop = loop_node_counts(net);
-    std::vector<std::vector<int>> incident(net.nodes.size());
-    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
-      for (int x : net.panels[pi]) incident[x].push_back(static_cast<int>(pi));
-    int merged = 0;
+    MergePass merges(net);
     for (const auto& p : net.panels) {
       if (p.size() != 3) continue;
-      if (touched[p[0]] || touched[p[1]] || touched[p[2]]) continue;  // next pass
+      if (merges.touched[p[0]] || merges.touched[p[1]] || merges.touched[p[2]]) continue;  // next
       double ang[3];
       for (int i = 0; i < 3; ++i)
         ang[i] = corner_angle(net.nodes[p[(i + 2) % 3]].xyz, net.nodes[p[i]].xyz,
@@ -220,23 +261,13 @@ int remove_skewed_triangles(BdNetwork& net, double ratio) {
                       (net.nodes[b].xyz - net.nodes[v].xyz).norm()
                   ? a
                   : b;
-      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);  // v is removed, w kept
-      if (rank(net.nodes[v]) == 2) continue;
-      if (rank(net.nodes[v]) == 1 && !may_merge_along_loop(net, v, w)) continue;
-      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
-      if (!merge_keeps_panels(net, incident[v], v, w, net.nodes[w].uv)) continue;
-      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
-      rep[v] = w;
-      touched[v] = touched[w] = 1;
-      for (int pi : incident[v])
-        for (int x : net.panels[pi]) touched[x] = 1;
-      ++merged;
+      if (!merges.allowed(net, v, w)) continue;  // v is removed, w kept
+      if (!merge_keeps_panels(net, merges.incident[v], v, w, net.nodes[w].uv)) continue;
+      merges.take(net, v, w);
     }
-    if (merged == 0) break;
-    removed += merged;
-    for (auto& p : net.panels)
-      for (int& v : p) v = rep[v];
-    clean_panels(net.panels);
+    if (merges.merged == 0) break;
+    removed += merges.merged;
+    merges.apply(net);
   }
   return removed;
 }
@@ -257,24 +288,14 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
       }
     std::sort(cand.begin(), cand.end());
     cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-    std::vector<std::vector<int>> incident(net.nodes.size());
-    for (std::size_t pi = 0; pi < net.panels.size(); ++pi)
-      for (int v : net.panels[pi]) incident[v].push_back(static_cast<int>(pi));
-    std::vector<char> touched(net.nodes.size(), 0);
-    std::vector<int> rep(net.nodes.size());
-    std::iota(rep.begin(), rep.end(), 0);
-    std::map<int, int> on_loop = loop_node_counts(net);
-    int merged = 0;
+    MergePass merges(net);
     for (const auto& [len, e] : cand) {
       int v = e.first, w = e.second;  // v is removed, w kept
-      if (touched[v] || touched[w]) continue;
-      if (rank(net.nodes[v]) > rank(net.nodes[w])) std::swap(v, w);
-      if (rank(net.nodes[v]) == 2) continue;
-      if (rank(net.nodes[v]) == 1 && !may_merge_along_loop(net, v, w)) continue;
-      if (rank(net.nodes[v]) == 1 && on_loop[net.nodes[v].loop] <= kMinLoopNodes) continue;
+      if (merges.touched[v] || merges.touched[w]) continue;
+      if (!merges.allowed(net, v, w)) continue;
       // would a panel visit w twice?
       bool bad = false;
-      for (int pi : incident[v]) {
+      for (int pi : merges.incident[v]) {
         const auto& p = net.panels[pi];
         const std::size_t n = p.size();
         for (std::size_t i = 0; i < n && !bad; ++i) {
@@ -291,23 +312,16 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
         moved = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
       }
       const Vec2 w_uv = both_inside ? moved.uv : net.nodes[w].uv;
-      std::vector<int> around = incident[v];
-      around.insert(around.end(), incident[w].begin(), incident[w].end());
+      std::vector<int> around = merges.incident[v];
+      around.insert(around.end(), merges.incident[w].begin(), merges.incident[w].end());
       if (!merge_keeps_panels(net, around, v, w, w_uv)) continue;
       if (closed && !merge_keeps_panels_narrow_round(face, net, around, v, w, w_uv)) continue;
       if (both_inside) net.nodes[w].uv = moved.uv, net.nodes[w].xyz = moved.point;
-      if (rank(net.nodes[v]) == 1) --on_loop[net.nodes[v].loop];
-      rep[v] = w;
-      touched[v] = touched[w] = 1;
-      for (int pi : incident[v])
-        for (int x : net.panels[pi]) touched[x] = 1;
-      ++merged;
+      merges.take(net, v, w);
     }
-    if (merged == 0) break;
-    merged_total += merged;
-    for (auto& p : net.panels)
-      for (int& v : p) v = rep[v];
-    clean_panels(net.panels);
+    if (merges.merged == 0) break;
+    merged_total += merges.merged;
+    merges.apply(net);
   }
   return merged_total;
 }
