@@ -295,22 +295,22 @@ bool closed_on_itself(const SurfaceFace& face, int axis) {
 }  // namespace
 
 void join_seam_sides(const SurfaceFace& face, PanelMesh& mesh) {
-  if (!closed_round_a_seam(face)) {
-    // A face closed on itself: its seam joined as a period's.
-    const bool on_itself[2] = {closed_on_itself(face, 0), closed_on_itself(face, 1)};
-    if (!on_itself[0] && !on_itself[1]) return;
-    weld_coincident_vertices(mesh, 1e-9 * face.model_size());
-    const UvBounds b = face.bounds();
+  const bool periodic = closed_round_a_seam(face);
+  // A face closed on itself (not periodic): its seam joined as a period's.
+  const bool on_itself[2] = {!periodic && closed_on_itself(face, 0),
+                             !periodic && closed_on_itself(face, 1)};
+  if (!periodic && !on_itself[0] && !on_itself[1]) return;
+  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
+  const UvBounds b = face.bounds();
+  if (!periodic) {
     if (on_itself[0]) join_along(mesh, 0, b.u_min, b.u_max - b.u_min);
     if (on_itself[1]) join_along(mesh, 1, b.v_min, b.v_max - b.v_min);
     return;
   }
-  weld_coincident_vertices(mesh, 1e-9 * face.model_size());
   // Each seam's looseness measured once: it welds, and a loose seam's far
   // copy is the face's own bound.
   const LooseSeam seams[2] = {loose_seam(face, 0), loose_seam(face, 1)};
   weld_loose_seams(face, mesh, seams);
-  const UvBounds b = face.bounds();
   if (spans_period(face.u_periodic(), b.u_min, b.u_max, face.u_period()))
     join_along(mesh, 0, b.u_min, face.u_period() + seams[0].hair);
   if (spans_period(face.v_periodic(), b.v_min, b.v_max, face.v_period()))
