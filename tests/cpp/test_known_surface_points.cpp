@@ -94,3 +94,36 @@ TEST(KnownSurfacePoints, EmptyOrDegenerate) {
   d = std::nan("");
   EXPECT_EQ(known.nearer(Vec3(1, 2, 3), d, 1e-9), 1u);  // NaN: nothing is nearer
 }
+
+TEST(KnownSurfacePoints, ASheetOfPointsUnderProbesAboveIt) {
+  // The measure's case: the points lie on a wavy sheet (the surface under a
+  // panel) and each query stands above it, its start its height: the cells
+  // under the query's box hold many points, but its ball only touches the
+  // sheet (cells whose points' box is outside the ball are skipped). Also
+  // after a reset to a smaller grid, whose cells reuse the earlier boxes'
+  // storage.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  KnownSurfacePoints known;
+  for (double side : {2000.0, 300.0}) {
+    known.reset(Vec3(0, 0, -40), Vec3(side, side, 40));
+    std::vector<Vec3> pts;
+    auto sheet = [side](double a, double b) {
+      return Vec3(a * side, b * side, 30.0 * std::sin(7 * a) * std::cos(5 * b));
+    };
+    int taken = 0;
+    for (int step = 0; step < 1500; ++step) {
+      const Vec3 p = sheet(u(rng), u(rng));
+      known.add(Vec2(step, 0), p);
+      pts.push_back(p);
+      const double a = u(rng), b = u(rng), h = 0.2 * side * u(rng);
+      const Vec3 x = sheet(a, b) + Vec3(0, 0, h);
+      double got_d = h, want_d = h;
+      const std::size_t got = known.nearer(x, got_d, 1e-9);
+      ASSERT_EQ(got, linear_nearer(pts, x, want_d, 1e-9)) << "side " << side << " step " << step;
+      ASSERT_EQ(got_d, want_d);
+      taken += got < pts.size();
+    }
+    EXPECT_GT(taken, 100);
+  }
+}

@@ -17,7 +17,10 @@ void KnownSurfacePoints::reset(const Vec3& lo, const Vec3& hi) {
   inv_cell_ = cell > 0 && std::isfinite(cell) ? 1.0 / cell : 0.0;
   for (int a = 0; a < 3; ++a)
     n_[a] = inv_cell_ > 0 ? std::clamp(int(std::ceil(extent[a] * inv_cell_)), 1, kMaxCells) : 1;
-  head_.assign(std::size_t(n_[0]) * n_[1] * n_[2], -1);
+  const std::size_t cells = std::size_t(n_[0]) * n_[1] * n_[2];
+  head_.assign(cells, -1);
+  // Read only where a cell has points, so set by add() alone.
+  if (cell_lo_.size() < cells) cell_lo_.resize(cells), cell_hi_.resize(cells);
   next_.clear();
   uv_.clear();
   xyz_.clear();
@@ -51,9 +54,15 @@ int KnownSurfacePoints::cell_of(const Vec3& p) const {
 }
 
 void KnownSurfacePoints::add(const Vec2& uv, const Vec3& xyz) {
-  const int c = cell_of(xyz);
-  next_.push_back(head_[std::size_t(c)]);
-  head_[std::size_t(c)] = static_cast<int>(xyz_.size());
+  const std::size_t c = std::size_t(cell_of(xyz));
+  if (head_[c] < 0) {
+    cell_lo_[c] = cell_hi_[c] = xyz;
+  } else {
+    cell_lo_[c] = cell_lo_[c].cwiseMin(xyz);
+    cell_hi_[c] = cell_hi_[c].cwiseMax(xyz);
+  }
+  next_.push_back(head_[c]);
+  head_[c] = static_cast<int>(xyz_.size());
   uv_.push_back(uv);
   xyz_.push_back(xyz);
 }
@@ -78,13 +87,20 @@ std::size_t KnownSurfacePoints::nearer(const Vec3& x, double& d_near, double tin
   const double limit2 = limit * limit * (1 + 1e-12);
   for (int k = first[2]; k <= last[2]; ++k)
     for (int j = first[1]; j <= last[1]; ++j)
-      for (int i = first[0]; i <= last[0]; ++i)
+      for (int i = first[0]; i <= last[0]; ++i) {
+        const std::size_t c = std::size_t((k * n_[1] + j) * n_[0] + i);
+        if (head_[c] < 0 || std::size_t(head_[c]) < from) continue;
+        // Every point of the cell is at least as far as its box, and the
+        // rounded differences keep that order: a box beyond the pre-test's
+        // limit holds no point the scan could take.
+        const Vec3 gap = (cell_lo_[c] - x).cwiseMax(x - cell_hi_[c]).cwiseMax(0.0);
+        if (gap.squaredNorm() > limit2) continue;
         // A cell's list runs from its newest point back: stop below `from`.
-        for (int p = head_[std::size_t((k * n_[1] + j) * n_[0] + i)];
-             p >= 0 && std::size_t(p) >= from; p = next_[std::size_t(p)])
+        for (int p = head_[c]; p >= 0 && std::size_t(p) >= from; p = next_[std::size_t(p)])
           if ((xyz_[std::size_t(p)] - x).squaredNorm() <= limit2 &&
               (xyz_[std::size_t(p)] - x).norm() + tiny < limit)
             candidates_.push_back(p);
+      }
   if (candidates_.empty()) return none;
   // The scan's rule, in the order the points were added.
   std::sort(candidates_.begin(), candidates_.end());

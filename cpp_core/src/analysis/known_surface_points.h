@@ -45,6 +45,11 @@ class KnownSurfacePoints {
   int n_[3] = {1, 1, 1};
   std::vector<int> head_;  // per cell: the last point added to it, -1 if none
   std::vector<int> next_;  // per point: the point added before it to its cell
+  // Per cell the box of its points (valid where head_ >= 0): a query skips a
+  // cell whose box lies outside its ball (the surface points under a probe
+  // at distance d fill the cells of its query box, but the ball only
+  // touches them: a coarse boundary panel scanned ~400 points a query).
+  std::vector<Vec3> cell_lo_, cell_hi_;
   std::vector<Vec2> uv_;
   std::vector<Vec3> xyz_;
   mutable std::vector<int> candidates_;
