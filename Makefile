@@ -54,7 +54,8 @@ test-gui: build
 
 # The C++ tests, the fingerprint cases and the face-set / boundary_driven
 # Python tests under ASan + UBSan + libstdc++ assertions, built apart in
-# build-sanitize/ (about 25 minutes; SANITIZE_PYTEST=all for every Python test).
+# build-sanitize/ (about 25 minutes; SANITIZE_PYTEST=all for every Python test;
+# SANITIZE_KIND=thread for ThreadSanitizer in build-sanitize-thread/).
 sanitize: deps
 	bash tests/sanitize.sh
 
