@@ -419,13 +419,18 @@ def test_a_face_on_a_trimmed_periodic_surface_keeps_its_seam(method):
 
 def _closed_band_with_an_apex(kind):
     """A surface round the z axis up to an apex, closed on itself along u
-    (its last row of poles its first) and not periodic: an interpolated
-    B-spline (read as periodic) or a Bezier surface (which has no periodic
-    form: its seam is joined after the method)."""
+    (its last row of poles its first) and not periodic, its two sides
+    meeting at a crease: an interpolated B-spline (read as periodic, the
+    crease inside the face) or a Bezier surface (no periodic form: its seam
+    is joined after the method)."""
     from FreeCAD import Vector
     radii = ((1000, 0), (700, 500), (350, 1000), (0, 1500))
-    if kind == "bspline":
-        rows = [[Vector(r * math.cos(a), r * math.sin(a), z) for r, z in radii]
+    if kind in ("bspline", "pointed"):
+        # A teardrop section, pointed at the seam (a crease of 5 or 35 deg).
+        point = 0.1 if kind == "bspline" else 0.4
+        rows = [[Vector(r * (1 - point + point * abs(math.sin(a / 2))) * math.cos(a),
+                        r * (1 - point + point * abs(math.sin(a / 2))) * math.sin(a), z)
+                 for r, z in radii]
                 for a in (2 * math.pi * (k % 12) / 12 for k in range(13))]
         surface = Part.BSplineSurface()
         surface.interpolate(rows)
@@ -440,17 +445,22 @@ def _closed_band_with_an_apex(kind):
     return Part.Face(surface)
 
 
-@pytest.mark.parametrize("kind", ["bspline", "bezier"])
+@pytest.mark.parametrize("kind", ["bspline", "pointed", "bezier"])
 @pytest.mark.parametrize("method", ["boundary_driven", "iso_grid"])
 def test_a_band_closed_on_itself_up_to_an_apex(method, kind):
     # boundary_driven left T-junctions along the seam of such a face (nodes
     # of one side missing from the other side's panel sides): the join of
     # the two sides was kept from faces with a pole at an end of the seam.
-    # A B-spline is now read as periodic (same points, same (u,v)); a Bezier
-    # surface's seam is joined, pole and all.
+    # A B-spline is now read as periodic (the same points at the same
+    # (u,v)); a Bezier surface's seam is joined, pole and all. Before, the
+    # grids also left 0.24% of the pointed one uncovered (refused).
     face = _closed_band_with_an_apex(kind)
+    surface = face.Surface
+    u0, u1, v0, v1 = surface.bounds()
+    assert surface.normal(u0, 0.5 * (v0 + v1)).getAngle(
+        surface.normal(u1, 0.5 * (v0 + v1))) > 0.05  # a crease (3 degrees)
     assert core.SurfaceFace.from_brep_string(face.exportBrepToString()).u_periodic() == (
-        kind == "bspline")
+        kind != "bezier")
     for size in (150.0, 300.0):
         r = tessella.panelize(face, method=method, size=size)
         assert not close_node_pairs(r.vertices[r.nodes], 1e-6 * face.BoundBox.DiagonalLength)
@@ -479,6 +489,7 @@ def test_a_closed_bspline_not_marked_periodic_meshes_as_its_periodic_twin(method
     closed = periodic.copy()
     closed.setUNotPeriodic()
     assert closed.isUClosed() and not closed.isUPeriodic()
+    assert core.SurfaceFace.from_brep_string(Part.Face(closed).exportBrepToString()).u_periodic()
     kw = {"max_size": 300.0, "max_deviation": 10.0} if method == "walking_agent" else {
         "size": 300.0}
     a = tessella.panelize(Part.Face(periodic), method=method, **kw)
