@@ -1,9 +1,11 @@
 """Faces for the speed benchmarks, built in code (deterministic, not the bundled
 examples): smooth terrain-like bicubic B-spline patches with any pole count,
 and trimmed doubly curved faces (a dome with an opening, a saddle trimmed by a
-curve, a roof with a drum hole). Import FreeCAD before this module."""
+curve, a roof with a drum hole), and random bands closed on themselves
+(closed_band). Import FreeCAD before this module."""
 
 import math
+import random
 
 import FreeCAD
 import Part
@@ -143,6 +145,35 @@ def roof_with_drum(width=70000.0, depth=50000.0, drum=22000.0):
     hu, hv = 0.5 * drum / width * 2 * ru, 0.5 * drum / depth * 2 * rv
     hole = list(reversed([(cu + hu * p, cv + hv * q) for p, q in _circle(0, 0, 1, 48)]))
     return _trimmed(surf, outer, [hole])
+
+
+def closed_band(seed):
+    """(face, size) for a random band round the z axis closed on itself: a
+    B-spline interpolated through an elliptic section turned by a random
+    phase, its first point repeated last (not periodic, as a STEP file's
+    surfaces come; its sides meet at a slight crease), its radii shrinking
+    upwards, to an apex for about half the seeds, closed along v for about a
+    third; size gives about 20, 80 or 300 panels."""
+    rng = random.Random(seed)
+    around, up = rng.choice([6, 8, 12]), rng.choice([3, 4, 5])
+    apex = rng.random() < 0.5
+    radii = [1000 * (1 - 0.7 * j / (up - 1)) * (1 + 0.1 * rng.uniform(-1, 1)) for j in range(up)]
+    if apex:
+        radii[-1] = 0.0
+    heights = [j * rng.uniform(300, 700) for j in range(up)]
+    phase = rng.uniform(0, 1)
+    rows = []
+    for k in range(around + 1):
+        a = 2 * math.pi * (k % around) / around
+        wobble = 1 + 0.15 * math.sin(2 * a + phase)
+        rows.append([V(r * wobble * math.cos(a), r * wobble * math.sin(a), z)
+                     for r, z in zip(radii, heights)])
+    if rng.random() < 0.3:  # closed along v instead
+        rows = [list(column) for column in zip(*rows)]
+    surface = Part.BSplineSurface()
+    surface.interpolate(rows)
+    face = Part.Face(surface)
+    return face, math.sqrt(face.Area / rng.choice([20, 80, 300]))
 
 
 TRIMMED = {

@@ -7,19 +7,18 @@ Before, a random sample of 40 such bands (sqrt(area) / sqrt(20, 80 or 300))
 had 14 of its 160 runs refused: the panels left up to 0.42% of the face
 uncovered or overlapped by up to 0.40% along the seam (walking_agent 10,
 equal_size_grid 2, iso_grid 1, boundary_driven 1). These are four of those
-bands, built the same way. Checked with FreeCAD: every node on the face, no
+bands (bench/bench_faces.py: closed_band; bench/closed_bands.py runs the
+sample). Checked with FreeCAD: every node on the face, no
 two nodes in one place, the panels' area under the face's (the coverage
 itself the pipeline checks before it returns, within 0.1%)."""
 
-import math
 import os
-import random
 import sys
 
 import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-for _p in ("/usr/lib/freecad-python3/lib", REPO):
+for _p in ("/usr/lib/freecad-python3/lib", REPO, os.path.join(REPO, "bench")):
     if _p not in sys.path:
         sys.path.append(_p)
 
@@ -29,35 +28,8 @@ import numpy as np  # noqa: E402
 
 import freecad_workbench as tessella  # noqa: E402
 from freecad_workbench import core  # noqa: E402
+from bench_faces import closed_band  # noqa: E402  (bench/: the benchmark's bands)
 from conftest import close_node_pairs  # noqa: E402
-
-
-def closed_band(seed):
-    """(face, size): a band round the z axis with an elliptic section turned
-    by a random phase, its radii shrinking upwards (to an apex for some), the
-    section's points interpolated with the first repeated last."""
-    from FreeCAD import Vector
-
-    rng = random.Random(seed)
-    around, up = rng.choice([6, 8, 12]), rng.choice([3, 4, 5])
-    apex = rng.random() < 0.5
-    radii = [1000 * (1 - 0.7 * j / (up - 1)) * (1 + 0.1 * rng.uniform(-1, 1)) for j in range(up)]
-    if apex:
-        radii[-1] = 0.0
-    heights = [j * rng.uniform(300, 700) for j in range(up)]
-    phase = rng.uniform(0, 1)
-    rows = []
-    for k in range(around + 1):
-        a = 2 * math.pi * (k % around) / around
-        wobble = 1 + 0.15 * math.sin(2 * a + phase)
-        rows.append([Vector(r * wobble * math.cos(a), r * wobble * math.sin(a), z)
-                     for r, z in zip(radii, heights)])
-    if rng.random() < 0.3:  # closed along v instead
-        rows = [list(column) for column in zip(*rows)]
-    surface = Part.BSplineSurface()
-    surface.interpolate(rows)
-    face = Part.Face(surface)
-    return face, math.sqrt(face.Area / rng.choice([20, 80, 300]))
 
 
 CASES = [(110, "equal_size_grid"), (116, "iso_grid"), (116, "equal_size_grid"),
