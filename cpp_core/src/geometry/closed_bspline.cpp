@@ -1,10 +1,9 @@
 #include "geometry/closed_bspline.h"
 
 #include <Standard_Failure.hxx>
-#include <TColStd_Array2OfReal.hxx>
-#include <TColgp_Array2OfPnt.hxx>
 #include <algorithm>
 #include <cmath>
+#include <gp_Pnt.hxx>
 
 namespace tessella {
 
