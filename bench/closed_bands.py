@@ -15,6 +15,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+# The tests' own check of one position taken twice.
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests", "python"))
 
 import FreeCAD  # noqa: E402,F401  (before Part, always)
 import Part  # noqa: E402,F401
@@ -22,21 +24,9 @@ import numpy as np  # noqa: E402
 
 import bench_faces  # noqa: E402
 import freecad_workbench as tessella  # noqa: E402
+from conftest import close_node_pairs  # noqa: E402
 
 METHODS = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent")
-
-
-def close_pairs(points, tol):
-    """Whether two of the points lie within tol of each other (sorted sweep)."""
-    order = np.argsort(points[:, 0])
-    p = points[order]
-    for i in range(len(p)):
-        j = i + 1
-        while j < len(p) and p[j, 0] - p[i, 0] <= tol:
-            if np.linalg.norm(p[j] - p[i]) <= tol:
-                return True
-            j += 1
-    return False
 
 
 def main(argv=None):
@@ -58,7 +48,7 @@ def main(argv=None):
                 print(f"seed {seed} {method}: refused: {str(e)[:110]}")
                 continue
             s = r.summary
-            if (close_pairs(np.asarray(r.vertices[r.nodes]), 1e-6 * model)
+            if (close_node_pairs(np.asarray(r.vertices[r.nodes]), 1e-6 * model)
                     or s["gap_fraction"] > 1e-3 or s["overlap_fraction"] > 1e-3):
                 tally[method]["broken"] += 1
                 print(f"seed {seed} {method}: BROKEN gap {s['gap_fraction']:.3g} "

@@ -284,10 +284,13 @@ bool closed_on_itself(const SurfaceFace& face, int axis) {
   const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
   const double a0 = axis == 0 ? b.v_min : b.u_min, a1 = axis == 0 ? b.v_max : b.u_max;
   double seam_length = 0;
+  Vec3 previous;
   for (int i = 0; i <= n; ++i) {
     const double t = a0 + (a1 - a0) * i / n;
-    if (!((at(lo, t) - at(hi, t)).norm() <= tiny)) return false;
-    if (i > 0) seam_length += (at(lo, t) - at(lo, a0 + (a1 - a0) * (i - 1) / n)).norm();
+    const Vec3 side = at(lo, t);
+    if (!((side - at(hi, t)).norm() <= tiny)) return false;
+    if (i > 0) seam_length += (side - previous).norm();
+    previous = side;
   }
   return seam_length > tiny;
 }
