@@ -176,6 +176,95 @@ def closed_band(seed):
     return face, math.sqrt(face.Area / rng.choice([20, 80, 300]))
 
 
+def _random_bspline_surface(rng, extent):
+    """A bicubic B-spline over [0, extent]^2 with 5-7 x 5-7 poles (clamped,
+    uniform knots), its poles' heights random up to a quarter of extent."""
+    nu, nv = rng.randint(5, 7), rng.randint(5, 7)
+    amp = rng.uniform(0.05, 0.25) * extent
+    poles = [[V(extent * i / (nu - 1), extent * j / (nv - 1), amp * rng.uniform(-1, 1))
+              for j in range(nv)] for i in range(nu)]
+    uknots, umults = _clamped_uniform(nu)
+    vknots, vmults = _clamped_uniform(nv)
+    surface = Part.BSplineSurface()
+    surface.buildFromPolesMultsKnots(poles, umults, vmults, uknots, vknots, False, False, 3, 3)
+    return surface
+
+
+def _slice(shape, planes):
+    """The shape cut by planes (BOPTools' Split: the pieces share the cuts'
+    edges)."""
+    import BOPTools.SplitAPI as split_api
+
+    big = 4 * shape.BoundBox.DiagonalLength
+    tools = [Part.Plane(p, n).toShape(-big, big, -big, big) for p, n in planes]
+    return split_api.slice(shape, tools, "Split")
+
+
+def random_face_set(seed):
+    """(kind, shape, size) for a random multi-face shape, not a bundled
+    example: a B-spline face split by one to three random vertical planes
+    ("split"), a box with some edges filleted, open at the bottom
+    ("fillet"), a revolved B-spline profile closed by a planar top
+    ("revolve"), an extruded closed B-spline curve with its caps
+    ("extrude"), or a box fused with a cylinder through it ("fuse"); size
+    gives about 60, 200 or 600 panels over the whole shape."""
+    import sys
+
+    sys.path.append("/usr/share/freecad/Mod/Part")  # BOPTools
+    rng = random.Random(seed)
+    kind = ("split", "fillet", "revolve", "extrude", "fuse")[seed % 5]
+    extent = 10000.0
+    if kind == "split":
+        face = _random_bspline_surface(rng, extent).toShape()
+        planes = []
+        for _ in range(rng.randint(1, 3)):
+            a = rng.uniform(0, math.pi)
+            planes.append((V(rng.uniform(0.3, 0.7) * extent, rng.uniform(0.3, 0.7) * extent, 0),
+                           V(math.cos(a), math.sin(a), 0)))
+        shape = _slice(face, planes)
+    elif kind == "fillet":
+        dims = [rng.uniform(0.3, 1.0) * extent for _ in range(3)]
+        box = Part.makeBox(*dims)
+        edges = [e for e in box.Edges if rng.random() < 0.6] or box.Edges[:1]
+        radius = rng.uniform(0.03, 0.2) * min(dims)
+        solid = box.makeFillet(radius, edges)
+        faces = [f for f in solid.Faces if f.CenterOfMass.z > 1e-6 * extent]
+        shape = Part.Shell(faces)
+    elif kind == "revolve":
+        n = rng.randint(4, 7)
+        height_ = rng.uniform(0.3, 1.0) * extent
+        points = [V(0.3 * extent * (1 + 0.5 * rng.uniform(-1, 1)), 0, height_ * k / (n - 1))
+                  for k in range(n)]
+        curve = Part.BSplineCurve()
+        curve.interpolate(points)
+        side = curve.toShape().revolve(V(0, 0, 0), V(0, 0, 1), 360)
+        top = Part.Face(Part.Wire(Part.makeCircle(points[-1].x, V(0, 0, height_))))
+        shape = Part.Shell([side.Faces[0], top])
+        shape.sewShape()
+    elif kind == "extrude":
+        n = rng.randint(5, 9)
+        points = []
+        for k in range(n):
+            a = 2 * math.pi * k / n
+            r = 0.3 * extent * (1 + 0.3 * rng.uniform(-1, 1))
+            points.append(V(r * math.cos(a), r * math.sin(a), 0))
+        curve = Part.BSplineCurve()
+        curve.interpolate(points, PeriodicFlag=True)
+        base = Part.Face(Part.Wire(curve.toShape()))
+        solid = base.extrude(V(0, rng.uniform(-0.2, 0.2) * extent, rng.uniform(0.3, 1.0) * extent))
+        shape = solid
+    else:
+        dims = [rng.uniform(0.4, 1.0) * extent for _ in range(3)]
+        box = Part.makeBox(*dims)
+        radius = rng.uniform(0.1, 0.3) * min(dims[0], dims[1])
+        cyl = Part.makeCylinder(radius, 2 * dims[2],
+                                V(rng.uniform(0.3, 0.7) * dims[0], rng.uniform(0.3, 0.7) * dims[1],
+                                  -0.5 * dims[2]))
+        shape = box.fuse(cyl).removeSplitter()
+    area = sum(f.Area for f in shape.Faces)
+    return kind, shape, math.sqrt(area / rng.choice([60, 200, 600]))
+
+
 TRIMMED = {
     "dome_with_opening": dome_with_opening,
     "saddle_trimmed": saddle_trimmed,

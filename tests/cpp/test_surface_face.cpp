@@ -8,9 +8,15 @@
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepGProp.hxx>
 #include <BRep_Builder.hxx>
+#include <GCPnts_AbscissaPoint.hxx>
 #include <GC_MakeSegment.hxx>
 #include <GProp_GProps.hxx>
+#include <GeomAPI_Interpolate.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_Curve.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
 #include <cmath>
 #include <gp_Circ.hxx>
 #include <gp_Pln.hxx>
@@ -263,6 +269,33 @@ TEST(SurfaceFace, TheAreaOfRationalFacesIsTheirClosedForm) {
   GProp_GProps gauss;
   BRepGProp::SurfaceProperties(sphere[0], gauss);
   EXPECT_GT(std::abs(gauss.Mass() / (4 * kPi * r * r) - 1), 1e-3);
+}
+
+TEST(SurfaceFace, TheAreaOfAnExtrudedClosedCurveIsItsLengthTimesItsHeight) {
+  // A closed B-spline curve extruded along its plane's normal: the area is
+  // the curve's length (OCCT's arc length, an independent integral) times
+  // the height.
+  const int n = 7;
+  const double radius[n] = {3000, 2400, 3500, 2800, 3300, 2600, 3100};
+  Handle(TColgp_HArray1OfPnt) points = new TColgp_HArray1OfPnt(1, n);
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * kPi * k / n;
+    points->SetValue(k + 1, gp_Pnt(radius[k] * std::cos(a), radius[k] * std::sin(a), 0));
+  }
+  GeomAPI_Interpolate interpolate(points, Standard_True, 1e-9);
+  interpolate.Perform();
+  const Handle(Geom_BSplineCurve) curve = interpolate.Curve();
+  const double height = 4000;
+  const TopoDS_Face face =
+      BRepBuilderAPI_MakeFace(new Geom_SurfaceOfLinearExtrusion(curve, gp_Dir(0, 0, 1)),
+                              curve->FirstParameter(), curve->LastParameter(), 0, height, 1e-7);
+  GeomAdaptor_Curve adaptor(curve);
+  const double exact = GCPnts_AbscissaPoint::Length(adaptor, 1e-12) * height;
+  EXPECT_NEAR(SurfaceFace::from_brep_string(brep(face)).area(), exact, 1e-6 * exact);
+  // OCCT's adaptive rule on the face as it is, so this test shows what it guards.
+  GProp_GProps adaptive;
+  BRepGProp::SurfaceProperties(face, adaptive, 1e-9);
+  EXPECT_GT(std::abs(adaptive.Mass() / exact - 1), 1e-3);
 }
 
 TEST(SurfaceFace, PolynomialFacesKeepTheFixedOrderRule) {

@@ -134,6 +134,32 @@ class EdgeSide {
         if (d3 < best3d) best3d = d3, t = at;
       }
     }
+    if (best3d <= tol || !degenerate_at(q0)) return best3d <= tol;
+    // A vertex at a pole of the face may carry any parameter along the
+    // pole's iso-line (a sphere's pole at u = 0 where the edge runs at
+    // u = pi/2): its (u,v) says nothing of where it is on the edge, so the
+    // edge's 3D points over [lo, hi] are searched instead (the nearest of a
+    // few samples, then a ternary search beside it).
+    constexpr int kSamples = 16;
+    const double h = (hi - lo) / kSamples;
+    double s = lo, nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= kSamples; ++i) {
+      const double si = lo + h * i;
+      const double d = (xyz_at(si) - x).squaredNorm();
+      if (d < nearest) nearest = d, s = si;
+    }
+    double a = std::max(lo, s - h), b = std::min(hi, s + h);
+    for (int it = 0; it < 80 && b - a > 1e-15 * (std::abs(last_ - first_) + 1); ++it) {
+      const double m0 = a + (b - a) / 3, m1 = b - (b - a) / 3;
+      if ((xyz_at(m0) - x).squaredNorm() <= (xyz_at(m1) - x).squaredNorm())
+        b = m1;
+      else
+        a = m0;
+    }
+    for (double si : {0.5 * (a + b), s}) {
+      const double d3 = (xyz_at(si) - x).norm();
+      if (d3 < best3d) best3d = d3, t = si;
+    }
     return best3d <= tol;
   }
   // uv of the curve at t, shifted by whole periods to lie nearest `near`.
@@ -158,6 +184,13 @@ class EdgeSide {
       q.y() += p * std::round((near.y() - q.y()) / p);
     }
     return q;
+  }
+  // Whether the surface degenerates at q (a pole: all of an iso-line maps to
+  // one point, so a vertex there may carry any parameter along it).
+  bool degenerate_at(const Vec2& q) const {
+    const SurfacePoint d = face_.derivatives(q.x(), q.y());
+    const double du = d.du.norm(), dv = d.dv.norm();
+    return du <= 1e-9 * dv || dv <= 1e-9 * du;
   }
   Vec2 uv_at(double t) const {
     const gp_Pnt2d c = curve_->Value(t);
@@ -416,6 +449,9 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
     // (moved onto the node), else a new one; its other ones join it.
     std::map<int, int> replace;    // vertex -> the vertex standing for its node
     std::map<int, Vec2> moved_uv;  // vertices moved onto a merged node
+    // Where this side's vertices lay on the edge before any moved onto a
+    // merged node: a run's direction is read from these (below).
+    const std::unordered_map<int, double> own_t = t_of[static_cast<std::size_t>(s)];
     for (std::size_t k = 0; k < nodes.size(); ++k) {
       EdgeNode& n = nodes[k];
       int& mine = n.vertex[static_cast<std::size_t>(s)];
@@ -474,9 +510,23 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
         halfway += 0.5 * span;
         if (halfway > e.last) halfway -= span;
       }
-      const Vec2 mid = 0.5 * (ua + ub);
-      return (side[static_cast<std::size_t>(s)].uv_near(halfway, mid) - mid).norm() <=
-             0.25 * (ua - ub).norm();
+      const EdgeSide& es = side[static_cast<std::size_t>(s)];
+      auto follows = [&](const Vec2& pa, const Vec2& pb) {
+        const Vec2 mid = 0.5 * (pa + pb);
+        return (es.uv_near(halfway, mid) - mid).norm() <= 0.25 * (pa - pb).norm();
+      };
+      if (follows(ua, ub)) return true;
+      // An end at a pole carries whatever parameter its face's method gave
+      // it there, not the edge's: compare with the edge's own (u,v) at that
+      // end. (A box's filleted corner, a sphere whose pole is where the
+      // edge meets two others: the side from the pole looked like a chord
+      // across the face, and the other face's node on it was missed: a
+      // T-junction, walking_agent on bench_faces.random_face_set(11).)
+      const bool pole_a = es.degenerate_at(ua), pole_b = es.degenerate_at(ub);
+      if (!pole_a && !pole_b) return false;
+      const Vec2 pa = pole_a ? es.uv_near(ta, ub) : ua;
+      const Vec2 pb = pole_b ? es.uv_near(tb, pa) : ub;
+      return follows(pa, pb);
     };
     // Per-panel corner (u,v)s are kept (a periodic face's seam corners).
     const bool corner_uv = !m.corner_uv.empty();
@@ -567,18 +617,30 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
           const auto r = replace.find(v);
           return r != replace.end() ? r->second : v;
         };
+        // The direction is read where the run's corners lay before the
+        // merge: a corner moved onto the other side's node up to a merge
+        // distance away can pass its own trim points, which then lie behind
+        // it, and their middle pointed the wrong way: the run took every
+        // node round a closed edge (boundary_driven, an extruded closed
+        // curve's cap, bench_faces.random_face_set(48): a corner moved
+        // 400 mm, 91% overlap).
+        auto before = [&](int v) {
+          const auto it = own_t.find(v);
+          return it != own_t.end() ? it->second : t_of[static_cast<std::size_t>(s)][v];
+        };
+        const double ta0 = before(a), tb0 = before(b);
         std::vector<double> inner;
         for (std::size_t k = 1; k < len; ++k) {
           const int v = panel[(i + k) % n];
           if (stands_for(v) != stands_for(a) && stands_for(v) != stands_for(b))
-            inner.push_back(t_of[static_cast<std::size_t>(s)][v]);
+            inner.push_back(before(v));
         }
-        bool up = tb > ta;
+        bool up = tb0 > ta0;
         if (!inner.empty()) {
           const double tm = inner[(inner.size() + 1) / 2 - 1];  // the run's middle
-          up = e.closed ? ahead(ta, tm, true) < ahead(ta, tb, true) : tm > ta;
+          up = e.closed ? ahead(ta0, tm, true) < ahead(ta0, tb0, true) : tm > ta0;
         } else if (e.closed) {
-          up = ahead(ta, tb, true) < 0.5 * span;
+          up = ahead(ta0, tb0, true) < 0.5 * span;
         }
         const double reach = ahead(ta, tb, up);
         std::vector<std::pair<double, std::size_t>> between;

@@ -14,7 +14,8 @@ namespace tessella {
 // was refused as "overlapping". Where the surface or a trim curve is rational
 // (or of a kind whose rationality is not known) the area comes from OCCT's
 // adaptive integration instead; it costs 10-100 times as much, so
-// polynomial faces keep the Gauss rule.
+// polynomial faces keep the Gauss rule. A surface of linear extrusion, on
+// which the adaptive rule itself goes wrong, is integrated as its NURBS copy.
 double face_area(const TopoDS_Face& face);
 
 // True where the fixed-order rule may be inexact: the surface or one of the

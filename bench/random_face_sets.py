@@ -1,0 +1,92 @@
+"""Random multi-face shapes (bench_faces.random_face_set: B-spline faces split
+by random planes, boxes with random fillets, revolved profiles with a planar
+top, extruded closed curves with caps, a box fused with a cylinder) with the
+four face-set methods: how many runs conform, how many are refused with a
+clear error, and how many break an invariant of the face-set tests
+(tests/python/test_face_sets.py: check_conforming: two nodes in one place, a
+node off the shape, a panel with a corner twice, a shared-edge segment
+without its rod or without a panel of each face). Coverage is the
+pipeline's own check (each face refused beyond 0.1% uncovered or covered
+twice, the strips between a curved shared edge and its chords allowed).
+
+    PYTHONPATH=/usr/lib/freecad-python3/lib:$PWD /usr/bin/python3 bench/random_face_sets.py [--first 0] [--count 40] [--threads-check]
+
+--threads-check also runs each case on one thread and on two and compares
+the results bit for bit. Against another build: put that build's repository
+first on PYTHONPATH.
+"""
+
+import argparse
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+# The face-set tests' own invariants.
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests", "python"))
+
+import FreeCAD  # noqa: E402,F401  (before Part, always)
+import Part  # noqa: E402,F401
+import numpy as np  # noqa: E402
+
+import bench_faces  # noqa: E402
+import freecad_workbench as tessella  # noqa: E402
+from test_face_sets import check_conforming  # noqa: E402
+
+METHODS = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent")
+
+
+def same_result(a, b):
+    return (np.array_equal(a.vertices, b.vertices) and np.array_equal(a.rods, b.rods)
+            and len(a.panels) == len(b.panels)
+            and all(np.array_equal(p, q) for p, q in zip(a.panels, b.panels))
+            and np.array_equal(a.metrics["panel_deviation"], b.metrics["panel_deviation"]))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--first", type=int, default=0, help="first seed")
+    ap.add_argument("--count", type=int, default=40, help="shapes")
+    ap.add_argument("--methods", nargs="+", default=list(METHODS))
+    ap.add_argument("--threads-check", action="store_true")
+    args = ap.parse_args(argv)
+    tally = {m: {"ok": 0, "refused": 0, "broken": 0, "threads": 0} for m in args.methods}
+    t0 = time.perf_counter()
+    for seed in range(args.first, args.first + args.count):
+        kind, shape, size = bench_faces.random_face_set(seed)
+        for method in args.methods:
+            kw = ({"max_size": size, "max_deviation": 0.01 * size} if method == "walking_agent"
+                  else {"size": size})
+            try:
+                r = tessella.panelize_faces(shape, method=method, **kw)
+            except (ValueError, RuntimeError) as e:
+                tally[method]["refused"] += 1
+                print(f"seed {seed} {kind} {method}: refused: {str(e)[:150]}", flush=True)
+                continue
+            try:
+                check_conforming(shape, r)
+            except AssertionError as e:
+                tally[method]["broken"] += 1
+                print(f"seed {seed} {kind} {method}: BROKEN {str(e)[:150]}", flush=True)
+                continue
+            tally[method]["ok"] += 1
+            if args.threads_check:
+                one = tessella.panelize_faces(shape, method=method, threads=1, **kw)
+                two = tessella.panelize_faces(shape, method=method, threads=2, **kw)
+                if not same_result(one, two):
+                    tally[method]["threads"] += 1
+                    print(f"seed {seed} {kind} {method}: 1 AND 2 THREADS DIFFER", flush=True)
+    print(f"\n{args.count} shapes (seeds {args.first}..{args.first + args.count - 1}), "
+          f"{time.perf_counter() - t0:.0f} s:")
+    head = f"  {'method':<18}{'ok':>5}{'refused':>9}{'broken':>8}"
+    print(head + (f"{'1 vs 2 threads differ':>23}" if args.threads_check else ""))
+    for method in args.methods:
+        t = tally[method]
+        line = f"  {method:<18}{t['ok']:>5}{t['refused']:>9}{t['broken']:>8}"
+        print(line + (f"{t['threads']:>23}" if args.threads_check else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
