@@ -206,15 +206,47 @@ def random_face_set(seed):
     ("split"), a box with some edges filleted, open at the bottom
     ("fillet"), a revolved B-spline profile closed by a planar top
     ("revolve"), an extruded closed B-spline curve with its caps
-    ("extrude"), or a box fused with a cylinder through it ("fuse"); size
-    gives about 60, 200 or 600 panels over the whole shape."""
+    ("extrude"), or a box fused with a cylinder through it ("fuse"); from
+    seed 1000 on: a sphere's face cut by one or two planes ("sphere": poles
+    and seams beside the cuts), a torus's face cut by a plane through its
+    axis ("torus": periodic both ways), or a B-spline face with one or two holes split by
+    a plane ("holed"); size gives about 60, 200 or 600 panels over the
+    whole shape."""
     import sys
 
     sys.path.append("/usr/share/freecad/Mod/Part")  # BOPTools
     rng = random.Random(seed)
-    kind = ("split", "fillet", "revolve", "extrude", "fuse")[seed % 5]
+    if seed >= 1000:
+        kind = ("sphere", "torus", "holed")[seed % 3]
+    else:
+        kind = ("split", "fillet", "revolve", "extrude", "fuse")[seed % 5]
     extent = 10000.0
-    if kind == "split":
+    if kind == "sphere":
+        radius = rng.uniform(0.2, 0.5) * extent
+        sphere = Part.makeSphere(radius)
+        planes = []
+        for _ in range(rng.randint(1, 2)):
+            a, b = rng.uniform(0, 2 * math.pi), rng.uniform(-1, 1)
+            normal = V(math.cos(a) * math.sqrt(1 - b * b), math.sin(a) * math.sqrt(1 - b * b), b)
+            planes.append((normal * (rng.uniform(-0.6, 0.6) * radius), normal))
+        shape = _slice(sphere.Faces[0], planes)
+    elif kind == "torus":
+        major = rng.uniform(0.2, 0.4) * extent
+        torus = Part.makeTorus(major, rng.uniform(0.15, 0.6) * major)
+        a = rng.uniform(0, math.pi)
+        shape = _slice(torus.Faces[0], [(V(0, 0, 0), V(math.cos(a), math.sin(a), 0))])
+    elif kind == "holed":
+        face = _random_bspline_surface(rng, extent).toShape()
+        for _ in range(rng.randint(1, 2)):
+            radius = rng.uniform(0.05, 0.15) * extent
+            centre = V(rng.uniform(0.25, 0.75) * extent, rng.uniform(0.25, 0.75) * extent,
+                       -extent)
+            face = face.cut(Part.makeCylinder(radius, 2 * extent, centre))
+        a = rng.uniform(0, math.pi)
+        plane = (V(rng.uniform(0.3, 0.7) * extent, rng.uniform(0.3, 0.7) * extent, 0),
+                 V(math.cos(a), math.sin(a), 0))
+        shape = _slice(face, [plane])
+    elif kind == "split":
         face = _random_bspline_surface(rng, extent).toShape()
         planes = []
         for _ in range(rng.randint(1, 3)):

@@ -162,7 +162,16 @@ NARROW_PASSAGE = pytest.mark.xfail(
     reason="issue 18 part 3: panels inside an opening near the outer trim (coverage refusal)")
 
 
-@pytest.mark.parametrize("name", [pytest.param("cone_facade", marks=NARROW_PASSAGE),
+#: Since stop 52 (a quad's centre that lay in the opening is moved onto the
+#: face) cone_facade at 900 mm is no longer refused: it covers the face
+#: (0.07% overlap), every corner at 15 degrees or more, but two of its 209
+#: panels by the narrow passage are triangles.
+TWO_TRIANGLES_AT_THE_PASSAGE = pytest.mark.xfail(
+    strict=True, raises=AssertionError,
+    reason="issue 18 part 3: two triangles where the opening nears the outer trim")
+
+
+@pytest.mark.parametrize("name", [pytest.param("cone_facade", marks=TWO_TRIANGLES_AT_THE_PASSAGE),
                                   "notched_shell", "vault_openings"])
 def test_examples_quad_mesh_covering_the_face(name):
     face = _load(name)
@@ -175,8 +184,7 @@ def test_examples_quad_mesh_covering_the_face(name):
 
 @pytest.mark.parametrize(
     "name, size",
-    [("vault_openings", 1200.0), pytest.param("cone_facade", 900.0, marks=NARROW_PASSAGE),
-     ("trimmed_bspline_holes", 1200.0)],
+    [("vault_openings", 1200.0), ("cone_facade", 900.0), ("trimmed_bspline_holes", 1200.0)],
 )
 def test_no_corner_under_15_deg_where_trims_are_closer_than_a_panel(name, size):
     # The worst cases of the benchmark (4.2, 6.6 and 6.4 deg before the

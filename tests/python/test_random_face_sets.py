@@ -1,5 +1,5 @@
 """Random multi-face shapes that broke a face-set invariant or were refused
-wrongly (bench/random_face_sets.py runs 400 of them; bench/bench_faces.py:
+wrongly (bench/random_face_sets.py runs them by seed; bench/bench_faces.py:
 random_face_set builds them, deterministic per seed). Each case is checked
 with the face-set tests' own invariants (test_face_sets.check_conforming)."""
 
@@ -42,6 +42,9 @@ from test_face_sets import check_conforming  # noqa: E402
     # curved face's node joined onto a planar face's along their edge bent
     # its panel over walking_agent's bound on every retry.
     (154, "walking_agent"), (211, "walking_agent"),
+    # A B-spline face with holes, split: a boundary panel's centre (its
+    # corners' middle) lay 25.9 mm inside a hole, an interior node there.
+    (1058, "boundary_driven"),
 ])
 def test_random_face_set(seed, method):
     kind, shape, size = random_face_set(seed)

@@ -313,10 +313,14 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
       if (!merges.allowed(net, v, w)) continue;
       if (merge_repeats_a_corner(net, merges.incident[v], v, w)) continue;
       Projection moved;
-      const bool both_inside = rank(net.nodes[v]) == 0 && rank(net.nodes[w]) == 0;
+      bool both_inside = rank(net.nodes[v]) == 0 && rank(net.nodes[w]) == 0;
       if (both_inside) {
         const BdNode& k = net.nodes[w];
         moved = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
+        // Two interior nodes either side of an opening's bend: their middle
+        // may lie in the opening (a node 25.9 mm inside a hole, its panels
+        // reaching over it; bench_faces.random_face_set(1058)). w stays.
+        both_inside = face.is_inside(moved.uv.x(), moved.uv.y());
       }
       const Vec2 w_uv = both_inside ? moved.uv : net.nodes[w].uv;
       std::vector<int> around = merges.incident[v];
@@ -570,11 +574,25 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     // (As for the midpoints: a centre near a thin cylinder's axis.)
     if (!is_in(c.uv) || !(pr.distance <= kFarFromSurface * span))
       c.uv = c2, c.xyz = face.point(c2.x(), c2.y());
+    // A panel beside an opening's bend: its corners' middle may lie in the
+    // opening (an interior node 25.9 mm inside a hole, its four quads
+    // reaching over it; bench_faces.random_face_set(1058)). A point on the
+    // way to a corner instead; with none on the face, the panel keeps its
+    // midpoints below (as where no centre sees every corner).
+    bool centre_inside = is_in(c.uv);
+    for (std::size_t k = 0; k < n && !centre_inside; ++k)
+      for (double t : {0.25, 0.5, 0.75}) {
+        const Vec2 q = c2 + t * (net.nodes[p[k]].uv - c2);
+        if (!is_in(q)) continue;
+        c.uv = q, c.xyz = face.point(q.x(), q.y());
+        centre_inside = true;
+        break;
+      }
     const int ci = add(c);
     std::vector<int> m(n);
     for (std::size_t i = 0; i < n; ++i) m[i] = midpoint(p[i], p[(i + 1) % n], c.uv);
     std::vector<std::vector<int>> quads;
-    bool folded = false;
+    bool folded = !centre_inside;
     for (std::size_t i = 0; i < n; ++i) {
       quads.push_back({p[i], m[i], ci, m[(i + n - 1) % n]});
       folded = folded || !(uv_area(net.nodes, quads.back()) > 0);
