@@ -35,6 +35,20 @@ import freecad_workbench as tessella  # noqa: E402
 from test_face_sets import check_conforming  # noqa: E402
 
 METHODS = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent")
+# Also taken (--methods): gradient_descent, relaxed_grid.
+
+
+def method_kw(method, size):
+    """The parameters for about `size` panels: walking_agent's largest panel
+    and a bound of 1% of it; gradient_descent that bound (it sizes its
+    panels from it); relaxed_grid 6 x 6 per face; the others the size."""
+    if method == "walking_agent":
+        return {"max_size": size, "max_deviation": 0.01 * size}
+    if method == "gradient_descent":
+        return {"max_deviation": 0.01 * size}
+    if method == "relaxed_grid":
+        return {"u_count": 6, "v_count": 6}
+    return {"size": size}
 
 
 def same_result(a, b):
@@ -56,8 +70,7 @@ def main(argv=None):
     for seed in range(args.first, args.first + args.count):
         kind, shape, size = bench_faces.random_face_set(seed)
         for method in args.methods:
-            kw = ({"max_size": size, "max_deviation": 0.01 * size} if method == "walking_agent"
-                  else {"size": size})
+            kw = method_kw(method, size)
             try:
                 r = tessella.panelize_faces(shape, method=method, **kw)
             except (ValueError, RuntimeError) as e:
