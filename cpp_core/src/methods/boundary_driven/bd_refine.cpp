@@ -318,8 +318,8 @@ int collapse_short_edges(const SurfaceFace& face, BdNetwork& net, double min_len
         const BdNode& k = net.nodes[w];
         moved = face.project(0.5 * (k.xyz + net.nodes[v].xyz), 0.5 * (k.uv + net.nodes[v].uv));
         // Two interior nodes either side of an opening's bend: their middle
-        // may lie in the opening (a node 25.9 mm inside a hole, its panels
-        // reaching over it; bench_faces.random_face_set(1058)). w stays.
+        // may lie in the opening, as a quad's centre can (quadrangulate
+        // below). w then stays where it is.
         both_inside = face.is_inside(moved.uv.x(), moved.uv.y());
       }
       const Vec2 w_uv = both_inside ? moved.uv : net.nodes[w].uv;
