@@ -28,10 +28,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests", "python"))
 
 import FreeCAD  # noqa: E402,F401  (before Part, always)
 import Part  # noqa: E402,F401
-import numpy as np  # noqa: E402
 
 import bench_faces  # noqa: E402
 import freecad_workbench as tessella  # noqa: E402
+from face_set_sweep import first_difference  # noqa: E402  (the sweep's own comparison)
 from test_face_sets import check_conforming  # noqa: E402
 
 METHODS = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent")
@@ -49,13 +49,6 @@ def method_kw(method, size):
     if method == "relaxed_grid":
         return {"u_count": 6, "v_count": 6}
     return {"size": size}
-
-
-def same_result(a, b):
-    return (np.array_equal(a.vertices, b.vertices) and np.array_equal(a.rods, b.rods)
-            and len(a.panels) == len(b.panels)
-            and all(np.array_equal(p, q) for p, q in zip(a.panels, b.panels))
-            and np.array_equal(a.metrics["panel_deviation"], b.metrics["panel_deviation"]))
 
 
 def main(argv=None):
@@ -87,7 +80,7 @@ def main(argv=None):
             if args.threads_check:
                 one = tessella.panelize_faces(shape, method=method, threads=1, **kw)
                 two = tessella.panelize_faces(shape, method=method, threads=2, **kw)
-                if not same_result(one, two):
+                if first_difference(one, two) is not None:
                     tally[method]["threads"] += 1
                     print(f"seed {seed} {kind} {method}: 1 AND 2 THREADS DIFFER", flush=True)
     print(f"\n{args.count} shapes (seeds {args.first}..{args.first + args.count - 1}), "

@@ -524,9 +524,9 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
     // (moved onto the node), else a new one; its other ones join it.
     std::map<int, int> replace;    // vertex -> the vertex standing for its node
     std::map<int, Vec2> moved_uv;  // vertices moved onto a merged node
-    // Where this side's vertices lay on the edge before any moved onto a
-    // merged node: a run's direction is read from these (below).
-    const std::unordered_map<int, double> own_t = t_of[static_cast<std::size_t>(s)];
+    // Where this side's vertices moved onto a merged node lay on the edge
+    // before: a run's direction is read from these (below).
+    std::unordered_map<int, double> t_before;  // looked up only
     for (std::size_t k = 0; k < nodes.size(); ++k) {
       EdgeNode& n = nodes[k];
       int& mine = n.vertex[static_cast<std::size_t>(s)];
@@ -550,7 +550,10 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
         ++counts.taken_over;
       }
       set_node(m, mine);
-      t_of[static_cast<std::size_t>(s)][mine] = n.t;
+      auto& t_here = t_of[static_cast<std::size_t>(s)];
+      const auto was = t_here.find(mine);
+      if (was != t_here.end() && was->second != n.t) t_before.emplace(mine, was->second);
+      t_here[mine] = n.t;
     }
     // A trim point of this side where a node now sits (the other side's
     // node, or one of its own moved there) is that node: left a vertex of
@@ -700,8 +703,8 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
         // curve's cap, bench_faces.random_face_set(48): a corner moved
         // 400 mm, 91% overlap).
         auto before = [&](int v) {
-          const auto it = own_t.find(v);
-          return it != own_t.end() ? it->second : t_of[static_cast<std::size_t>(s)][v];
+          const auto it = t_before.find(v);
+          return it != t_before.end() ? it->second : t_of[static_cast<std::size_t>(s)][v];
         };
         const double ta0 = before(a), tb0 = before(b);
         std::vector<double> inner;
