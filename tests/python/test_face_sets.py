@@ -129,6 +129,19 @@ def check_conforming(shape, r):
     # other face came to sit, merged with it when the faces were joined).
     repeated = [k for k, p in enumerate(r.panels) if len(set(map(int, p))) < len(p)]
     assert not repeated, f"{len(repeated)} panels repeat a corner, e.g. {list(r.panels[repeated[0]])}"
+    failures, checked = shared_segment_failures(shape, r)
+    assert not failures, failures[0]
+    return checked
+
+
+def shared_segment_failures(shape, r):
+    """The shared-edge segments (consecutive nodes along a shared edge,
+    measured with FreeCAD) without their rod or without one panel of each
+    face along them, as messages; and how many segments were looked at."""
+    size = shape.BoundBox.DiagonalLength
+    tol = 1e-6 * size
+    rods = {tuple(sorted(map(int, rod))) for rod in r.rods}
+    failures = []
     # Panel sides by their node ends, with the faces using them.
     side_faces = {}
     for k, panel in enumerate(r.panels):
@@ -154,12 +167,14 @@ def check_conforming(shape, r):
             key = tuple(sorted((a, b)))
             # one rod per segment, and a panel of each face along it (no T-junction:
             # the two ends are consecutive corners on both sides)
-            assert key in rods, f"no rod between consecutive shared-edge nodes {key}"
-            assert sorted(side_faces.get(key, [])) == sorted(faces), \
-                f"segment {key} bounds panels of faces {side_faces.get(key)}, expected {faces}"
             checked += 1
+            if key not in rods:
+                failures.append(f"no rod between consecutive shared-edge nodes {key}")
+            elif sorted(side_faces.get(key, [])) != sorted(faces):
+                failures.append(f"segment {key} bounds panels of faces {side_faces.get(key)}, "
+                                f"expected {faces}")
         assert all(v in node_set for v in on)
-    return checked
+    return failures, checked
 
 
 @pytest.fixture(scope="module")
@@ -505,6 +520,12 @@ def test_boundary_driven_retraces_a_face_alone_where_the_shared_curves_fail():
     across = [(i, j) for i, j in pairs
               if one.vertex_face[one.nodes[i]] != one.vertex_face[one.nodes[j]]]
     assert not across
+    # Along every shared edge both faces run node to node. Where a face's
+    # outline ran on past an edge's end along its next edge (sides of 0.5 to
+    # 1.6 mm between faces of a few mm), the other face's node at that end
+    # was left out of it: 24 of 1,055 segments were T-junctions before.
+    failures, checked = shared_segment_failures(shape, one)
+    assert checked > 1000 and not failures, failures[:3]
     assert all(len(set(map(int, p))) == len(p) for p in one.panels)
     two = tessella.panelize_faces(shape, method="boundary_driven", size=size, threads=2)
     assert_same_result(one, two)
