@@ -5,7 +5,10 @@ four face-set methods: how many runs conform, how many are refused with a
 clear error, and how many break an invariant of the face-set tests
 (tests/python/test_face_sets.py: check_conforming: two nodes in one place, a
 node off the shape, a panel with a corner twice, a shared-edge segment
-without its rod or without a panel of each face). Coverage is the
+without its rod or without a panel of each face), and how many results
+carry the product's own warning of that (summary "join_warning"; a
+result that conforms but is warned is reported as broken, by
+check_conforming). Coverage is the
 pipeline's own check (each face refused beyond 0.1% uncovered or covered
 twice, the strips between a curved shared edge and its chords allowed).
 
@@ -58,7 +61,8 @@ def main(argv=None):
     ap.add_argument("--methods", nargs="+", default=list(METHODS))
     ap.add_argument("--threads-check", action="store_true")
     args = ap.parse_args(argv)
-    tally = {m: {"ok": 0, "refused": 0, "broken": 0, "threads": 0} for m in args.methods}
+    tally = {m: {"ok": 0, "refused": 0, "broken": 0, "warned": 0, "threads": 0}
+             for m in args.methods}
     t0 = time.perf_counter()
     for seed in range(args.first, args.first + args.count):
         kind, shape, size = bench_faces.random_face_set(seed)
@@ -70,11 +74,16 @@ def main(argv=None):
                 tally[method]["refused"] += 1
                 print(f"seed {seed} {kind} {method}: refused: {str(e)[:150]}", flush=True)
                 continue
+            # The product's own check of the joined result (summary
+            # "join_warning"); check_conforming below is the independent one.
+            warning = r.summary.get("join_warning", "")
+            tally[method]["warned"] += 1 if warning else 0
+            said = " (warned)" if warning else " (not warned)"
             try:
                 check_conforming(shape, r)
             except AssertionError as e:
                 tally[method]["broken"] += 1
-                print(f"seed {seed} {kind} {method}: BROKEN {str(e)[:150]}", flush=True)
+                print(f"seed {seed} {kind} {method}: BROKEN{said} {str(e)[:150]}", flush=True)
                 continue
             tally[method]["ok"] += 1
             if args.threads_check:
@@ -85,11 +94,11 @@ def main(argv=None):
                     print(f"seed {seed} {kind} {method}: 1 AND 2 THREADS DIFFER", flush=True)
     print(f"\n{args.count} shapes (seeds {args.first}..{args.first + args.count - 1}), "
           f"{time.perf_counter() - t0:.0f} s:")
-    head = f"  {'method':<18}{'ok':>5}{'refused':>9}{'broken':>8}"
+    head = f"  {'method':<18}{'ok':>5}{'refused':>9}{'broken':>8}{'warned':>8}"
     print(head + (f"{'1 vs 2 threads differ':>23}" if args.threads_check else ""))
     for method in args.methods:
         t = tally[method]
-        line = f"  {method:<18}{t['ok']:>5}{t['refused']:>9}{t['broken']:>8}"
+        line = f"  {method:<18}{t['ok']:>5}{t['refused']:>9}{t['broken']:>8}{t['warned']:>8}"
         print(line + (f"{t['threads']:>23}" if args.threads_check else ""))
     return 0
 

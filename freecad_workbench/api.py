@@ -468,6 +468,12 @@ def _face_set_result(r, method, values, params, face_set):
     result.summary["shared_edges"] = r.shared_edges
     result.summary["shared_edge_nodes"] = r.shared_edge_nodes
     result.summary["shared_nodes_taken_over"] = r.shared_nodes_taken_over
+    # Checked on the joined result: segments between consecutive nodes along
+    # shared edges, those without a panel of each face along them (a
+    # T-junction or a gap), and the warning saying where ("" when none).
+    result.summary["shared_edge_segments"] = r.shared_edge_segments
+    result.summary["unmatched_shared_segments"] = r.unmatched_shared_segments
+    result.summary["join_warning"] = r.join_warning
     result.summary["faces_traced_across"] = r.faces_traced_across
     result.summary["faces_traced_across_surfaces"] = r.faces_traced_across_surfaces
     # boundary_driven: faces the set's size was too coarse for, meshed at the

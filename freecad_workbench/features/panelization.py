@@ -469,12 +469,15 @@ class Panelization(_StateMixin):
 def result_warnings(summary):
     """What a user should know of a result that holds (the Report view shows
     them; the batch CLI prints them): where a method that need not tile the
-    face (the guide-line methods) leaves it uncovered or overlaps; a set's
+    face (the guide-line methods) leaves it uncovered or overlaps; where two
+    faces of a set do not meet node to node along their edge; a set's
     faces boundary_driven's size was too coarse for, meshed finer; a set's
     faces without area, left out."""
     out = []
     if summary.get("coverage_warning"):
         out.append(summary["coverage_warning"])
+    if summary.get("join_warning"):
+        out.append(summary["join_warning"])
     smaller = summary.get("faces_at_a_smaller_size") or {}
     if smaller:
         listed = ", ".join(f"face {f + 1} at {size:.4g} mm" for f, size in smaller.items())

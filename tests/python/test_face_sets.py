@@ -131,6 +131,10 @@ def check_conforming(shape, r):
     assert not repeated, f"{len(repeated)} panels repeat a corner, e.g. {list(r.panels[repeated[0]])}"
     failures, checked = shared_segment_failures(shape, r)
     assert not failures, failures[0]
+    # The product's own check of the joined result agrees: no warning.
+    if "unmatched_shared_segments" in getattr(r, "summary", {}):
+        assert r.summary["unmatched_shared_segments"] == 0, r.summary["join_warning"]
+        assert r.summary["join_warning"] == ""
     return checked
 
 

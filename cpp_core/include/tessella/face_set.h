@@ -68,6 +68,12 @@ struct FaceSetResult {
   // Nodes on shared edges, counted once; how many of them one face had and
   // the other took over (inserted into its outline or moved onto it).
   int shared_edge_nodes = 0, shared_nodes_taken_over = 0;
+  // Checked on the joined result: segments between consecutive nodes along
+  // shared edges, and those without a side of one panel of each face (a
+  // T-junction or a gap: parts that will not fit), with a warning saying
+  // where the first is ("" when none).
+  int shared_edge_segments = 0, unmatched_shared_segments = 0;
+  std::string join_warning;
   // Faces laid out on the union of faces lying on one surface, so that the
   // layout runs on across the edges between them: boundary_driven's curves
   // traced there, walking_agent's lines walked there.

@@ -14,6 +14,7 @@
 #include "common/parallel_chunks.h"
 #include "faceset/aligned_grid_lines.h"
 #include "faceset/face_set_impl.h"
+#include "faceset/shared_edge_check.h"
 #include "faceset/shared_edge_nodes.h"
 #include "faceset/smooth_groups.h"
 #include "faceset/surface_groups.h"
@@ -928,6 +929,23 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
     for (std::size_t f = 0; f < walked.size(); ++f)
       out.faces_traced_across += walked[f] && !walked_alone[f] ? 1 : 0;
     join(results, set.impl().model_size, out);
+    report_stage(0.0, "checking the shared edges");
+    const SharedEdgeCheck check = check_shared_edges(set.impl(), out.combined.mesh, out.panel_face);
+    out.shared_edge_segments = check.segments;
+    out.unmatched_shared_segments = check.unmatched;
+    if (check.unmatched > 0) {
+      char buf[400];
+      std::snprintf(buf, sizeof buf,
+                    "%d of %d segments of shared edges where the panels of two faces do not "
+                    "meet node to node (a T-junction or a gap: parts there will not fit), the "
+                    "first near (%.1f, %.1f, %.1f) between faces %d and %d; another panel size "
+                    "may avoid it",
+                    check.unmatched, check.segments, check.first_at.x(), check.first_at.y(),
+                    check.first_at.z(),
+                    set.given_index(static_cast<std::size_t>(check.first_faces[0])) + 1,
+                    set.given_index(static_cast<std::size_t>(check.first_faces[1])) + 1);
+      out.join_warning = buf;
+    }
     summarize_set(
         set, results, out,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
