@@ -15,6 +15,7 @@
 #include <map>
 #include <set>
 
+#include "faceset/shared_edge_check.h"
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
 #include "test_faces.h"
@@ -104,6 +105,67 @@ TEST(FaceSet, SharedEdgeHasOneNodeAtEachPositionAndPanelsOnBothSides) {
   // One rod per side along it.
   std::set<std::pair<int, int>> rods;
   for (const auto& rod : m.rods) EXPECT_TRUE(rods.insert({rod[0], rod[1]}).second);
+}
+
+TEST(FaceSet, TheCheckOfTheSharedEdgesFindsAGapAndATJunction) {
+  const FaceSet set = FaceSet::from_brep_string(split_patch());
+  const FaceSetResult r = panelize_faces(set, "equal_size_grid", {{"size", 900.0}});
+  // The vertices both faces use lie on the split: one segment fewer than them.
+  std::map<int, std::set<int>> faces_of_vertex;
+  const PanelMesh& m = r.combined.mesh;
+  for (std::size_t p = 0; p < m.panels.size(); ++p)
+    for (int v : m.panels[p]) faces_of_vertex[v].insert(r.panel_face[p]);
+  int both = 0;
+  for (const auto& [v, f] : faces_of_vertex) both += f.size() == 2 ? 1 : 0;
+  EXPECT_EQ(r.shared_edge_segments, both - 1);
+  EXPECT_EQ(r.unmatched_shared_segments, 0);
+  EXPECT_EQ(r.join_warning, "");
+
+  // A gap: face 1's panels along the split taken away.
+  PanelMesh gap = m;
+  gap.panels.clear();
+  std::vector<int> gap_face;
+  int removed = 0;
+  for (std::size_t p = 0; p < m.panels.size(); ++p) {
+    int on_split = 0;
+    for (int v : m.panels[p]) on_split += faces_of_vertex[v].size() == 2 ? 1 : 0;
+    if (r.panel_face[p] == 1 && on_split >= 2) {
+      ++removed;
+      continue;
+    }
+    gap.panels.push_back(m.panels[p]);
+    gap_face.push_back(r.panel_face[p]);
+  }
+  ASSERT_GT(removed, 0);
+  const SharedEdgeCheck g = check_shared_edges(set.impl(), gap, gap_face);
+  EXPECT_EQ(g.segments, both - 1);
+  EXPECT_EQ(g.unmatched, both - 1);  // each of them had a panel of face 1
+  EXPECT_EQ(g.first_faces, (std::array<int, 2>{0, 1}));
+
+  // A T-junction: a node of face 0's in the middle of one segment, face 1's
+  // panel still running past it.
+  PanelMesh t = m;
+  bool done = false;
+  for (std::size_t p = 0; p < t.panels.size() && !done; ++p) {
+    if (r.panel_face[p] != 0) continue;
+    std::vector<int>& q = t.panels[p];
+    for (std::size_t i = 0; i < q.size() && !done; ++i) {
+      const int a = q[i], b = q[(i + 1) % q.size()];
+      if (faces_of_vertex[a].size() != 2 || faces_of_vertex[b].size() != 2) continue;
+      // The split's point halfway, on the surface (the split is u = 0.4).
+      const Vec2 uv = 0.5 * (m.uv[static_cast<std::size_t>(a)] + m.uv[static_cast<std::size_t>(b)]);
+      t.uv.push_back(uv);
+      t.xyz.push_back(set.face(0)->point(uv.x(), uv.y()));
+      t.is_node.push_back(1);
+      q.insert(q.begin() + static_cast<long>(i + 1), static_cast<int>(t.xyz.size()) - 1);
+      done = true;
+    }
+  }
+  ASSERT_TRUE(done);
+  const SharedEdgeCheck c = check_shared_edges(set.impl(), t, r.panel_face);
+  EXPECT_EQ(c.segments, both);  // the new node splits one segment in two
+  EXPECT_EQ(c.unmatched, 2);    // face 1 runs along neither half
+  EXPECT_LT((c.first_at - t.xyz.back()).norm(), 0.5 * 900.0);
 }
 
 TEST(FaceSet, SameResultOnOneAndTwoThreads) {

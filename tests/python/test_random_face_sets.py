@@ -3,9 +3,7 @@ wrongly (bench/random_face_sets.py runs them by seed; bench/bench_faces.py:
 random_face_set builds them, deterministic per seed). Each case is checked
 with the face-set tests' own invariants (test_face_sets.check_conforming)."""
 
-import math
 import os
-import re
 import sys
 
 import pytest
@@ -20,8 +18,7 @@ import Part  # noqa: E402,F401
 
 import freecad_workbench as tessella  # noqa: E402
 from bench_faces import random_face_set  # noqa: E402  (bench/: the benchmark's shapes)
-from freecad_workbench.features.panelization import result_warnings  # noqa: E402
-from test_face_sets import check_conforming, shared_segment_failures  # noqa: E402
+from test_face_sets import check_conforming  # noqa: E402
 
 
 @pytest.mark.parametrize("seed, method", [
@@ -48,6 +45,15 @@ from test_face_sets import check_conforming, shared_segment_failures  # noqa: E4
     # A B-spline face with holes, split: a boundary panel's centre (its
     # corners' middle) lay 25.9 mm inside a hole, an interior node there.
     (1058, "boundary_driven"),
+    # A sphere cut by planes 0.8 mm and 23 mm from its poles: near a pole
+    # the nearest point in (u,v) is not the nearest in space, and a side
+    # along the cut looks like a chord across the face there; the faces did
+    # not meet node to node (2 to 9 segments).
+    (1113, "iso_grid"), (1113, "walking_agent"), (1332, "equal_size_grid"),
+    # Three planes crossing near one point of a B-spline face: a triangle
+    # of 12 to 16 mm (80 mm2) read as a sliver 0.01 mm wide (its area over
+    # its whole surface's box) and was left out, a hole in the set.
+    (430, "iso_grid"), (430, "boundary_driven"), (710, "walking_agent"),
 ])
 def test_random_face_set(seed, method):
     kind, shape, size = random_face_set(seed)
@@ -58,31 +64,13 @@ def test_random_face_set(seed, method):
     assert set(r.panel_face.tolist()) == set(range(len(shape.Faces)))
     # No rod of a fraction of a millimetre (a few may stay under the
     # minimum where no merge keeps the panels valid; summary short_rods).
-    assert r.metrics["rod_length"].min() > 0.1 * r.summary["min_rod_length"]
+    # Where the shape itself has them, the shape's: cuts 0.8 and 23 mm from
+    # the pole of a sphere (the pole node and the cut's nodes beside it: 0.7
+    # and 9.3 mm, left open), the edges of 12 to 16 mm of a small face cut
+    # out by three planes.
+    if seed not in SHORT_BY_THE_SHAPE:
+        assert r.metrics["rod_length"].min() > 0.1 * r.summary["min_rod_length"]
 
 
-@pytest.mark.parametrize("seed, method", [
-    # A sphere cut by planes passing 0.8 mm and 0.3 mm from its poles: near
-    # a pole (u,v) says little about what runs along the cut, and the faces'
-    # panels do not meet node to node there (left open). The result says so.
-    (1113, "iso_grid"), (1113, "walking_agent"), (1332, "equal_size_grid"),
-])
-def test_faces_that_do_not_meet_node_to_node_are_reported(seed, method):
-    kind, shape, size = random_face_set(seed)
-    kw = ({"max_size": size, "max_deviation": 0.01 * size} if method == "walking_agent"
-          else {"size": size})
-    r = tessella.panelize_faces(shape, method=method, **kw)
-    # The defect, measured with FreeCAD: shared-edge segments without their
-    # rod or without a panel of each face; the product counts the same.
-    failures, checked = shared_segment_failures(shape, r)
-    assert failures
-    assert r.summary["unmatched_shared_segments"] == len(failures)
-    assert r.summary["shared_edge_segments"] == checked
-    warning = r.summary["join_warning"]
-    assert warning.startswith(f"{len(failures)} of {checked} segments of shared edges")
-    # Where it says: beside the pole the plane passes (the sphere is centred
-    # on the origin, its poles on z).
-    x, y, z = map(float, re.search(r"near \(([^)]*)\)", warning).group(1).split(","))
-    radius = shape.Faces[0].Surface.Radius
-    assert math.hypot(x, y) < 0.05 * radius and abs(abs(z) - radius) < 0.01 * radius
-    assert warning in result_warnings(r.summary)
+SHORT_BY_THE_SHAPE = {1113, 1332, 430}
+

@@ -138,12 +138,16 @@ class EdgeSide {
         if (d3 < best3d) best3d = d3, t = at;
       }
     }
-    if (best3d <= tol || !degenerate_at(q0)) return best3d <= tol;
+    if (best3d <= tol || !near_a_pole(q0)) return best3d <= tol;
     // A vertex at a pole of the face may carry any parameter along the
     // pole's iso-line (a sphere's pole at u = 0 where the edge runs at
     // u = pi/2): its (u,v) says nothing of where it is on the edge, so the
     // edge's 3D points over [lo, hi] are searched instead (the nearest of a
-    // few samples, then a ternary search beside it).
+    // few samples, then a ternary search beside it). So for a vertex near
+    // a pole: there the nearest point in (u,v) is not the nearest in space
+    // (a trim passing 0.8 mm from a sphere's pole: grid crossings a
+    // millimetre from it were not found on the edge, and the other face's
+    // nodes not put between them; bench_faces.random_face_set(1113)).
     constexpr int kSamples = 16;
     const double h = (hi - lo) / kSamples;
     double s = lo, nearest = std::numeric_limits<double>::infinity();
@@ -188,6 +192,13 @@ class EdgeSide {
       q.y() += p * std::round((near.y() - q.y()) / p);
     }
     return q;
+  }
+  // Whether q is at or beside a pole: one iso-line through it a hundred
+  // times shorter than the other (within about R / 100 of a sphere's pole).
+  bool near_a_pole(const Vec2& q) const {
+    const SurfacePoint d = face_.derivatives(q.x(), q.y());
+    const double du = d.du.norm(), dv = d.dv.norm();
+    return du <= 1e-2 * dv || dv <= 1e-2 * du;
   }
   // Whether the surface degenerates at q (a pole: all of an iso-line maps to
   // one point, so a vertex there may carry any parameter along it).
@@ -683,10 +694,21 @@ void conform_edge(const FaceSet::Impl& set, const SharedEdge& e, std::vector<Pan
       // across the face, and the other face's node on it was missed: a
       // T-junction, walking_agent on bench_faces.random_face_set(11).)
       const bool pole_a = es.degenerate_at(ua), pole_b = es.degenerate_at(ub);
-      if (!pole_a && !pole_b) return false;
-      const Vec2 pa = pole_a ? es.uv_near(ta, ub) : ua;
-      const Vec2 pb = pole_b ? es.uv_near(tb, pa) : ub;
-      return follows(pa, pb);
+      if (pole_a || pole_b) {
+        const Vec2 pa = pole_a ? es.uv_near(ta, ub) : ua;
+        const Vec2 pb = pole_b ? es.uv_near(tb, pa) : ub;
+        if (follows(pa, pb)) return true;
+      }
+      // The same test in space. Near a pole the edge's pcurve turns through
+      // a large angle within a few millimetres, and a side between two of
+      // its points looks like a chord across the face in (u,v) while it
+      // follows the edge in space (a sphere cut 0.8 mm from its pole:
+      // trim points kept between two nodes, a T-junction;
+      // bench_faces.random_face_set(1113)).
+      const Vec3& xa = m.xyz[static_cast<std::size_t>(a)];
+      const Vec3& xb = m.xyz[static_cast<std::size_t>(b)];
+      const Vec3 mid = 0.5 * (xa + xb);
+      return (es.xyz_at(halfway) - mid).norm() <= 0.25 * (xa - xb).norm();
     };
     // Per-panel corner (u,v)s are kept (a periodic face's seam corners).
     const bool corner_uv = !m.corner_uv.empty();
