@@ -1,9 +1,7 @@
 #include "faceset/shared_edge_check.h"
 
-#include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
 #include <algorithm>
-#include <cmath>
 #include <map>
 #include <utility>
 

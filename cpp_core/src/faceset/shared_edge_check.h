@@ -6,6 +6,7 @@
 // test has met yet.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "faceset/face_set_impl.h"

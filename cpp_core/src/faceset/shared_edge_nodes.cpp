@@ -360,10 +360,8 @@ bool insert_into_side(PanelMesh& m, const SurfaceFace& face, SideUse& use, int f
 // Along the shared edge the face's outline should run from merged node to
 // merged node. Where it runs past a node instead (a side from the node's
 // neighbour on to a point beyond the edge's end), the node goes into that
-// side (insert_into_side). Other misses are left as they are (a trim
-// passing within millimetres of a pole, where (u,v) tells little about what
-// runs along the edge: a sphere cut 0.8 mm from its pole,
-// bench_faces.random_face_set(1113), left open).
+// side (insert_into_side). Other misses stay, and the check of the joined
+// result (faceset/shared_edge_check.h) counts them and warns.
 void insert_nodes_run_past(const SharedEdge& e, int s, PanelMesh& m, const SurfaceFace& face,
                            const std::vector<EdgeNode>& nodes) {
   const std::size_t n = nodes.size();
