@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/polygon_side_pairs.h"
-
 namespace tessella {
 
 namespace {
@@ -33,7 +31,19 @@ bool folds_back_on_itself(const std::vector<Vec2>& p) {
     const Vec2 &a = p[(i + n - 1) % n], &b = p[i], &c = p[(i + 1) % n];
     if (a != b && b != c && orient(a, b, c) == 0 && (a - b).dot(c - b) > 0) return true;
   }
-  return any_non_adjacent_sides(p, overlap_on_a_line);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &a = p[i], &b = p[(i + 1) % n];
+    const Vec2 lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;
+      const Vec2 &c = p[j], &d = p[(j + 1) % n];
+      if (std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() ||
+          std::max(c.y(), d.y()) < lo.y() || std::min(c.y(), d.y()) > hi.y())
+        continue;
+      if (overlap_on_a_line(a, b, c, d)) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace tessella

@@ -18,7 +18,6 @@
 #include <utility>
 
 #include "common/parallel_chunks.h"
-#include "geometry/polygon_side_pairs.h"
 #include "mesh/panel_model.h"
 #include "mesh/seam_sides.h"
 #include "tessella/errors.h"
@@ -66,7 +65,18 @@ bool is_simple(const std::vector<Vec2>& p) {
     const Vec2 &a = p[(i + n - 1) % n], &b = p[i], &c = p[(i + 1) % n];
     if (orient(a, b, c) == 0 && (a - b).dot(c - b) > 0) return false;
   }
-  return !any_non_adjacent_sides(p, segments_meet);
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec2 lo = p[i].cwiseMin(p[(i + 1) % n]), hi = p[i].cwiseMax(p[(i + 1) % n]);
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;
+      const Vec2 &c = p[j], &d = p[(j + 1) % n];
+      if (std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() ||
+          std::max(c.y(), d.y()) < lo.y() || std::min(c.y(), d.y()) > hi.y())
+        continue;
+      if (segments_meet(p[i], p[(i + 1) % n], c, d)) return false;
+    }
+  }
+  return true;
 }
 
 int index_in(const std::vector<int>& poly, int v) {
