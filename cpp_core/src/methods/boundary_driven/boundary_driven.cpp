@@ -10,7 +10,6 @@
 #include <string>
 
 #include "analysis/coverage.h"
-#include "geometry/polygon_fold.h"
 #include "geometry/segment_closest.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/seam_sides.h"
@@ -278,20 +277,6 @@ void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, do
   for (const BdNode& n : net.nodes) m.uv.push_back(n.uv), m.xyz.push_back(n.xyz);
   m.panels = net.panels;
   follow_trims(r.boundary, net.nodes, m);
-  // No panel folds back on itself in (u,v), where the network is planar.
-  // Too few curves along a closed rim left a panel whose outline ran along
-  // the rim, then back over it to a corner 130 degrees round: zero area in
-  // (u,v), so the coverage saw nothing, but in space its sides were chords
-  // across the rim, 2 m off the surface (a revolved profile at about 60
-  // panels, bench_faces.random_face_set(747)).
-  for (const std::vector<int>& panel : m.panels) {
-    std::vector<Vec2> q;
-    for (int v : panel) q.push_back(m.uv[static_cast<std::size_t>(v)]);
-    if (folds_back_on_itself(q))
-      throw GeometryFailure("boundary-driven mesh: a panel's outline runs back over itself (size " +
-                            std::to_string(params.size) +
-                            " mm is too coarse for this face's openings and notches" + kCoarseTail);
-  }
   // The nodes a pole's stretch holds (one per (u,v) position along it, so the
   // network stayed planar in (u,v)) are one point in 3D: one vertex.
   if (has_pole(r.boundary)) weld_coincident_vertices(m, 1e-9 * ms);
