@@ -91,12 +91,14 @@ std::vector<std::unique_ptr<BRepBuilderAPI_Copy>> build_faces(
       // surface by three planes read as 0.01 mm wide and was left out, its
       // neighbours' panels leaving a hole there
       // (bench_faces.random_face_set(430)).
-      if (skip && face->area() < tolerance * face->model_size() &&
-          face->area() < tolerance * tight_extent(copy)) {
-        char width[64];
-        std::snprintf(width, sizeof width, "%.3g", face->area() / tight_extent(copy));
-        throw FaceWithoutArea(std::string("the face is a sliver about ") + width +
-                              " mm wide, narrower than the set's sewing tolerance");
+      if (skip && face->area() < tolerance * face->model_size()) {
+        const double extent = tight_extent(copy);
+        if (face->area() < tolerance * extent) {
+          char width[64];
+          std::snprintf(width, sizeof width, "%.3g", face->area() / extent);
+          throw FaceWithoutArea(std::string("the face is a sliver about ") + width +
+                                " mm wide, narrower than the set's sewing tolerance");
+        }
       }
       impl.original.push_back(faces[i]);
       impl.occt.push_back(copy);

@@ -143,11 +143,11 @@ class EdgeSide {
     // pole's iso-line (a sphere's pole at u = 0 where the edge runs at
     // u = pi/2): its (u,v) says nothing of where it is on the edge, so the
     // edge's 3D points over [lo, hi] are searched instead (the nearest of a
-    // few samples, then a ternary search beside it). So for a vertex near
-    // a pole: there the nearest point in (u,v) is not the nearest in space
-    // (a trim passing 0.8 mm from a sphere's pole: grid crossings a
-    // millimetre from it were not found on the edge, and the other face's
-    // nodes not put between them; bench_faces.random_face_set(1113)).
+    // few samples, then a ternary search beside it). The same beside a
+    // pole, where the nearest point in (u,v) is not the nearest in space (a
+    // trim passing 0.8 mm from a sphere's pole: grid crossings a millimetre
+    // from it were not found on the edge, and the other face's nodes not
+    // put between them; bench_faces.random_face_set(1113)).
     constexpr int kSamples = 16;
     const double h = (hi - lo) / kSamples;
     double s = lo, nearest = std::numeric_limits<double>::infinity();
