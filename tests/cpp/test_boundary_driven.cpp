@@ -12,9 +12,11 @@
 #include "common/parallel_chunks.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
+#include "methods/boundary_driven/bd_onto_trim.h"
 #include "methods/boundary_driven/bd_refine.h"
 #include "methods/boundary_driven/bd_sources.h"
 #include "methods/boundary_driven/bd_tensor.h"
+#include "methods/boundary_driven/bd_trim_crossing.h"
 #include "tessella/boundary_driven.h"
 #include "tessella/errors.h"
 #include "test_faces.h"
@@ -700,4 +702,124 @@ TEST(SurfaceFaceSnapToTrim, ChordMidpointsGoBackOntoTheCircle) {
   EXPECT_NEAR(s.y(), 0.0, 1e-9);
   EXPECT_NEAR(s.x(), 300.0, 1e-9);
   EXPECT_THROW(f.snap_to_trim(2, Vec2(0, 0)), InvalidParameter);
+}
+
+// ------------------------------------------------- edges across an opening's rim
+namespace {
+
+SurfaceFace plate_with_round_hole() {
+  BRepBuilderAPI_MakeFace mk(gp_Pln(), rect_wire(0, 0, 1000, 1000, false));
+  TopoDS_Wire hole = BRepBuilderAPI_MakeWire(
+      BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(500, 500, 0), gp_Dir(0, 0, 1)), 200)));
+  hole.Reverse();
+  mk.Add(hole);
+  return SurfaceFace::from_brep_string(brep(mk.Face()));
+}
+
+// The hole's polyline vertex nearest the angle `deg` round its centre, as a
+// trim node (on the polyline, at its arc length).
+BdNode rim_node(const SurfaceFace& f, const BdPolyline& hole, int loop, double deg) {
+  const Vec2 want =
+      Vec2(500, 500) + 200 * Vec2(std::cos(deg * kPi / 180), std::sin(deg * kPi / 180));
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < hole.uv.size(); ++i)
+    if ((hole.uv[i] - want).norm() < (hole.uv[best] - want).norm()) best = i;
+  BdNode n;
+  n.uv = hole.uv[best], n.xyz = f.point(n.uv.x(), n.uv.y());
+  n.loop = loop, n.s = hole.arc[best];
+  return n;
+}
+
+BdNode free_node(const SurfaceFace& f, double x, double y) {
+  BdNode n;
+  n.uv = Vec2(x, y), n.xyz = f.point(x, y);
+  return n;
+}
+
+}  // namespace
+
+TEST(BdTrimCrossing, AnEdgeAcrossTheRimCrossesOneFromTheRimOutwardDoesNot) {
+  const SurfaceFace f = plate_with_round_hole();
+  const BdSources s = sources_of(f);
+  const int k = s.boundary[0].outer ? 1 : 0;
+  const bd::TrimCrossingTest trim(s.boundary);
+  const BdNode a = rim_node(f, s.boundary[k], k, 210), b = rim_node(f, s.boundary[k], k, 150);
+  // 1 mm left of the rim's leftmost point (300, 500): on the face
+  const BdNode v = free_node(f, 299, 500);
+  // the chord from a rim node to v cuts across the rim's bend (it is at
+  // x = 312.9 where the rim is at 306.4, y = 550)
+  EXPECT_TRUE(trim.crosses(b, v));
+  EXPECT_TRUE(trim.crosses(v, a));
+  // an edge from the rim outward touches it at its own end only
+  EXPECT_FALSE(trim.crosses(b, free_node(f, 100, 700)));
+  EXPECT_FALSE(trim.crosses(free_node(f, 100, 700), b));
+  // a chord of the rim (a side along the trim) and an edge clear of the hole
+  EXPECT_FALSE(trim.crosses(a, b));
+  EXPECT_FALSE(trim.crosses(free_node(f, 100, 100), free_node(f, 100, 900)));
+  // across the whole hole
+  EXPECT_TRUE(trim.crosses(free_node(f, 100, 500), free_node(f, 900, 500)));
+}
+
+// cone_facade at 900 mm in miniature: an interior node 1 mm beside a hole's
+// rim, its panel [a, b, v] following the rim from a to b past it. The node
+// goes onto the rim, the panel (a sliver of no width) goes, and the rods
+// from v to a and b become sides along the trim of the panels beyond.
+TEST(BdOntoTrim, ANodeBesideTheRimGoesOntoItAndItsSliverPanelGoes) {
+  const SurfaceFace f = plate_with_round_hole();
+  const BdSources s = sources_of(f);
+  const int k = s.boundary[0].outer ? 1 : 0;
+  BdNetwork net;
+  net.nodes = {rim_node(f, s.boundary[k], k, 210), rim_node(f, s.boundary[k], k, 150),
+               free_node(f, 299, 500), free_node(f, 100, 700), free_node(f, 100, 300)};
+  const int a = 0, b = 1, v = 2, c = 3, d = 4;
+  net.panels = {{a, b, v}, {b, c, v}, {v, c, d}, {a, v, d}};
+  for (const auto& p : net.panels) ASSERT_GT(polygon_area(net.nodes, p), 0.0);
+  // too far for a reach of 0.5 mm: nothing moves
+  BdNetwork kept = net;
+  EXPECT_EQ(move_crossing_nodes_onto_trims(f, s.boundary, kept, 0.5), 0);
+  EXPECT_EQ(kept.panels, net.panels);
+
+  EXPECT_EQ(move_crossing_nodes_onto_trims(f, s.boundary, net, 50.0), 1);
+  const BdNode& moved = net.nodes[v];
+  EXPECT_EQ(moved.loop, k);
+  EXPECT_NEAR((moved.uv - Vec2(500, 500)).norm(), 200.0, 1e-9);  // on the circle itself
+  EXPECT_NEAR(moved.uv.x(), 300.0, 1e-3);
+  EXPECT_NEAR(moved.uv.y(), 500.0, 1.0);
+  const std::vector<std::vector<int>> left{{b, c, v}, {v, c, d}, {a, v, d}};
+  EXPECT_EQ(net.panels, left);
+  const bd::TrimCrossingTest trim(s.boundary);
+  for (const auto& p : net.panels)
+    for (std::size_t i = 0; i < p.size(); ++i)
+      EXPECT_FALSE(trim.crosses(net.nodes[p[i]], net.nodes[p[(i + 1) % p.size()]]));
+  // nothing left to move
+  EXPECT_EQ(move_crossing_nodes_onto_trims(f, s.boundary, net, 50.0), 0);
+}
+
+// The same rim, a shorter stretch of it (40 deg) and the node 5 mm off it:
+// the untangling moves the node (or a rim node) until no edge crosses the
+// rim (the node must go 8 mm further out, where the rim's tangents at a and
+// b meet), and folds no panel.
+TEST(BdUntangle, MovesANodeUntilItsRodsClearTheRim) {
+  const SurfaceFace f = plate_with_round_hole();
+  const BdSources s = sources_of(f);
+  const int k = s.boundary[0].outer ? 1 : 0;
+  BdNetwork net;
+  net.nodes = {rim_node(f, s.boundary[k], k, 200), rim_node(f, s.boundary[k], k, 160),
+               free_node(f, 295, 500), free_node(f, 60, 800), free_node(f, 60, 200)};
+  const int a = 0, b = 1, v = 2, c = 3, d = 4;
+  net.panels = {{a, b, v}, {b, c, v}, {v, c, d}, {a, v, d}};
+  const bd::TrimCrossingTest trim(s.boundary);
+  ASSERT_TRUE(trim.crosses(net.nodes[b], net.nodes[v]));
+  ASSERT_TRUE(trim.crosses(net.nodes[v], net.nodes[a]));
+  EXPECT_GT(untangle_trim_crossings(f, s.boundary, net), 0);
+  for (const auto& p : net.panels) {
+    EXPECT_GT(polygon_area(net.nodes, p), 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const int x = p[i], y = p[(i + 1) % p.size()];
+      if (x == a && y == b) continue;  // the side along the rim
+      EXPECT_FALSE(trim.crosses(net.nodes[x], net.nodes[y])) << x << "-" << y;
+    }
+  }
+  EXPECT_LT(net.nodes[v].uv.x(), 287.3);  // beyond where the tangents meet
+  EXPECT_THROW(untangle_trim_crossings(f, s.boundary, net, -1), InvalidParameter);
 }

@@ -157,9 +157,12 @@ def test_freeform_area_and_fewer_irregular_than_clipped_iso_grid(freeform):
 #: face). These runs used to return those panels; the coverage check now
 #: refuses them. Strict: the day the network is fixed, these pass and must
 #: be un-marked.
+#: Refused until stop 54 (panels reaching into an opening near the outer
+#: trim); since no rod crosses a trim the mesh is made, but its rods scatter
+#: more than the clipped grid's, as at 600 mm.
 NARROW_PASSAGE = pytest.mark.xfail(
-    strict=True, raises=RuntimeError,
-    reason="issue 18 part 3: panels inside an opening near the outer trim (coverage refusal)")
+    strict=True, raises=AssertionError,
+    reason="issue 18 part 3: CV above iso_grid's where an opening nears the outer trim")
 
 
 #: Since stop 52 (a quad's centre that lay in the opening is moved onto the
@@ -183,15 +186,20 @@ def test_examples_quad_mesh_covering_the_face(name):
 
 
 @pytest.mark.parametrize(
-    "name, size",
-    [("vault_openings", 1200.0), ("cone_facade", 900.0), ("trimmed_bspline_holes", 1200.0)],
+    "name, size, sharp_without",
+    [("vault_openings", 1200.0, True), ("cone_facade", 900.0, True),
+     # Its 6.4 deg corner came from a diagonal across a hole's rim; since the
+     # quadrangulation cuts no panel across a trim (stop 54) it has no sharp
+     # corner even without the relocation.
+     ("trimmed_bspline_holes", 1200.0, False)],
 )
-def test_no_corner_under_15_deg_where_trims_are_closer_than_a_panel(name, size):
+def test_no_corner_under_15_deg_where_trims_are_closer_than_a_panel(name, size, sharp_without):
     # The worst cases of the benchmark (4.2, 6.6 and 6.4 deg before the
     # angle-aware relocation): an opening closer to the outer trim than a panel.
     face = _load(name)
     without = run(name, face, method="boundary_driven", size=size, angle_target=0.0)
-    assert min(min(corner_angles(without.vertices, p)) for p in node_panels(without)) < 15.0
+    worst_without = min(min(corner_angles(without.vertices, p)) for p in node_panels(without))
+    assert (worst_without < 15.0) == sharp_without, worst_without
     r = run(name, face, method="boundary_driven", size=size)
     angles = [min(corner_angles(r.vertices, p)) for p in node_panels(r)]
     assert min(angles) >= 15.0
@@ -206,6 +214,59 @@ def test_no_corner_under_15_deg_where_trims_are_closer_than_a_panel(name, size):
         for v in nodes
     )
     assert worst < 1e-6 * ms
+
+
+def _segments_cross(p, q, r, s):
+    """Whether segments pq and rs (2D) cross at a point inside both."""
+    def orient(a, b, c):
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    return (orient(p, q, r) * orient(p, q, s) < 0) and (orient(r, s, p) * orient(r, s, q) < 0)
+
+
+def self_crossing(outline):
+    """The first pair of non-adjacent sides of a closed (u,v) outline that
+    cross, or None."""
+    n = len(outline)
+    lo = outline.min(axis=0) if n else None
+    for i in range(n):
+        p, q = outline[i], outline[(i + 1) % n]
+        for j in range(i + 2, n):
+            if i == 0 and j == n - 1:
+                continue
+            r, s = outline[j], outline[(j + 1) % n]
+            if max(p[0], q[0]) < min(r[0], s[0]) or max(r[0], s[0]) < min(p[0], q[0]):
+                continue
+            if _segments_cross(p - lo, q - lo, r - lo, s - lo):
+                return i, j
+    return None
+
+
+# Boundary panels as a workshop cuts them: the whole outline, trim points
+# included. Before stop 54 each of these had a panel whose outline crossed
+# itself: a rod across a hole's rim (cone_facade at 600 and 900 mm: a
+# 336-corner panel folded over the rim; trimmed_bspline_holes at 1200 mm),
+# or a trim point 0.2 um from a trim corner (notched_shell at every size, a
+# 1 deg spike). And cone_facade at 1200 mm and vault_openings at 1500 mm
+# were refused (panels reaching over an opening).
+@pytest.mark.parametrize(
+    "name, size",
+    [("cone_facade", 600.0), ("cone_facade", 900.0), ("cone_facade", 1200.0),
+     ("trimmed_bspline_holes", 1200.0), ("notched_shell", 600.0), ("notched_shell", 1500.0),
+     ("vault_openings", 1500.0)],
+)
+def test_boundary_panel_outlines_do_not_cross_themselves_spike_or_repeat_a_point(name, size):
+    face = _load(name)
+    r = run(name, face, method="boundary_driven", size=size)
+    crossing = [(k, c) for k, p in enumerate(r.panels)
+                if (c := self_crossing(np.asarray(r.uv)[list(p)])) is not None]
+    assert crossing == []
+    sides = [np.linalg.norm(r.vertices[list(p)] - r.vertices[list(p[1:]) + [p[0]]], axis=1).min()
+             for p in r.panels]
+    assert min(sides) > 1e-2  # mm: no side too short to cut
+    assert min(min(corner_angles(r.vertices, p)) for p in r.panels) > 5.0
+    gap, extra = independent_coverage(face, r)  # the moves left no gap or overlap
+    # 3000 samples: a share p is seen within ~3 sqrt(p / 3000); 0.1% reads as < 0.4%.
+    assert gap < 4e-3 and extra < 4e-3, (gap, extra)
 
 
 def _rod_lengths(r):

@@ -8,6 +8,7 @@
 
 #include "mesh/seam_sides.h"
 #include "methods/boundary_driven/bd_geometry.h"
+#include "methods/boundary_driven/bd_trim_crossing.h"
 #include "tessella/errors.h"
 
 namespace tessella {
@@ -132,9 +133,13 @@ double uv_area(const std::vector<BdNode>& nodes, const std::vector<int>& p) {
 
 // Splits p (counter-clockwise in (u,v)) along a diagonal from its first reflex
 // corner into two polygons (a, b) when one exists that stays inside p; the
-// diagonal chosen makes the two parts' corner counts closest to quads.
+// diagonal chosen makes the two parts' corner counts closest to quads. Inside
+// p means inside its outline too: a diagonal across a trim (p's side along an
+// opening's bend is a chord, the outline the trim) is no split
+// (trimmed_bspline_holes at 1200 mm: a rod across a hole's rim).
 bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<int>& p,
-                            std::vector<int>& a, std::vector<int>& b) {
+                            const bd::TrimCrossingTest& trim, std::vector<int>& a,
+                            std::vector<int>& b) {
   const int n = static_cast<int>(p.size());
   auto uv = [&](int i) { return nodes[p[((i % n) + n) % n]].uv; };
   for (int r = 0; r < n; ++r) {
@@ -150,7 +155,7 @@ bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<
         double t, s;
         if (bd::intersect_segments(uv(r), uv(k), uv(e0), uv(e1), t, s)) crosses = true;
       }
-      if (crosses) continue;
+      if (crosses || trim.crosses(nodes[p[r]], nodes[p[k % n]])) continue;
       std::vector<int> pa, pb;
       for (int i = r; i <= k; ++i) pa.push_back(p[i % n]);
       for (int i = k; i <= r + n; ++i) pb.push_back(p[i % n]);
@@ -172,9 +177,10 @@ bool split_at_reflex_corner(const std::vector<BdNode>& nodes, const std::vector<
 // Splits a panel of six or more corners along its shortest diagonal (3D)
 // among those whose two parts are closest to quads. Centre + midpoint
 // quadrangulation of a big n-gon makes spokes about its radius long, twice
-// the other rods; two smaller parts have shorter spokes.
+// the other rods; two smaller parts have shorter spokes. (No diagonal
+// across a trim, as above.)
 bool split_big_panel(const std::vector<BdNode>& nodes, const std::vector<int>& p,
-                     std::vector<int>& a, std::vector<int>& b) {
+                     const bd::TrimCrossingTest& trim, std::vector<int>& a, std::vector<int>& b) {
   const int n = static_cast<int>(p.size());
   if (n < 6) return false;
   double best_score = 1e300, best_len = 1e300;
@@ -193,7 +199,7 @@ bool split_big_panel(const std::vector<BdNode>& nodes, const std::vector<int>& p
         double t, s;
         if (bd::intersect_segments(d0, d1, nodes[p[e0]].uv, nodes[p[e1]].uv, t, s)) crosses = true;
       }
-      if (crosses) continue;
+      if (crosses || trim.crosses(nodes[p[r]], nodes[p[k % n]])) continue;
       const double score = std::abs(double(pa.size()) - 4) + std::abs(double(pb.size()) - 4);
       const double len = (nodes[p[r]].xyz - nodes[p[k % n]].xyz).norm();
       if (score < best_score - 1e-9 || (score < best_score + 1e-9 && len < best_len)) {
@@ -351,6 +357,7 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     return static_cast<int>(net.nodes.size()) - 1;
   };
   const UvTrimClassifier inside = bd::make_classifier(boundary);
+  const bd::TrimCrossingTest trim(boundary);
   auto is_in = [&](const Vec2& uv) { return boundary.empty() || inside.contains(uv); };
   auto midpoint = [&](int a, int b, const Vec2& centre_uv) {
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
@@ -378,6 +385,14 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
         m.uv = 0.5 * (na.uv + nb.uv);
         m.xyz = face.point(m.uv.x(), m.uv.y());
       }
+      // The point on the surface nearest the chord's middle may lie off the
+      // edge's line in (u,v): beside an opening's bend its halves then cross
+      // the trim where the edge did not (trimmed_bspline_holes at 1200 mm).
+      // The middle in (u,v) keeps them on the edge's line.
+      if ((trim.crosses(na, m) || trim.crosses(m, nb)) && !trim.crosses(na, nb)) {
+        m.uv = 0.5 * (na.uv + nb.uv);
+        m.xyz = face.point(m.uv.x(), m.uv.y());
+      }
       // an edge between two trim nodes may chord across an opening: move its
       // midpoint toward the panel's centre until it is on the face
       for (int k = 1; k <= 4 && !is_in(m.uv); ++k) {
@@ -395,7 +410,7 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     std::vector<int> p = std::move(todo.back());
     todo.pop_back();
     std::vector<int> a, b;
-    if (p.size() >= 4 && split_at_reflex_corner(net.nodes, p, a, b)) {
+    if (p.size() >= 4 && split_at_reflex_corner(net.nodes, p, trim, a, b)) {
       todo.push_back(std::move(a));
       todo.push_back(std::move(b));
     } else {
@@ -441,6 +456,17 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
           made.push_back(m);
         }
         if (!ok) continue;
+        // (as for the midpoints below: points off the edge's line in (u,v)
+        // beside an opening's bend give pieces across the trim)
+        bool across = false;
+        for (std::size_t j = 0; j <= made.size() && !across; ++j)
+          across = trim.crosses(j == 0 ? na : made[j - 1], j == made.size() ? nb : made[j]);
+        if (across && !trim.crosses(na, nb))
+          for (std::size_t j = 0; j < made.size(); ++j) {
+            const double t = double(j + 1) / k;
+            made[j].uv = (1 - t) * na.uv + t * nb.uv;
+            made[j].xyz = face.point(made[j].uv.x(), made[j].uv.y());
+          }
         std::vector<int> ids;
         for (const BdNode& m : made) ids.push_back(add(m));
         inner[key] = ids;
@@ -467,7 +493,7 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
       std::vector<int> p = std::move(todo2.back());
       todo2.pop_back();
       std::vector<int> a, b;
-      if (split_big_panel(net.nodes, p, a, b)) {
+      if (split_big_panel(net.nodes, p, trim, a, b)) {
         todo2.push_back(std::move(a));
         todo2.push_back(std::move(b));
       } else {
@@ -596,6 +622,8 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
     for (std::size_t i = 0; i < n; ++i) {
       quads.push_back({p[i], m[i], ci, m[(i + n - 1) % n]});
       folded = folded || !(uv_area(net.nodes, quads.back()) > 0);
+      // a spoke across an opening's bend (bd_trim_crossing.h)
+      folded = folded || trim.crosses(net.nodes[ci], net.nodes[m[i]]);
     }
     if (!folded) {
       out.insert(out.end(), quads.begin(), quads.end());
@@ -646,6 +674,16 @@ NodeAdjacency node_adjacency(const BdNetwork& net) {
   return adj;
 }
 
+// How many edges at v cross a trim (bd_trim_crossing.h); trim edges (v's
+// neighbours along its loop), which follow the trim, are not counted.
+int trim_crossings(const BdNetwork& net, const NodeAdjacency& adj, const bd::TrimCrossingTest& trim,
+                   int v) {
+  int n = 0;
+  for (int w : adj.nbr[v])
+    if (w != adj.next[v] && w != adj.prev[v] && trim.crosses(net.nodes[v], net.nodes[w])) ++n;
+  return n;
+}
+
 }  // namespace
 
 void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
@@ -664,11 +702,13 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
     return false;
   };
   const UvTrimClassifier inside = bd::make_classifier(boundary);
+  const bd::TrimCrossingTest trim(boundary);
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t v = 0; v < nn; ++v) {
       BdNode& n = net.nodes[v];
       if (n.corner || nbr[v].empty()) continue;
       const BdNode old = n;
+      const int crossings = trim_crossings(net, adj, trim, static_cast<int>(v));
       if (n.loop >= 0) {
         if (prev[v] < 0 || next[v] < 0) continue;
         const BdPolyline& L = boundary[n.loop];
@@ -690,7 +730,9 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
         if (!inside.contains(pr.uv)) continue;
         n.uv = pr.uv, n.xyz = pr.point;
       }
-      if (folds(static_cast<int>(v))) n = old;
+      if (folds(static_cast<int>(v)) ||
+          trim_crossings(net, adj, trim, static_cast<int>(v)) > crossings)
+        n = old;
     }
   }
 }
@@ -718,6 +760,113 @@ double panel_quality(const std::vector<BdNode>& nodes, const std::vector<int>& p
   return q;
 }
 
+// The positions a local move tries for node v: a trim node slides along its
+// loop by a share of the way to either trim neighbour (so it stays on the
+// trim polyline); an interior node steps toward / away from and square to
+// each neighbour in the tangent plane (the (u,v) step solves the same move to
+// first order), projected onto the surface and kept inside the trim.
+template <class F>
+void for_each_move(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                   const BdNetwork& net, const NodeAdjacency& adj, const UvTrimClassifier& inside,
+                   int v, F&& f) {
+  static const double kSteps[] = {0.05, 0.1, 0.2, 0.3, 0.45};
+  const BdNode old = net.nodes[static_cast<std::size_t>(v)];
+  if (old.loop >= 0) {
+    const int pv = adj.prev[static_cast<std::size_t>(v)],
+              nv = adj.next[static_cast<std::size_t>(v)];
+    if (pv < 0 || nv < 0) return;
+    const BdPolyline& L = boundary[static_cast<std::size_t>(old.loop)];
+    const double len = L.length();
+    double dp = std::fmod(old.s - net.nodes[static_cast<std::size_t>(pv)].s, len),
+           dn = std::fmod(net.nodes[static_cast<std::size_t>(nv)].s - old.s, len);
+    if (dp < 0) dp += len;
+    if (dn < 0) dn += len;
+    for (double t : kSteps)
+      for (double ds : {t * dn, -t * dp}) {
+        BdNode c = old;
+        double s = old.s + ds;
+        L.segment_at(s);
+        c.s = s;
+        c.uv = L.uv_at(s);
+        c.xyz = face.point(c.uv.x(), c.uv.y());
+        f(c);
+      }
+    return;
+  }
+  const Vec3 nrm = face.normal(old.uv.x(), old.uv.y());
+  for (int w : adj.nbr[static_cast<std::size_t>(v)]) {
+    const BdNode& o = net.nodes[static_cast<std::size_t>(w)];
+    const Vec3 d = o.xyz - old.xyz;
+    const Vec2 duv = o.uv - old.uv;
+    const Vec3 dp = nrm.cross(d);
+    const Vec2 duvp(-duv.y(), duv.x());  // a quarter turn in (u,v), same sense
+    for (double t : kSteps)
+      for (double sign : {1.0, -1.0})
+        for (int perp = 0; perp < 2; ++perp) {
+          const Vec3 x = old.xyz + sign * t * (perp ? dp : d);
+          const Vec2 g = old.uv + sign * t * (perp ? duvp : duv);
+          const Projection pr = face.project(x, g);
+          if (!inside.contains(pr.uv)) continue;
+          BdNode c = old;
+          c.uv = pr.uv, c.xyz = pr.point;
+          f(c);
+        }
+  }
+}
+
+// The point the outline leaves trim node n toward along its trim, forward
+// (dir = +1, to the trim neighbour `to`) or backward (-1): the first trim
+// polyline point past n that is not n itself, or `to` when that comes first.
+// The chord to `to` may leave at a very different angle: a rod nearly
+// tangent to a hole's rim makes a spike of the panel only with the trim.
+Vec3 along_trim(const std::vector<BdPolyline>& boundary, const BdNode& n, const BdNode& to,
+                int dir) {
+  const BdPolyline& l = boundary[static_cast<std::size_t>(n.loop)];
+  const double len = l.length();
+  const std::size_t count = l.xyz.size();
+  double s = n.s;
+  const int seg = l.segment_at(s);
+  double reach = std::fmod(dir * (to.s - s), len);
+  if (reach <= 0) reach += len;
+  const double tiny = 1e-9 * len;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t idx = dir > 0 ? (static_cast<std::size_t>(seg) + 1 + k) % count
+                                    : (static_cast<std::size_t>(seg) + count - k) % count;
+    double gone = std::fmod(dir * (l.arc[idx] - s), len);
+    if (gone < 0) gone += len;
+    if (gone >= reach) break;
+    if ((l.xyz[idx] - n.xyz).norm() > tiny) return l.xyz[idx];
+  }
+  return to.xyz;
+}
+
+// Smallest corner angle (3D, radians) of panel p's outline as follow_trims
+// will make it: a side along the trim leaves its trim node along the trim.
+double outline_quality(const std::vector<BdNode>& nodes, const std::vector<BdPolyline>& boundary,
+                       const NodeAdjacency& adj, const std::vector<int>& p) {
+  const std::size_t n = p.size();
+  double q = 1e9;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int a = p[(i + n - 1) % n], b = p[i], c = p[(i + 1) % n];
+    const BdNode& nb = nodes[static_cast<std::size_t>(b)];
+    const Vec3 in = adj.next[static_cast<std::size_t>(a)] == b
+                        ? along_trim(boundary, nb, nodes[static_cast<std::size_t>(a)], -1)
+                        : nodes[static_cast<std::size_t>(a)].xyz;
+    const Vec3 out = adj.next[static_cast<std::size_t>(b)] == c
+                         ? along_trim(boundary, nb, nodes[static_cast<std::size_t>(c)], +1)
+                         : nodes[static_cast<std::size_t>(c)].xyz;
+    q = std::min(q, corner_angle(in, nb.xyz, out));
+  }
+  return q;
+}
+
+// panel_quality, and the outline's own angles where they are smaller.
+double cut_quality(const std::vector<BdNode>& nodes, const std::vector<BdPolyline>& boundary,
+                   const NodeAdjacency& adj, const std::vector<int>& p) {
+  const double q = panel_quality(nodes, p);
+  return q <= 0 ? q : std::min(q, outline_quality(nodes, boundary, adj, p));
+}
+
 }  // namespace
 
 int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
@@ -732,9 +881,11 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
   auto& prev = adj.prev;
   auto& next = adj.next;
   const UvTrimClassifier inside = bd::make_classifier(boundary);
+  const bd::TrimCrossingTest trim(boundary);
   auto local = [&](int v) {
     double q = 1e9;
-    for (int pi : incident[v]) q = std::min(q, panel_quality(net.nodes, net.panels[pi]));
+    for (int pi : incident[v])
+      q = std::min(q, cut_quality(net.nodes, boundary, adj, net.panels[pi]));
     return q;
   };
   // a move may not make an edge at v shorter than 0.3 x the median edge
@@ -753,13 +904,12 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
     }
     return false;
   };
-  static const double kSteps[] = {0.05, 0.1, 0.2, 0.3, 0.45};
   int moves = 0;
   for (int pass = 0; pass < passes; ++pass) {
     // nodes of the panels with a corner under the target, in index order
     std::vector<char> todo(nn, 0);
     for (const auto& p : net.panels)
-      if (panel_quality(net.nodes, p) < target)
+      if (cut_quality(net.nodes, boundary, adj, p) < target)
         for (int v : p) todo[v] = 1;
     int moved = 0;
     for (std::size_t vi = 0; vi < nn; ++vi) {
@@ -770,53 +920,80 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
       const BdNode old = n;
       double best_q = local(v);
       BdNode best = old;
+      const int crossings = trim_crossings(net, adj, trim, v);
       auto try_node = [&](const BdNode& cand) {
         n = cand;
-        const double q = short_edge(v, old) ? -2.0 : local(v);
+        const double q =
+            short_edge(v, old) || trim_crossings(net, adj, trim, v) > crossings ? -2.0 : local(v);
         if (q > best_q + 1e-9) best_q = q, best = cand;
         n = old;
       };
-      if (n.loop >= 0) {
-        if (prev[v] < 0 || next[v] < 0) continue;
-        const BdPolyline& L = boundary[n.loop];
-        const double len = L.length();
-        double dp = std::fmod(n.s - net.nodes[prev[v]].s, len),
-               dn = std::fmod(net.nodes[next[v]].s - n.s, len);
-        if (dp < 0) dp += len;
-        if (dn < 0) dn += len;
-        for (double t : kSteps)
-          for (double ds : {t * dn, -t * dp}) {
-            BdNode c = old;
-            double s = old.s + ds;
-            L.segment_at(s);
-            c.s = s;
-            c.uv = L.uv_at(s);
-            c.xyz = face.point(c.uv.x(), c.uv.y());
-            try_node(c);
-          }
-      } else {
-        // toward / away from each neighbour and square to that edge, in the
-        // tangent plane (the (u,v) step solves the same move to first order)
-        const Vec3 nrm = face.normal(old.uv.x(), old.uv.y());
-        for (int w : nbr[v]) {
-          const BdNode& o = net.nodes[w];
-          const Vec3 d = o.xyz - old.xyz;
-          const Vec2 duv = o.uv - old.uv;
-          const Vec3 dp = nrm.cross(d);
-          const Vec2 duvp(-duv.y(), duv.x());  // a quarter turn in (u,v), same sense
-          for (double t : kSteps)
-            for (double sign : {1.0, -1.0})
-              for (int perp = 0; perp < 2; ++perp) {
-                const Vec3 x = old.xyz + sign * t * (perp ? dp : d);
-                const Vec2 g = old.uv + sign * t * (perp ? duvp : duv);
-                const Projection pr = face.project(x, g);
-                if (!inside.contains(pr.uv)) continue;
-                BdNode c = old;
-                c.uv = pr.uv, c.xyz = pr.point;
-                try_node(c);
-              }
+      if (n.loop >= 0 && (prev[v] < 0 || next[v] < 0)) continue;
+      for_each_move(face, boundary, net, adj, inside, v, try_node);
+      n = best;
+      if (best.uv != old.uv) ++moved;
+    }
+    moves += moved;
+    if (moved == 0) break;
+  }
+  return moves;
+}
+
+}  // namespace tessella
+
+namespace tessella {
+
+int untangle_trim_crossings(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                            BdNetwork& net, int passes) {
+  require_in_range("untangle passes", passes, 0, 1000);
+  const std::size_t nn = net.nodes.size();
+  const NodeAdjacency adj = node_adjacency(net);
+  const UvTrimClassifier inside = bd::make_classifier(boundary);
+  const bd::TrimCrossingTest trim(boundary);
+  // the panels' smallest angle, -1 when one folds in (u,v)
+  auto local = [&](int v) {
+    double q = 1e9;
+    for (int pi : adj.incident[static_cast<std::size_t>(v)]) {
+      const double pq =
+          cut_quality(net.nodes, boundary, adj, net.panels[static_cast<std::size_t>(pi)]);
+      if (pq < 0) return -1.0;
+      q = std::min(q, pq);
+    }
+    return q;
+  };
+  int moves = 0;
+  for (int pass = 0; pass < passes; ++pass) {
+    // both ends of every edge across a trim, in index order
+    std::vector<char> todo(nn, 0);
+    bool any = false;
+    for (std::size_t v = 0; v < nn; ++v)
+      if (trim_crossings(net, adj, trim, static_cast<int>(v)) > 0) todo[v] = 1, any = true;
+    if (!any) break;
+    int moved = 0;
+    for (std::size_t vi = 0; vi < nn; ++vi) {
+      if (!todo[vi] || net.nodes[vi].corner) continue;
+      const int v = static_cast<int>(vi);
+      BdNode& n = net.nodes[vi];
+      const BdNode old = n;
+      int best_x = trim_crossings(net, adj, trim, v);
+      if (best_x == 0) continue;  // a move of its neighbour untangled it
+      double best_q = -1.0;
+      BdNode best = old;
+      // fewest crossings first, then the best smallest angle; never a fold
+      for_each_move(face, boundary, net, adj, inside, v, [&](BdNode cand) {
+        if (cand.loop >= 0) {  // onto the trim's own curve, as the other trim nodes
+          cand.uv = face.snap_to_trim(cand.loop, cand.uv);
+          cand.xyz = face.point(cand.uv.x(), cand.uv.y());
         }
-      }
+        n = cand;
+        const double q = local(v);
+        if (q >= 0) {
+          const int x = trim_crossings(net, adj, trim, v);
+          if (x < best_x || (x == best_x && best.uv != old.uv && q > best_q))
+            best_x = x, best_q = q, best = cand;
+        }
+        n = old;
+      });
       n = best;
       if (best.uv != old.uv) ++moved;
     }

@@ -67,4 +67,20 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
 int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
                       BdNetwork& net, double target_deg, int passes);
 
+// Our addition: a network edge that crosses a trim (bd_trim_crossing.h) makes
+// the panel beside it fold over the opening once it follows the trim. Its
+// ends are moved, by the same local search, to the candidate position with
+// the fewest such crossings at the node (then the best smallest angle; never
+// one that folds a panel). The smoothing and the angle moves add no crossing
+// themselves, but the curves' chords and the quadrangulation's new nodes can
+// (trimmed_bspline_holes at 1200 mm: two edges from one trim node across a
+// hole's bend). Runs on the final trim nodes, on the trims' own curves
+// (SurfaceFace::snap_to_trim), against the trim polylines the panels'
+// outlines follow: so it sees the crossings of the outlines as they will be
+// (cone_facade at 900 mm: a rod 4 mm beside a hole's rim, crossing it only
+// once its trim node was snapped). A trim node's candidates are snapped too.
+// Returns the number of moves.
+int untangle_trim_crossings(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
+                            BdNetwork& net, int passes = 10);
+
 }  // namespace tessella

@@ -17,6 +17,7 @@
 #include "methods/boundary_driven/bd_across_surfaces.h"
 #include "methods/boundary_driven/bd_curves.h"
 #include "methods/boundary_driven/bd_network.h"
+#include "methods/boundary_driven/bd_onto_trim.h"
 #include "methods/boundary_driven/bd_refine.h"
 #include "methods/boundary_driven/bd_sources.h"
 #include "methods/boundary_driven/bd_tensor.h"
@@ -106,7 +107,6 @@ double arc_at(const BdPolyline& line, const Vec2& uv) {
 // forward along the loop.
 void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdNode>& nodes,
                   PanelMesh& m) {
-  const bool pole = has_pole(boundary);
   std::map<std::pair<int, int>, int> uses;
   for (const auto& p : m.panels)
     for (std::size_t i = 0; i < p.size(); ++i)
@@ -147,12 +147,15 @@ void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdN
           straight = false;
       }
       if (straight) continue;
-      const double tiny = 1e-9 * len;
+      // A point within this (3D) of the outline's last point or of b adds
+      // nothing but a side no cutter can draw: the points of a pole's stretch
+      // (one point in 3D; one is enough), or a polyline point next to a node
+      // snapped onto the trim's own curve (notched_shell: 0.2 um from a trim
+      // corner at every size).
+      const double beside = 1e-6 * len;
       for (std::size_t idx : between) {
-        // Points of a pole's stretch add no outline in 3D: one is enough.
         const Vec3& last = m.xyz[static_cast<std::size_t>(out.back())];
-        if (pole &&
-            ((line.xyz[idx] - last).norm() <= tiny || (line.xyz[idx] - m.xyz[b]).norm() <= tiny))
+        if (std::min((line.xyz[idx] - last).norm(), (line.xyz[idx] - m.xyz[b]).norm()) <= beside)
           continue;
         out.push_back(static_cast<int>(m.uv.size()));
         m.uv.push_back(line.uv[idx]);
@@ -263,8 +266,6 @@ void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, do
     r.angle_moves =
         improve_bd_angles(face, r.boundary, net, params.angle_target_deg, params.angle_passes);
 
-  check_mesh(r.boundary, net, params.size);
-
   // Trim nodes sit on the trim polylines (chords within the deflection); move
   // them onto the trims' own curves on the surface.
   for (BdNode& n : net.nodes) {
@@ -272,6 +273,10 @@ void mesh_stages(const SurfaceFace& face, const BoundaryDrivenParams& params, do
     n.uv = face.snap_to_trim(n.loop, n.uv);
     n.xyz = face.point(n.uv.x(), n.uv.y());
   }
+  untangle_trim_crossings(face, r.boundary, net);
+  // (a quarter of a panel: farther off, the node is no sliver's corner)
+  move_crossing_nodes_onto_trims(face, r.boundary, net, 0.25 * params.size);
+  check_mesh(r.boundary, net, params.size);
 
   PanelMesh& m = r.mesh;
   for (const BdNode& n : net.nodes) m.uv.push_back(n.uv), m.xyz.push_back(n.xyz);
