@@ -24,6 +24,9 @@ struct BdPolyline {
   // Cumulative 3D length at each vertex (+ closing one); a collapsed segment
   // along (u,v) (a pole) gets a tiny length so that arc stays increasing.
   std::vector<double> arc;
+  // 1 where the point is a vertex of the B-rep wire (TrimLoop::corner); empty
+  // for a polyline that is no trim loop.
+  std::vector<char> corner;
   bool closed = false;
   int loop = -1;  // index of the trim loop it came from, -1 for an extra curve
   bool outer = false;
@@ -32,6 +35,7 @@ struct BdPolyline {
   int segment_count() const { return static_cast<int>(arc.size()) - 1; }
   // Segment i runs from vertex i to vertex (i + 1) % n.
   const Vec2& seg_end_uv(int i) const { return uv[(i + 1) % uv.size()]; }
+  bool is_corner(std::size_t i) const { return i < corner.size() && corner[i]; }
   // Whether segment i has no length in 3D (within 1e-12 of the polyline's):
   // a repeated point, or a stretch of a pole.
   bool collapsed(int i) const {

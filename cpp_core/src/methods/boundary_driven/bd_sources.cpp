@@ -84,10 +84,13 @@ BdSources select_bd_sources(const SurfaceFace& face, const std::vector<TrimLoop>
     BdPolyline line;
     line.uv = loops[k].uv;
     line.xyz = loops[k].xyz;
+    line.corner = loops[k].corner;
+    line.corner.resize(line.uv.size(), 0);
     if (!line.uv.empty()) {
       const auto start = static_cast<long>(canonical_start(loops[k], start_shift));
       std::rotate(line.uv.begin(), line.uv.begin() + start, line.uv.end());
       std::rotate(line.xyz.begin(), line.xyz.begin() + start, line.xyz.end());
+      std::rotate(line.corner.begin(), line.corner.begin() + start, line.corner.end());
     }
     line.closed = true;
     line.loop = static_cast<int>(k);

@@ -147,16 +147,20 @@ void follow_trims(const std::vector<BdPolyline>& boundary, const std::vector<BdN
           straight = false;
       }
       if (straight) continue;
-      // A point within this (3D) of the outline's last point or of b adds
-      // nothing but a side no cutter can draw: the points of a pole's stretch
-      // (one point in 3D; one is enough), or a polyline point next to a node
-      // snapped onto the trim's own curve (notched_shell: 0.2 um from a trim
-      // corner at every size).
-      const double beside = 1e-6 * len;
+      // A point this near (3D) the outline's last point or b adds nothing
+      // but a side no cutter can draw: a pole's stretch (one point in 3D;
+      // one is enough), or a polyline point next to a node snapped onto the
+      // trim's own curve (notched_shell: 0.2 um from a trim corner at every
+      // size, 0.8 um from a curve's end). A vertex of the B-rep wire only
+      // goes where it is that node (within `same`): in a face set it may be
+      // the node of the face across, which the join needs in this outline
+      // (OCCT's shell1 and a STEP part's micro edge: T-junctions, panels
+      // overlapping in space).
+      const double beside = 1e-6 * len, same = 1e-9 * len;
       for (std::size_t idx : between) {
         const Vec3& last = m.xyz[static_cast<std::size_t>(out.back())];
-        if (std::min((line.xyz[idx] - last).norm(), (line.xyz[idx] - m.xyz[b]).norm()) <= beside)
-          continue;
+        const double gap = std::min((line.xyz[idx] - last).norm(), (line.xyz[idx] - m.xyz[b]).norm());
+        if (gap <= (line.is_corner(idx) ? same : beside)) continue;
         out.push_back(static_cast<int>(m.uv.size()));
         m.uv.push_back(line.uv[idx]);
         m.xyz.push_back(line.xyz[idx]);
