@@ -675,12 +675,26 @@ NodeAdjacency node_adjacency(const BdNetwork& net) {
 }
 
 // How many edges at v cross a trim (bd_trim_crossing.h); trim edges (v's
-// neighbours along its loop), which follow the trim, are not counted.
+// neighbours along its loop), which follow the trim, are not counted. A quad
+// at v beside a trim whose two diagonals both cross it counts too: a
+// boundary panel is built bent along a diagonal inside it
+// (mesh/boundary_pieces.h); with none, it stays a curved piece and unfolds
+// as a fan of folds (a hole's rim bulging into the quad, once the angle
+// moves slid its trim node round the rim).
 int trim_crossings(const BdNetwork& net, const NodeAdjacency& adj, const bd::TrimCrossingTest& trim,
                    int v) {
   int n = 0;
   for (int w : adj.nbr[v])
     if (w != adj.next[v] && w != adj.prev[v] && trim.crosses(net.nodes[v], net.nodes[w])) ++n;
+  for (int pi : adj.incident[static_cast<std::size_t>(v)]) {
+    const auto& p = net.panels[static_cast<std::size_t>(pi)];
+    if (p.size() != 4) continue;
+    bool on_trim = false;
+    for (int x : p) on_trim = on_trim || net.nodes[static_cast<std::size_t>(x)].loop >= 0;
+    if (on_trim && trim.crosses(net.nodes[p[0]], net.nodes[p[2]]) &&
+        trim.crosses(net.nodes[p[1]], net.nodes[p[3]]))
+      ++n;
+  }
   return n;
 }
 
