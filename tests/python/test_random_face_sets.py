@@ -54,6 +54,11 @@ from test_face_sets import check_conforming  # noqa: E402
     # of 12 to 16 mm (80 mm2) read as a sliver 0.01 mm wide (its area over
     # its whole surface's box) and was left out, a hole in the set.
     (430, "iso_grid"), (430, "boundary_driven"), (710, "walking_agent"),
+    # boundary_driven with rods across a trim: a revolved profile and its
+    # top, a side panel running along the rim and back over it (2,073 mm off
+    # the surface at a size of 1,919 mm, T-junctions on the rim), and a box
+    # fused with a cylinder, refused as "panels overlap in space" (stop 54).
+    (747, "boundary_driven"), (714, "boundary_driven"), (964, "boundary_driven"),
 ])
 def test_random_face_set(seed, method):
     kind, shape, size = random_face_set(seed)
