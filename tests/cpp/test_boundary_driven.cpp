@@ -736,6 +736,18 @@ BdNode free_node(const SurfaceFace& f, double x, double y) {
   return n;
 }
 
+// Nodes a, b on the rim at `deg_a`, `deg_b`, v at (vx, 500) beside it, c and
+// d at (cx, 500 +- cy) out on the plate; panels [a, b, v] (following the rim
+// from a to b past v), [b, c, v], [v, c, d], [a, v, d].
+BdNetwork rim_network(const SurfaceFace& f, const BdSources& s, int k, double deg_a, double deg_b,
+                      double vx, double cx, double cy) {
+  BdNetwork net;
+  net.nodes = {rim_node(f, s.boundary[k], k, deg_a), rim_node(f, s.boundary[k], k, deg_b),
+               free_node(f, vx, 500), free_node(f, cx, 500 + cy), free_node(f, cx, 500 - cy)};
+  net.panels = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {0, 2, 4}};
+  return net;
+}
+
 }  // namespace
 
 TEST(BdTrimCrossing, AnEdgeAcrossTheRimCrossesOneFromTheRimOutwardDoesNot) {
@@ -768,11 +780,8 @@ TEST(BdOntoTrim, ANodeBesideTheRimGoesOntoItAndItsSliverPanelGoes) {
   const SurfaceFace f = plate_with_round_hole();
   const BdSources s = sources_of(f);
   const int k = s.boundary[0].outer ? 1 : 0;
-  BdNetwork net;
-  net.nodes = {rim_node(f, s.boundary[k], k, 210), rim_node(f, s.boundary[k], k, 150),
-               free_node(f, 299, 500), free_node(f, 100, 700), free_node(f, 100, 300)};
+  BdNetwork net = rim_network(f, s, k, 210, 150, 299, 100, 200);
   const int a = 0, b = 1, v = 2, c = 3, d = 4;
-  net.panels = {{a, b, v}, {b, c, v}, {v, c, d}, {a, v, d}};
   for (const auto& p : net.panels) ASSERT_GT(polygon_area(net.nodes, p), 0.0);
   // too far for a reach of 0.5 mm: nothing moves
   BdNetwork kept = net;
@@ -803,11 +812,8 @@ TEST(BdUntangle, MovesANodeUntilItsRodsClearTheRim) {
   const SurfaceFace f = plate_with_round_hole();
   const BdSources s = sources_of(f);
   const int k = s.boundary[0].outer ? 1 : 0;
-  BdNetwork net;
-  net.nodes = {rim_node(f, s.boundary[k], k, 200), rim_node(f, s.boundary[k], k, 160),
-               free_node(f, 295, 500), free_node(f, 60, 800), free_node(f, 60, 200)};
-  const int a = 0, b = 1, v = 2, c = 3, d = 4;
-  net.panels = {{a, b, v}, {b, c, v}, {v, c, d}, {a, v, d}};
+  BdNetwork net = rim_network(f, s, k, 200, 160, 295, 60, 300);
+  const int a = 0, b = 1, v = 2;
   const bd::TrimCrossingTest trim(s.boundary);
   ASSERT_TRUE(trim.crosses(net.nodes[b], net.nodes[v]));
   ASSERT_TRUE(trim.crosses(net.nodes[v], net.nodes[a]));

@@ -30,17 +30,23 @@ bool trim_edge(const BdNetwork& net, const EdgeUses& uses, int a, int b) {
   return na.loop >= 0 && na.loop == nb.loop && uses.at({std::min(a, b), std::max(a, b)}) == 1;
 }
 
-bool crosses_a_trim(const BdNetwork& net, const EdgeUses& uses, const bd::TrimCrossingTest& trim,
-                    int v) {
+// The interior nodes with a rod across a trim, in index order: one pass over
+// the panels' sides.
+std::vector<int> nodes_with_rods_across(const BdNetwork& net, const EdgeUses& uses,
+                                        const bd::TrimCrossingTest& trim) {
+  std::vector<char> across(net.nodes.size(), 0);
   for (const auto& p : net.panels)
     for (std::size_t i = 0; i < p.size(); ++i) {
       const int a = p[i], b = p[(i + 1) % p.size()];
-      if ((a == v || b == v) && !trim_edge(net, uses, a, b) &&
+      if (a < b && !trim_edge(net, uses, a, b) &&
           trim.crosses(net.nodes[static_cast<std::size_t>(a)],
                        net.nodes[static_cast<std::size_t>(b)]))
-        return true;
+        across[static_cast<std::size_t>(a)] = across[static_cast<std::size_t>(b)] = 1;
     }
-  return false;
+  std::vector<int> out;
+  for (std::size_t v = 0; v < across.size(); ++v)
+    if (across[v] && net.nodes[v].loop < 0) out.push_back(static_cast<int>(v));
+  return out;
 }
 
 struct TrimPoint {
@@ -103,11 +109,10 @@ int move_crossing_nodes_onto_trims(const SurfaceFace& face, const std::vector<Bd
   for (bool changed = true; changed;) {
     changed = false;
     const EdgeUses uses = edge_uses(net);
-    for (std::size_t vi = 0; vi < net.nodes.size() && !changed; ++vi) {
-      BdNode& node = net.nodes[vi];
-      const int v = static_cast<int>(vi);
-      if (node.loop >= 0 || node.corner || node.shared || !crosses_a_trim(net, uses, trim, v))
-        continue;
+    for (const int v : nodes_with_rods_across(net, uses, trim)) {
+      if (changed) break;
+      BdNode& node = net.nodes[static_cast<std::size_t>(v)];
+      if (node.corner || node.shared) continue;
       const TrimPoint q = nearest_trim_point(boundary, node.xyz);
       if (!(q.distance <= reach)) continue;
       const BdPolyline& line = boundary[static_cast<std::size_t>(q.loop)];

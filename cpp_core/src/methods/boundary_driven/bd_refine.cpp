@@ -722,7 +722,6 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
       BdNode& n = net.nodes[v];
       if (n.corner || nbr[v].empty()) continue;
       const BdNode old = n;
-      const int crossings = trim_crossings(net, adj, trim, static_cast<int>(v));
       if (n.loop >= 0) {
         if (prev[v] < 0 || next[v] < 0) continue;
         const BdPolyline& L = boundary[n.loop];
@@ -744,9 +743,14 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
         if (!inside.contains(pr.uv)) continue;
         n.uv = pr.uv, n.xyz = pr.point;
       }
-      if (folds(static_cast<int>(v)) ||
-          trim_crossings(net, adj, trim, static_cast<int>(v)) > crossings)
+      if (folds(static_cast<int>(v))) {
         n = old;
+      } else if (const int after = trim_crossings(net, adj, trim, static_cast<int>(v)); after > 0) {
+        // no more rods across a trim than before (counted only when needed)
+        const BdNode moved = n;
+        n = old;
+        if (after <= trim_crossings(net, adj, trim, static_cast<int>(v))) n = moved;
+      }
     }
   }
 }
@@ -934,12 +938,22 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
       const BdNode old = n;
       double best_q = local(v);
       BdNode best = old;
-      const int crossings = trim_crossings(net, adj, trim, v);
+      int crossings = -1;  // at old, counted when a candidate first needs it
       auto try_node = [&](const BdNode& cand) {
         n = cand;
-        const double q =
-            short_edge(v, old) || trim_crossings(net, adj, trim, v) > crossings ? -2.0 : local(v);
-        if (q > best_q + 1e-9) best_q = q, best = cand;
+        // better, not shorter, and no more rods across a trim
+        if (!short_edge(v, old)) {
+          const double q = local(v);
+          if (q > best_q + 1e-9) {
+            const int x = trim_crossings(net, adj, trim, v);
+            if (x > 0 && crossings < 0) {
+              n = old;
+              crossings = trim_crossings(net, adj, trim, v);
+              n = cand;
+            }
+            if (x == 0 || x <= crossings) best_q = q, best = cand;
+          }
+        }
         n = old;
       };
       if (n.loop >= 0 && (prev[v] < 0 || next[v] < 0)) continue;
@@ -952,10 +966,6 @@ int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& bo
   }
   return moves;
 }
-
-}  // namespace tessella
-
-namespace tessella {
 
 int untangle_trim_crossings(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
                             BdNetwork& net, int passes) {

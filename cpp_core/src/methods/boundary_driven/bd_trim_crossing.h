@@ -41,16 +41,18 @@ class TrimCrossingTest {
   // and either neighbour) do not count for that end.
   bool crosses(const BdNode& a, const BdNode& b) const {
     if (grid_.empty()) return false;
-    const Near na = near(a), nb = near(b);
-    bool hit = false;
+    Near na, nb;  // found at the first intersection (most edges have none)
+    bool looked = false, hit = false;
     grid_[0].query(a.uv, b.uv, [&](int li, int si) {
-      if (hit || na.holds(li, si) || nb.holds(li, si)) return;
+      if (hit) return;
       const BdPolyline& l = boundary_[static_cast<std::size_t>(li)];
       double t, s;
-      if (intersect_segments(a.uv, b.uv, l.uv[static_cast<std::size_t>(si)], l.seg_end_uv(si), t,
-                             s) &&
-          t > kEndShare && t < 1.0 - kEndShare)
-        hit = true;
+      if (!intersect_segments(a.uv, b.uv, l.uv[static_cast<std::size_t>(si)], l.seg_end_uv(si), t,
+                              s) ||
+          !(t > kEndShare && t < 1.0 - kEndShare))
+        return;
+      if (!looked) na = near(a), nb = near(b), looked = true;
+      hit = !na.holds(li, si) && !nb.holds(li, si);
     });
     return hit;
   }
