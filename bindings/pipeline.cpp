@@ -68,6 +68,7 @@ py::dict summary_dict(const PanelizeSummary& s) {
   d["rod_count"] = s.rod_count;
   d["node_count"] = s.node_count;
   d["merged_slivers"] = s.merged_slivers;
+  d["merged_spikes"] = s.merged_spikes;
   d["irregular_count"] = s.irregular_count;
   d["quad_share"] = s.quad_share;
   d["nominal_area"] = s.nominal_area;

@@ -18,6 +18,7 @@
 #include "analysis/coverage.h"
 #include "mesh/grid_clipping.h"
 #include "mesh/panel_model.h"
+#include "mesh/sliver_merge.h"
 #include "tessella/errors.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_metrics.h"
@@ -431,4 +432,43 @@ TEST(IsoGrid, ATrimAHairsBreadthOffAGridLineLeavesTheCellsBesideItWhole) {
   }
   // The outline still follows the trim within the deflection.
   for (std::size_t v = 0; v < m.vertex_count(); ++v) EXPECT_GE(m.xyz[v].y(), b.v_min - 1e-12);
+}
+
+// A panel tapering to a knife edge where a rod meets the trim nearly along
+// it (iso_grid on trimmed_bspline_holes at 1200 mm: 0.03 deg) goes into the
+// neighbour across that rod; the rod goes, the trim point stays.
+TEST(SpikeMerge, AKnifeEdgePanelJoinsItsNeighbourAcrossTheRod) {
+  PanelMesh m;
+  // Nodes A(0,0), B(10,0), C(0,5); the trim runs from B back left through
+  // T1(5,0.2) and T2(2,1.5) to C: a corner of 2.3 deg at B between the rod
+  // B-A and the trim. The quad below shares the rod A-B.
+  m.xyz = {Vec3(0, 0, 0), Vec3(10, 0, 0),  Vec3(5, 0.2, 0), Vec3(2, 1.5, 0),
+           Vec3(0, 5, 0), Vec3(0, -10, 0), Vec3(10, -10, 0)};
+  for (const Vec3& x : m.xyz) m.uv.emplace_back(x.x(), x.y());
+  m.is_node = {1, 1, 0, 0, 1, 1, 1};
+  const int A = 0, B = 1, T1 = 2, T2 = 3, C = 4, E = 5, F = 6;
+  m.panels = {{A, B, T1, T2, C}, {B, A, E, F}};
+  build_rods(m);
+  const PanelMesh before = m;
+  // a union of more nodes than allowed: kept
+  EXPECT_EQ(merge_spikes(m, kSpikeCornerDeg, 3), 0);
+  EXPECT_EQ(m.panels, before.panels);
+  // a limit under the spike's corner: kept
+  EXPECT_EQ(merge_spikes(m, 2.0, 5), 0);
+
+  EXPECT_EQ(merge_spikes(m, kSpikeCornerDeg, 5), 1);
+  ASSERT_EQ(m.panels.size(), 1u);
+  const std::vector<int>& p = m.panels[0];
+  EXPECT_EQ(std::set<int>(p.begin(), p.end()), (std::set<int>{A, B, T1, T2, C, E, F}));
+  // every corner of the union blunter than 5 deg; no rod A-B any more
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Vec3 a = m.xyz[p[(k + p.size() - 1) % p.size()]] - m.xyz[p[k]];
+    const Vec3 b = m.xyz[p[(k + 1) % p.size()]] - m.xyz[p[k]];
+    EXPECT_GT(std::acos(a.dot(b) / (a.norm() * b.norm())) * 180 / 3.14159265358979323846, 5.0);
+  }
+  for (const auto& r : m.rods) EXPECT_FALSE(r[0] == A && r[1] == B);
+  EXPECT_EQ(m.rods.size(), before.rods.size() - 1);
+  // nothing left to merge
+  EXPECT_EQ(merge_spikes(m, kSpikeCornerDeg, 5), 0);
+  EXPECT_THROW(merge_spikes(m, -1.0, 5), InvalidParameter);
 }

@@ -46,6 +46,7 @@ struct PanelMesh {
 
   // What the method reports about its own run.
   int merged_slivers = 0;     // slivers merged into a neighbour
+  int merged_spikes = 0;      // panels with a knife-edge corner merged (mesh/sliver_merge.h)
   double nominal_area = 0.0;  // area of a full panel (mm^2), for irregularity
   int regular_corners = 4;    // corners of a regular panel (3 in a triangular layout)
 

@@ -21,7 +21,7 @@ class SurfaceFace;
 
 struct PanelizeSummary {
   int panel_count = 0, rod_count = 0, node_count = 0;
-  int merged_slivers = 0, irregular_count = 0, fold_count = 0;
+  int merged_slivers = 0, merged_spikes = 0, irregular_count = 0, fold_count = 0;
   double quad_share = 0.0;  // fraction of panels that are quads
   // Boundary pieces (src/mesh/boundary_pieces.h): bend lines over all panels,
   // panels split by a new rod, trim points made nodes to meet the allowance.

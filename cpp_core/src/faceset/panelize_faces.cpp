@@ -263,6 +263,7 @@ void join(const std::vector<PanelizeResult>& faces, double model_size, FaceSetRe
       if (k < r.fold_angle.size()) c.fold_angle.push_back(r.fold_angle[k]);
     }
     m.merged_slivers += fm.merged_slivers;
+    m.merged_spikes += fm.merged_spikes;
     const PanelMetrics& pm = r.metrics;
     PanelMetrics& cm = c.metrics;
     // Per panel, the panels kept.
@@ -334,6 +335,7 @@ void summarize_set(const FaceSet& set, const std::vector<PanelizeResult>& faces,
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const PanelizeSummary& x = faces[f].summary;
     s.merged_slivers += x.merged_slivers;
+    s.merged_spikes += x.merged_spikes;
     s.irregular_count += x.irregular_count;
     s.fold_count += x.fold_count;
     s.bend_count += x.bend_count;

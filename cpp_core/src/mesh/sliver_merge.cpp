@@ -45,6 +45,37 @@ bool merge_pair(const std::vector<int>& a, const std::vector<int>& b, std::vecto
   return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() && out.size() >= 3;
 }
 
+// Panel s joined into its neighbour n as `joined` (merge_pair's union):
+// corner_uv follows, each corner keeping the (u,v) it had in the panel it
+// came from (the neighbour's where both have it: the seam side the
+// neighbour is on), and the directed-edge owners are brought up to date.
+void join_into(PanelMesh& mesh, int n, int s, std::vector<int> joined,
+               std::map<std::pair<int, int>, int>& owner) {
+  if (!mesh.corner_uv.empty()) {
+    std::map<int, Vec2> seen;
+    for (std::size_t k = 0; k < mesh.panels[s].size(); ++k)
+      seen[mesh.panels[s][k]] = mesh.corner_uv[s][k];
+    for (std::size_t k = 0; k < mesh.panels[n].size(); ++k)
+      seen[mesh.panels[n][k]] = mesh.corner_uv[n][k];
+    std::vector<Vec2> corner;
+    for (int v : joined) corner.push_back(seen.at(v));
+    mesh.corner_uv[n] = std::move(corner);
+  }
+  for (std::size_t k = 0; k < joined.size(); ++k)
+    owner[{joined[k], joined[(k + 1) % joined.size()]}] = n;
+  mesh.panels[n] = std::move(joined);
+}
+
+std::map<std::pair<int, int>, int> edge_owners(const PanelMesh& mesh) {
+  std::map<std::pair<int, int>, int> owner;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+    const auto& poly = mesh.panels[p];
+    for (std::size_t k = 0; k < poly.size(); ++k)
+      owner[{poly[k], poly[(k + 1) % poly.size()]}] = int(p);
+  }
+  return owner;
+}
+
 // Keeps the panels (and their corner_uv, folds stay) whose flag is set.
 void drop_panels(PanelMesh& mesh, const std::vector<char>& keep) {
   std::vector<std::vector<int>> kept;
@@ -98,12 +129,7 @@ int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& r
   if (!any) return 0;
   std::vector<char> alive(mesh.panels.size(), 1);
   // Directed edge -> panel, kept up to date as panels merge.
-  std::map<std::pair<int, int>, int> owner;
-  for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
-    const auto& poly = mesh.panels[p];
-    for (std::size_t k = 0; k < poly.size(); ++k)
-      owner[{poly[k], poly[(k + 1) % poly.size()]}] = int(p);
-  }
+  std::map<std::pair<int, int>, int> owner = edge_owners(mesh);
   std::vector<int> order(mesh.panels.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return area[a] < area[b]; });
@@ -126,20 +152,7 @@ int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& r
     for (auto& [neg_len, n] : candidates) {
       std::vector<int> joined;
       if (!merge_pair(mesh.panels[n], poly, joined)) continue;
-      if (!mesh.corner_uv.empty()) {
-        // Each corner keeps the (u,v) it had in the panel it came from (the
-        // neighbour's where both have it: the seam side the neighbour is on).
-        std::map<int, Vec2> seen;
-        for (std::size_t k = 0; k < poly.size(); ++k) seen[poly[k]] = mesh.corner_uv[s][k];
-        for (std::size_t k = 0; k < mesh.panels[n].size(); ++k)
-          seen[mesh.panels[n][k]] = mesh.corner_uv[n][k];
-        std::vector<Vec2> corner;
-        for (int v : joined) corner.push_back(seen.at(v));
-        mesh.corner_uv[n] = std::move(corner);
-      }
-      mesh.panels[n] = joined;
-      for (std::size_t k = 0; k < joined.size(); ++k)
-        owner[{joined[k], joined[(k + 1) % joined.size()]}] = n;
+      join_into(mesh, n, s, std::move(joined), owner);
       area[n] += area[s];
       alive[s] = 0;
       ++merged;
@@ -147,6 +160,82 @@ int merge_slivers(PanelMesh& mesh, double fraction, const std::vector<double>& r
     }
   }
   drop_panels(mesh, alive);
+  return merged;
+}
+
+namespace {
+
+// Corner angle (deg, 3D) at vertex `at` between its outline neighbours; 180
+// where a side has no length.
+double corner_deg(const PanelMesh& mesh, int prev, int at, int next) {
+  const Vec3 a = mesh.xyz[prev] - mesh.xyz[at], b = mesh.xyz[next] - mesh.xyz[at];
+  const double la = a.norm(), lb = b.norm();
+  if (la == 0 || lb == 0) return 180.0;
+  return std::acos(std::clamp(a.dot(b) / (la * lb), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+}
+
+// Smallest corner angle (deg, 3D) of a panel's whole outline.
+double sharpest_corner(const PanelMesh& mesh, const std::vector<int>& poly) {
+  const std::size_t n = poly.size();
+  double worst = 180.0;
+  for (std::size_t k = 0; k < n; ++k)
+    worst = std::min(worst, corner_deg(mesh, poly[(k + n - 1) % n], poly[k], poly[(k + 1) % n]));
+  return worst;
+}
+
+int node_count(const PanelMesh& mesh, const std::vector<int>& poly) {
+  return static_cast<int>(
+      std::count_if(poly.begin(), poly.end(), [&](int v) { return is_node(mesh, v); }));
+}
+
+}  // namespace
+
+int merge_spikes(PanelMesh& mesh, double min_corner_deg, int max_nodes) {
+  require_in_range("spike corner (deg)", min_corner_deg, 0.0, 90.0);
+  if (min_corner_deg <= 0) return 0;
+  std::vector<double> sharpest(mesh.panels.size());
+  bool any = false;
+  for (std::size_t p = 0; p < mesh.panels.size(); ++p) {
+    sharpest[p] = sharpest_corner(mesh, mesh.panels[p]);
+    any = any || sharpest[p] < min_corner_deg;
+  }
+  if (!any) return 0;
+  std::vector<char> alive(mesh.panels.size(), 1);
+  std::map<std::pair<int, int>, int> owner = edge_owners(mesh);
+  int merged = 0;
+  for (std::size_t s = 0; s < mesh.panels.size(); ++s) {
+    if (!alive[s] || !(sharpest[s] < min_corner_deg)) continue;
+    const std::vector<int> poly = mesh.panels[s];
+    const std::size_t n = poly.size();
+    // The neighbours across a rod (node to node) at a spike, best union first.
+    int best = -1;
+    double best_sharpest = sharpest[s];
+    std::vector<int> best_joined;
+    for (std::size_t k = 0; k < n; ++k) {
+      const int a = poly[k], b = poly[(k + 1) % n];
+      if (!is_node(mesh, a) || !is_node(mesh, b)) continue;
+      // the side must end at a spike
+      const double at_a = corner_deg(mesh, poly[(k + n - 1) % n], a, b);
+      const double at_b = corner_deg(mesh, a, b, poly[(k + 2) % n]);
+      if (!(std::min(at_a, at_b) < min_corner_deg)) continue;
+      auto it = owner.find({b, a});
+      if (it == owner.end() || !alive[it->second] || it->second == int(s)) continue;
+      std::vector<int> joined;
+      if (!merge_pair(mesh.panels[it->second], poly, joined)) continue;
+      if (node_count(mesh, joined) > max_nodes) continue;
+      const double q = sharpest_corner(mesh, joined);
+      if (q > best_sharpest) best = it->second, best_sharpest = q, best_joined = std::move(joined);
+    }
+    if (best < 0) continue;
+    join_into(mesh, best, int(s), std::move(best_joined), owner);
+    sharpest[best] = best_sharpest;
+    alive[s] = 0;
+    ++merged;
+  }
+  if (merged > 0) {
+    drop_panels(mesh, alive);
+    build_rods(mesh);
+  }
   return merged;
 }
 

@@ -154,6 +154,14 @@ Modelled run_method_with(const SurfaceFace& face, const MethodDeclaration& decl,
   sp.keep_quads = method == "boundary_driven" || method == "curvature_lines";
   if (method == "walking_agent") sp.max_deviation = value_or<double>(values, decl, "max_deviation");
   out.merged = merge_short_rods(face, out.mesh, sp);
+  // No panel tapering to a knife edge at a trim (a grid line meeting an
+  // opening's rim nearly along it): merged across its rod into a neighbour,
+  // a piece of at most five nodes (bent at most twice). The clipped grids
+  // only, where it was measured (bench/boundary_outlines.py): walking_agent's
+  // union could break its hard bound, boundary_driven keeps its rods off
+  // such corners itself, and the guide-line layouts' rows are their point.
+  if (method == "iso_grid" || method == "equal_size_grid")
+    out.mesh.merged_spikes = merge_spikes(out.mesh, kSpikeCornerDeg, 5);
   out.core_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   out.evaluations = face.evaluations();
@@ -308,6 +316,7 @@ PanelizeResult finish_result(std::shared_ptr<const SurfaceFace> face, const Meth
   for (std::size_t v = 0; v < r.mesh.xyz.size(); ++v)
     if (is_node(r.mesh, static_cast<int>(v))) ++s.node_count;
   s.merged_slivers = r.mesh.merged_slivers;
+  s.merged_spikes = r.mesh.merged_spikes;
   for (bool b : r.irregular) s.irregular_count += b ? 1 : 0;
   int quads = 0;
   // A quad is a panel of four nodes (outline points along a trim do not count).
