@@ -47,7 +47,8 @@ void quadrangulate(const SurfaceFace& face, const std::vector<BdPolyline>& bound
 // Interior nodes move toward the centroid of their neighbours and are projected
 // back onto the surface; nodes on the trim move along their loop toward the
 // middle of their two trim neighbours (so they stay on the trim polyline);
-// corners stay fixed. A move that would fold a panel (in (u,v)) is skipped.
+// corners stay fixed. A move that would fold a panel (in (u,v)) or leave more
+// rods across a trim at the node (bd_trim_crossing.h) is skipped.
 void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
                     BdNetwork& net, int iterations, double factor = 0.5);
 
@@ -61,9 +62,14 @@ void smooth_bd_mesh(const SurfaceFace& face, const std::vector<BdPolyline>& boun
 // neighbour and square to that edge in the tangent plane, projected onto the
 // surface and inside the trim; trim nodes slide along their loop toward or
 // away from their trim neighbours (so they stay on the trim polyline); corners
-// stay fixed. A move is kept only when it raises that local minimum and makes
+// stay fixed. A move is kept only when it raises that local minimum, makes
 // no edge at the node shorter than 0.3 x the median edge (unless it already
-// was and gets no shorter). Returns the number of moves.
+// was and gets no shorter) and leaves no more rods across a trim (a quad
+// beside a trim with both diagonals across it counts as one). A corner at a
+// trim node is measured against the trim itself where the side runs along
+// it (the first trim polyline point past the node, not the chord to the next
+// trim node): a rod nearly along a hole's rim is a spike of the cut panel
+// however wide the chord's angle. Returns the number of moves.
 int improve_bd_angles(const SurfaceFace& face, const std::vector<BdPolyline>& boundary,
                       BdNetwork& net, double target_deg, int passes);
 
