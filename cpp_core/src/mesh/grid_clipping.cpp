@@ -47,7 +47,10 @@ using ClipperLib::Paths;
 
 struct PointHash {
   std::size_t operator()(const IntPoint& p) const {
-    return std::hash<long long>()(p.X * 1000003LL) ^ std::hash<long long>()(p.Y);
+    // (the product in unsigned arithmetic: at 2^50 units the signed one
+    // overflows, undefined behaviour; the bits are the same)
+    const auto x = static_cast<unsigned long long>(p.X) * 1000003ULL;
+    return std::hash<long long>()(static_cast<long long>(x)) ^ std::hash<long long>()(p.Y);
   }
 };
 struct PointEq {
