@@ -1,5 +1,6 @@
 // Declarations of the grid methods (see tessella/methods.h).
 #include "pipeline/declaration_builder.h"
+#include "tessella/chebyshev_net.h"
 #include "tessella/grid_methods.h"
 
 namespace tessella::declare {
@@ -44,10 +45,35 @@ MethodBuilder<EqualSizeGridParams> equal_size_grid_builder() {
   return b;
 }
 
+MethodBuilder<ChebyshevNetParams> chebyshev_net_builder() {
+  MethodBuilder<ChebyshevNetParams> b("chebyshev_net", "Chebyshev net (equal rods)",
+                                      "every interior rod the same length (a fishnet from two "
+                                      "crossing iso-curves), cut by the trims");
+  b.param(&ChebyshevNetParams::size,
+          decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size",
+               "Rod length: every rod of the net is this long, but where it meets a trim",
+               "Panelization", "Size"))
+      .param(&ChebyshevNetParams::seed_u,
+             decl("seed_u", ParamKind::Real, "", 0.0, 1.0, "Seed u",
+                  "Where the net's two generators cross, as a fraction of the face's u range "
+                  "(0.5: the middle)",
+                  "Chebyshev net", "SeedU"))
+      .param(&ChebyshevNetParams::seed_v,
+             decl("seed_v", ParamKind::Real, "", 0.0, 1.0, "Seed v",
+                  "Where the net's two generators cross, as a fraction of the face's v range "
+                  "(0.5: the middle)",
+                  "Chebyshev net", "SeedV"));
+  with_clip(b);
+  return b;
+}
+
 }  // namespace
 
 std::vector<MethodDeclaration> grid_methods() {
-  return {iso_grid_builder().build(&iso_grid), equal_size_grid_builder().build(&equal_size_grid)};
+  return {iso_grid_builder().build(&iso_grid), equal_size_grid_builder().build(&equal_size_grid),
+          chebyshev_net_builder().build([](const SurfaceFace& f, const ChebyshevNetParams& p) {
+            return chebyshev_net(f, p);
+          })};
 }
 
 }  // namespace tessella::declare
@@ -62,6 +88,11 @@ IsoGridParams iso_grid_params(const ParamValues& values) {
 EqualSizeGridParams equal_size_grid_params(const ParamValues& values) {
   check_param_values(method_declaration("equal_size_grid"), values);
   return declare::equal_size_grid_builder().filler()(values);
+}
+
+ChebyshevNetParams chebyshev_net_params(const ParamValues& values) {
+  check_param_values(method_declaration("chebyshev_net"), values);
+  return declare::chebyshev_net_builder().filler()(values);
 }
 
 }  // namespace tessella

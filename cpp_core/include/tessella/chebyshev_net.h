@@ -1,0 +1,64 @@
+// A Chebyshev net (the "compass" or fishnet construction of timber grid
+// shells): every interior rod is exactly `size` long, so all full panels are
+// skew rhombi with four equal sides that differ only by their two diagonals.
+// That makes the layout the one made for repetition (issue 17: panel families
+// within a tolerance), and a grid shell of equal members.
+//
+// Construction: two generators through the seed, the face's u and v
+// iso-curves, are divided into equal chords of `size`; every further node is
+// the surface point at distance `size` from its two known neighbours (the
+// intersection of two spheres with the surface, Newton in (u,v) from the
+// parallelogram guess), quadrant by quadrant away from the seed.
+//
+// Where the net cannot go on (the surface's edge, a shear sharper than
+// kChebyshevMinShearDeg, Newton not converging), a node takes the
+// parallelogram guess in (u,v) instead, and so does every node beyond it:
+// rods there are no longer of equal length (counted in the report). The
+// lattice is extended this way past the face's (u,v) bounds and cut by the
+// trims like the relaxed grid's cells (mesh/cell_clipping.h), so the panels
+// tile the face. A lattice that folds over the face (cells turned over) is
+// refused with a clear error.
+#pragma once
+
+#include "tessella/grid_methods.h"
+#include "tessella/panel_mesh.h"
+
+namespace tessella {
+
+class SurfaceFace;
+
+// Below this angle between two rods of a cell (3D) the net stops: a rhombus
+// sheared further is a sliver and its neighbours fold soon after.
+constexpr double kChebyshevMinShearDeg = 20.0;
+
+struct ChebyshevNetParams {
+  double size = 0.0;  // rod length, mm (required)
+  // The seed (where the two generators cross) as fractions of the face's
+  // (u,v) bounds.
+  double seed_u = 0.5;
+  double seed_v = 0.5;
+  GridClipParams clip;
+};
+
+struct ChebyshevNetReport {
+  int net_nodes = 0;                 // nodes inside the face at `size` from their neighbours
+  int extrapolated_nodes = 0;        // parallelogram guesses inside the face
+  int lattice_u = 0, lattice_v = 0;  // nodes of the lattice before the cut
+};
+
+PanelMesh chebyshev_net(const SurfaceFace& face, const ChebyshevNetParams& params,
+                        ChebyshevNetReport* report = nullptr);
+
+// The lattice alone, in (u,v), nu x nv nodes row by row (node (i,j) at
+// j * nu + i), before the trim cut; `on_net[k]` tells the nodes of the net.
+struct ChebyshevLattice {
+  std::vector<Vec2> uv;
+  std::vector<char> on_net;
+  int nu = 0, nv = 0;
+};
+ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params);
+
+// Parameters from values as the method declarations read them (checked).
+ChebyshevNetParams chebyshev_net_params(const ParamValues& values);
+
+}  // namespace tessella

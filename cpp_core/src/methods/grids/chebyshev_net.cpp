@@ -1,0 +1,361 @@
+// The Chebyshev net (tessella/chebyshev_net.h): generators, the fishnet
+// rule, the lattice past the bounds, its checks, the trim cut.
+#include "tessella/chebyshev_net.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "geometry/trim_deflection.h"
+#include "geometry/uv_trim_classifier.h"
+#include "mesh/cell_clipping.h"
+#include "tessella/errors.h"
+#include "tessella/surface_face.h"
+
+namespace tessella {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool in_bounds(const UvBounds& b, const Vec2& p) {
+  return p.x() >= b.u_min && p.x() <= b.u_max && p.y() >= b.v_min && p.y() <= b.v_max;
+}
+
+double angle_deg(const Vec3& a, const Vec3& b) {
+  const double na = a.norm(), nb = b.norm();
+  if (!(na > 0) || !(nb > 0)) return 0.0;
+  return std::acos(std::clamp(a.dot(b) / (na * nb), -1.0, 1.0)) * 180.0 / kPi;
+}
+
+bool shear_ok(double deg) {
+  return deg >= kChebyshevMinShearDeg && deg <= 180.0 - kChebyshevMinShearDeg;
+}
+
+// The next generator node: the first point of the iso-curve through `from`
+// (along u for axis 0, v for 1, in direction `sign`) at chord `length` from
+// it, or nothing when the curve leaves the bounds first. Marching in quarter
+// steps finds the first crossing of the chord length (a wavy curve may cross
+// it again later); bisection with secant steps then refines it.
+std::optional<Vec2> chord_step(const SurfaceFace& face, const UvBounds& b, const Vec2& from,
+                               int axis, int sign, double length) {
+  const Vec3 p0 = face.point(from.x(), from.y());
+  const SurfacePoint d = face.derivatives(from.x(), from.y());
+  const double speed = (axis == 0 ? d.du : d.dv).norm();
+  const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
+  const double start = axis == 0 ? from.x() : from.y();
+  const double room = sign > 0 ? hi - start : start - lo;
+  if (!(room > 0)) return std::nullopt;
+  const double dt = speed > 0 ? std::min(0.25 * length / speed, room / 8) : room / 64;
+  auto at = [&](double t) {
+    return axis == 0 ? Vec2(start + sign * t, from.y()) : Vec2(from.x(), start + sign * t);
+  };
+  auto gap = [&](double t) {
+    const Vec2 q = at(t);
+    return (face.point(q.x(), q.y()) - p0).norm() - length;
+  };
+  double t0 = 0, g0 = -length, t1 = 0, g1 = -length;
+  for (int k = 1;; ++k) {
+    t1 = std::min(k * dt, room);
+    g1 = gap(t1);
+    if (g1 >= 0) break;
+    if (t1 >= room || k > 100000) return std::nullopt;
+    t0 = t1, g0 = g1;
+  }
+  for (int it = 0; it < 200 && std::abs(g1) > 1e-13 * length; ++it) {
+    double t = t0 - g0 * (t1 - t0) / (g1 - g0);
+    if (!(t > t0 && t < t1) || it % 3 == 2) t = 0.5 * (t0 + t1);  // keep bisecting too
+    if (!(t > t0 && t < t1)) break;  // the bracket is down to the last bit
+    const double g = gap(t);
+    if (g >= 0)
+      t1 = t, g1 = g;
+    else
+      t0 = t, g0 = g;
+  }
+  return at(t1);
+}
+
+// The fishnet rule: the point of the surface at `length` from both a and b,
+// by Newton in (u,v) from `guess`; nothing when it does not converge inside
+// the bounds.
+std::optional<Vec2> fishnet_node(const SurfaceFace& face, const UvBounds& b, const Vec3& a,
+                                 const Vec3& bb, const Vec2& guess, double length) {
+  const double l2 = length * length;
+  Vec2 uv = guess;
+  for (int it = 0; it < 40; ++it) {
+    if (!in_bounds(b, uv)) return std::nullopt;
+    const SurfacePoint s = face.derivatives(uv.x(), uv.y());
+    const Vec3 da = s.point - a, db = s.point - bb;
+    const double fa = da.dot(da) - l2, fb = db.dot(db) - l2;
+    if (std::max(std::abs(fa), std::abs(fb)) <= 1e-13 * l2) return uv;
+    const double j00 = 2 * da.dot(s.du), j01 = 2 * da.dot(s.dv);
+    const double j10 = 2 * db.dot(s.du), j11 = 2 * db.dot(s.dv);
+    const double det = j00 * j11 - j01 * j10;
+    const double scale = std::abs(j00 * j11) + std::abs(j01 * j10);
+    if (!(std::abs(det) > 1e-12 * scale)) return std::nullopt;
+    Vec2 step((-fa * j11 + fb * j01) / det, (-fb * j00 + fa * j10) / det);
+    // At most half a rod a step (3D), so a poor guess does not jump sheets.
+    const double move = (s.du * step.x() + s.dv * step.y()).norm();
+    if (move > 0.5 * length) step *= 0.5 * length / move;
+    uv += step;
+    if (it >= 30 && std::max(std::abs(fa), std::abs(fb)) <= 1e-9 * l2) {
+      return in_bounds(b, uv) ? std::optional<Vec2>(uv) : std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// A cell (corners in lattice order) turns counter-clockwise and is convex.
+bool convex_ccw(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3) {
+  const Vec2 q[4] = {p0, p1, p2, p3};
+  for (int k = 0; k < 4; ++k) {
+    if (!(cross(q[(k + 1) % 4] - q[k], q[(k + 2) % 4] - q[(k + 1) % 4]) > 0)) return false;
+  }
+  return true;
+}
+
+// Whether segment pq meets the closed box.
+bool segment_meets_box(const Vec2& p, const Vec2& q, const UvBounds& b) {
+  double t0 = 0, t1 = 1;
+  const double d[2] = {q.x() - p.x(), q.y() - p.y()};
+  const double s[2] = {p.x(), p.y()};
+  const double lo[2] = {b.u_min, b.v_min}, hi[2] = {b.u_max, b.v_max};
+  for (int a = 0; a < 2; ++a) {
+    if (d[a] == 0) {
+      if (s[a] < lo[a] || s[a] > hi[a]) return false;
+      continue;
+    }
+    double e0 = (lo[a] - s[a]) / d[a], e1 = (hi[a] - s[a]) / d[a];
+    if (e0 > e1) std::swap(e0, e1);
+    t0 = std::max(t0, e0), t1 = std::min(t1, e1);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+struct Lattice {
+  int i_lo = 0, i_hi = 0, j_lo = 0, j_hi = 0;  // node index range (seed at 0, 0)
+  std::vector<Vec2> uv;
+  std::vector<char> on_net;
+  int nu() const { return i_hi - i_lo + 1; }
+  int nv() const { return j_hi - j_lo + 1; }
+  std::size_t at(int i, int j) const {
+    return std::size_t(j - j_lo) * std::size_t(nu()) + std::size_t(i - i_lo);
+  }
+};
+
+// A generator from the seed: its net nodes (at chord `length`), then
+// `margin` steps past the bounds by the last (u,v) step.
+std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBounds& b,
+                                             const Vec2& seed, int axis, int sign, double length,
+                                             int margin) {
+  std::vector<std::pair<Vec2, bool>> nodes;
+  Vec2 cur = seed;
+  for (;;) {
+    const std::optional<Vec2> next = chord_step(face, b, cur, axis, sign, length);
+    if (!next) break;
+    nodes.push_back({*next, true});
+    cur = *next;
+  }
+  Vec2 step = Vec2::Zero();
+  if (!nodes.empty())
+    step = nodes.back().first - (nodes.size() > 1 ? nodes[nodes.size() - 2].first : seed);
+  if (!(step.norm() > 0)) {
+    const double span = axis == 0 ? b.u_max - b.u_min : b.v_max - b.v_min;
+    step = axis == 0 ? Vec2(sign * span / 64, 0) : Vec2(0, sign * span / 64);
+  }
+  int past = 0;
+  while (past < margin) {
+    cur = cur + step;
+    nodes.push_back({cur, false});
+    if (!in_bounds(b, cur)) ++past;
+  }
+  return nodes;
+}
+
+Lattice build_lattice(const SurfaceFace& face, const UvBounds& b, const Vec2& seed, double length,
+                      int margin, std::size_t max_nodes) {
+  std::vector<std::pair<Vec2, bool>> gen[2][2];  // [axis][sign > 0]
+  for (int axis = 0; axis < 2; ++axis)
+    for (int s = 0; s < 2; ++s)
+      gen[axis][s] = generator(face, b, seed, axis, s ? 1 : -1, length, margin);
+  Lattice L;
+  L.i_lo = -int(gen[0][0].size()), L.i_hi = int(gen[0][1].size());
+  L.j_lo = -int(gen[1][0].size()), L.j_hi = int(gen[1][1].size());
+  const double nodes = double(L.nu()) * double(L.nv());
+  if (nodes > double(max_nodes)) {
+    throw LimitExceeded("the Chebyshev net's lattice would have " +
+                        std::to_string(static_cast<long long>(nodes)) +
+                        " nodes: choose a larger size or raise max_panels");
+  }
+  L.uv.assign(std::size_t(L.nu()) * L.nv(), Vec2::Zero());
+  L.on_net.assign(L.uv.size(), 0);
+  L.uv[L.at(0, 0)] = seed;
+  L.on_net[L.at(0, 0)] = in_bounds(b, seed);
+  for (int s = 0; s < 2; ++s) {
+    for (std::size_t k = 0; k < gen[0][s].size(); ++k) {
+      const int i = s ? int(k) + 1 : -int(k) - 1;
+      L.uv[L.at(i, 0)] = gen[0][s][k].first, L.on_net[L.at(i, 0)] = gen[0][s][k].second;
+    }
+    for (std::size_t k = 0; k < gen[1][s].size(); ++k) {
+      const int j = s ? int(k) + 1 : -int(k) - 1;
+      L.uv[L.at(0, j)] = gen[1][s][k].first, L.on_net[L.at(0, j)] = gen[1][s][k].second;
+    }
+  }
+  std::vector<Vec3> xyz(L.uv.size(), Vec3::Zero());
+  std::vector<char> known(L.uv.size(), 0);
+  auto point_of = [&](std::size_t k) -> const Vec3& {
+    if (!known[k]) xyz[k] = face.point(L.uv[k].x(), L.uv[k].y()), known[k] = 1;
+    return xyz[k];
+  };
+  // Quadrant by quadrant, away from the generators: node (i, j) from its
+  // neighbours towards the seed a = (i - si, j), b = (i, j - sj) and the
+  // opposite corner c = (i - si, j - sj).
+  for (const int si : {1, -1}) {
+    for (const int sj : {1, -1}) {
+      const int i_end = si > 0 ? L.i_hi : -L.i_lo, j_end = sj > 0 ? L.j_hi : -L.j_lo;
+      for (int jj = 1; jj <= j_end; ++jj) {
+        for (int ii = 1; ii <= i_end; ++ii) {
+          const int i = si * ii, j = sj * jj;
+          const std::size_t ka = L.at(i - si, j), kb = L.at(i, j - sj), kc = L.at(i - si, j - sj);
+          const std::size_t k = L.at(i, j);
+          const Vec2 guess = L.uv[ka] + L.uv[kb] - L.uv[kc];
+          L.uv[k] = guess;
+          // A guess of the net's own (a node where it failed) is a surface
+          // point too: the rule goes on from it, so a failure stays local.
+          if (!(in_bounds(b, L.uv[ka]) && in_bounds(b, L.uv[kb]) && in_bounds(b, L.uv[kc])))
+            continue;
+          const std::optional<Vec2> node =
+              fishnet_node(face, b, point_of(ka), point_of(kb), guess, length);
+          if (!node) continue;
+          // The cell in lattice order: corners (i0,j0), (i0+1,j0), (i0+1,j0+1), (i0,j0+1).
+          const int i0 = std::min(i, i - si), j0 = std::min(j, j - sj);
+          auto uv_at = [&](int ci, int cj) {
+            return ci == i && cj == j ? *node : L.uv[L.at(ci, cj)];
+          };
+          if (!convex_ccw(uv_at(i0, j0), uv_at(i0 + 1, j0), uv_at(i0 + 1, j0 + 1),
+                          uv_at(i0, j0 + 1)))
+            continue;
+          const Vec3 p = face.point(node->x(), node->y());
+          const Vec3 &pa = point_of(ka), &pb = point_of(kb), &pc = point_of(kc);
+          if (!shear_ok(angle_deg(pa - pc, pb - pc)) || !shear_ok(angle_deg(pa - p, pb - p)))
+            continue;
+          L.uv[k] = *node;
+          L.on_net[k] = 1;
+          xyz[k] = p, known[k] = 1;
+        }
+      }
+    }
+  }
+  return L;
+}
+
+// The lattice covers the bounds once: its border ring stays off the bounds
+// box and winds once round it. (Every cell over the bounds turning
+// counter-clockwise, checked apart, then makes the cells over the face a
+// tiling: the count of cells over a point is the border's winding number.)
+bool covers_bounds(const Lattice& L, const UvBounds& b) {
+  std::vector<Vec2> ring;
+  for (int i = L.i_lo; i < L.i_hi; ++i) ring.push_back(L.uv[L.at(i, L.j_lo)]);
+  for (int j = L.j_lo; j < L.j_hi; ++j) ring.push_back(L.uv[L.at(L.i_hi, j)]);
+  for (int i = L.i_hi; i > L.i_lo; --i) ring.push_back(L.uv[L.at(i, L.j_hi)]);
+  for (int j = L.j_hi; j > L.j_lo; --j) ring.push_back(L.uv[L.at(L.i_lo, j)]);
+  const Vec2 centre(0.5 * (b.u_min + b.u_max), 0.5 * (b.v_min + b.v_max));
+  int winding = 0;
+  for (std::size_t k = 0; k < ring.size(); ++k) {
+    const Vec2 &p = ring[k], &q = ring[(k + 1) % ring.size()];
+    if (segment_meets_box(p, q, b)) return false;
+    if (p.y() <= centre.y()) {
+      if (q.y() > centre.y() && cross(q - p, centre - p) > 0) ++winding;
+    } else if (q.y() <= centre.y() && cross(q - p, centre - p) < 0) {
+      --winding;
+    }
+  }
+  return winding == 1;
+}
+
+// The first cell over the bounds that is turned over or not convex, as its
+// corner's (u,v); nothing when there is none.
+std::optional<Vec2> folded_cell(const Lattice& L, const UvBounds& b) {
+  for (int j = L.j_lo; j < L.j_hi; ++j) {
+    for (int i = L.i_lo; i < L.i_hi; ++i) {
+      const Vec2 q[4] = {L.uv[L.at(i, j)], L.uv[L.at(i + 1, j)], L.uv[L.at(i + 1, j + 1)],
+                         L.uv[L.at(i, j + 1)]};
+      UvBounds box{q[0].x(), q[0].x(), q[0].y(), q[0].y()};
+      for (const Vec2& p : q) {
+        box.u_min = std::min(box.u_min, p.x()), box.u_max = std::max(box.u_max, p.x());
+        box.v_min = std::min(box.v_min, p.y()), box.v_max = std::max(box.v_max, p.y());
+      }
+      if (box.u_max < b.u_min || box.u_min > b.u_max || box.v_max < b.v_min || box.v_min > b.v_max)
+        continue;
+      if (!convex_ccw(q[0], q[1], q[2], q[3])) return q[0];
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params) {
+  if (params.size == 0.0) throw InvalidParameter("size (mm) is required for chebyshev_net");
+  require_in_range("size (mm)", params.size, 1e-3, 1e9);
+  require_in_range("seed_u", params.seed_u, 0.0, 1.0);
+  require_in_range("seed_v", params.seed_v, 0.0, 1.0);
+  require_in_range("max_panels", params.clip.max_panels, 1, 1e8);
+  const double estimate = face.area() / (params.size * params.size);
+  if (estimate > params.clip.max_panels) {
+    throw LimitExceeded(
+        "the net would have about " + std::to_string(static_cast<long long>(estimate)) +
+        " panels, more than max_panels = " + std::to_string(params.clip.max_panels) +
+        ": choose a larger size or raise max_panels");
+  }
+  const UvBounds b = face.bounds();
+  const Vec2 seed(b.u_min + params.seed_u * (b.u_max - b.u_min),
+                  b.v_min + params.seed_v * (b.v_max - b.v_min));
+  // The lattice may hold many cells off the face (a face far from its
+  // bounds' rectangle): room for 16 times the panels, and more on small runs.
+  const std::size_t max_nodes = 16 * std::size_t(params.clip.max_panels) + 100000;
+  for (int margin = 1; margin <= 64; margin *= 2) {
+    Lattice L = build_lattice(face, b, seed, params.size, margin, max_nodes);
+    if (!covers_bounds(L, b)) continue;
+    if (const std::optional<Vec2> fold = folded_cell(L, b)) {
+      throw InvalidGeometry("the Chebyshev net folds over this face near (u,v) = (" +
+                            std::to_string(fold->x()) + ", " + std::to_string(fold->y()) +
+                            "): its cells turn over where the surface shears it too far; "
+                            "try a smaller size or another seed (seed_u, seed_v)");
+    }
+    return {std::move(L.uv), std::move(L.on_net), L.nu(), L.nv()};
+  }
+  throw InvalidGeometry(
+      "the Chebyshev net does not cover this face's (u,v) bounds once (its border folds back "
+      "into them): try another seed (seed_u, seed_v) or a smaller size");
+}
+
+PanelMesh chebyshev_net(const SurfaceFace& face, const ChebyshevNetParams& params,
+                        ChebyshevNetReport* report) {
+  const ChebyshevLattice lattice = chebyshev_lattice(face, params);
+  if (report) {
+    const UvTrimClassifier inside(face.trim_loops(steering_trim_deflection(face)));
+    *report = {};
+    report->lattice_u = lattice.nu, report->lattice_v = lattice.nv;
+    for (std::size_t k = 0; k < lattice.uv.size(); ++k) {
+      if (!inside.contains(lattice.uv[k])) continue;
+      ++(lattice.on_net[k] ? report->net_nodes : report->extrapolated_nodes);
+    }
+  }
+  // The lattice's cells off the face go in the cut; only the panels count.
+  GridClipParams clip = params.clip;
+  clip.max_panels = std::max<int>(clip.max_panels, (lattice.nu - 1) * (lattice.nv - 1));
+  PanelMesh mesh = clip_cells(face, lattice.uv, lattice.nu, lattice.nv, clip);
+  if (mesh.panels.size() > std::size_t(params.clip.max_panels)) {
+    throw LimitExceeded(
+        "the net has " + std::to_string(mesh.panels.size()) + " panels, more than max_panels = " +
+        std::to_string(params.clip.max_panels) + ": choose a larger size or raise max_panels");
+  }
+  return mesh;
+}
+
+}  // namespace tessella
