@@ -16,7 +16,7 @@ UI_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.a
 #: grows at the end; a test checks it names every declared method).
 METHOD_ORDER = ("iso_grid", "equal_size_grid", "boundary_driven", "walking_agent",
                 "gradient_descent", "relaxed_grid", "guide_line_scaling", "two_guide_lines",
-                "guide_line_diamond", "curvature_lines")
+                "guide_line_diamond", "curvature_lines", "chebyshev_net")
 
 
 def defaults():

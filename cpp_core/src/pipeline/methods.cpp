@@ -72,7 +72,7 @@ std::vector<ParamDeclaration> make_shared_params() {
 constexpr const char* kMethodOrder[] = {
     "iso_grid",           "equal_size_grid", "boundary_driven",    "walking_agent",
     "gradient_descent",   "relaxed_grid",    "guide_line_scaling", "two_guide_lines",
-    "guide_line_diamond", "curvature_lines"};
+    "guide_line_diamond", "curvature_lines", "chebyshev_net"};
 
 std::vector<MethodDeclaration> make_methods() {
   std::vector<MethodDeclaration> found;

@@ -160,7 +160,7 @@ Modelled run_method_with(const SurfaceFace& face, const MethodDeclaration& decl,
   // only, where it was measured (bench/boundary_outlines.py): walking_agent's
   // union could break its hard bound, boundary_driven keeps its rods off
   // such corners itself, and the guide-line layouts' rows are their point.
-  if (method == "iso_grid" || method == "equal_size_grid")
+  if (method == "iso_grid" || method == "equal_size_grid" || method == "chebyshev_net")
     out.mesh.merged_spikes = merge_spikes(out.mesh, kSpikeCornerDeg, 5);
   out.core_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
