@@ -2,6 +2,7 @@
 // rule, the lattice past the bounds, its checks, the trim cut.
 #include "tessella/chebyshev_net.h"
 
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -277,9 +278,10 @@ bool covers_bounds(const Lattice& L, const UvBounds& b) {
   return winding == 1;
 }
 
-// The first cell over the bounds that is turned over or not convex, as its
-// corner's (u,v); nothing when there is none.
-std::optional<Vec2> folded_cell(const Lattice& L, const UvBounds& b) {
+// The cells over the bounds that are turned over or not convex, by their
+// first corner's lattice index.
+std::vector<std::pair<int, int>> folded_cells(const Lattice& L, const UvBounds& b) {
+  std::vector<std::pair<int, int>> out;
   for (int j = L.j_lo; j < L.j_hi; ++j) {
     for (int i = L.i_lo; i < L.i_hi; ++i) {
       const Vec2 q[4] = {L.uv[L.at(i, j)], L.uv[L.at(i + 1, j)], L.uv[L.at(i + 1, j + 1)],
@@ -291,10 +293,70 @@ std::optional<Vec2> folded_cell(const Lattice& L, const UvBounds& b) {
       }
       if (box.u_max < b.u_min || box.u_min > b.u_max || box.v_max < b.v_min || box.v_min > b.v_max)
         continue;
-      if (!convex_ccw(q[0], q[1], q[2], q[3])) return q[0];
+      if (!convex_ccw(q[0], q[1], q[2], q[3])) out.push_back({i, j});
     }
   }
-  return std::nullopt;
+  return out;
+}
+
+// Where the guesses fold (beyond a net that sheared to its limit, the
+// parallelograms of turned edges overlap), they are laid out again as a
+// Tutte embedding: the lattice's border ring spread round a box about
+// everything, the net's nodes fixed, every other node at the mean of its
+// four neighbours. With a convex border such a layout turns no cell over
+// but where the fixed net forces it (checked again by the caller, which
+// then frees the net's nodes round the folds).
+void relax_guesses(Lattice& L, const UvBounds& b) {
+  UvBounds box = b;
+  for (const Vec2& p : L.uv) {
+    box.u_min = std::min(box.u_min, p.x()), box.u_max = std::max(box.u_max, p.x());
+    box.v_min = std::min(box.v_min, p.y()), box.v_max = std::max(box.v_max, p.y());
+  }
+  const double mu = 0.01 * (box.u_max - box.u_min), mv = 0.01 * (box.v_max - box.v_min);
+  box = {box.u_min - mu, box.u_max + mu, box.v_min - mv, box.v_max + mv};
+  const int nu = L.nu(), nv = L.nv();
+  std::vector<char> fixed(L.uv.size(), 0);
+  for (int j = L.j_lo; j <= L.j_hi; ++j) {
+    for (int i = L.i_lo; i <= L.i_hi; ++i) {
+      const std::size_t k = L.at(i, j);
+      const double s = double(i - L.i_lo) / (nu - 1), t = double(j - L.j_lo) / (nv - 1);
+      if (i == L.i_lo || i == L.i_hi || j == L.j_lo || j == L.j_hi) {
+        L.uv[k] = {box.u_min + s * (box.u_max - box.u_min),
+                   box.v_min + t * (box.v_max - box.v_min)};
+        fixed[k] = 1;
+      } else {
+        fixed[k] = L.on_net[k];
+      }
+    }
+  }
+  std::vector<int> index(L.uv.size(), -1);
+  int n = 0;
+  for (std::size_t k = 0; k < L.uv.size(); ++k)
+    if (!fixed[k]) index[k] = n++;
+  if (n == 0) return;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+  for (int j = L.j_lo + 1; j < L.j_hi; ++j) {
+    for (int i = L.i_lo + 1; i < L.i_hi; ++i) {
+      const std::size_t k = L.at(i, j);
+      if (fixed[k]) continue;
+      entries.emplace_back(index[k], index[k], 4.0);
+      for (const std::size_t m : {L.at(i - 1, j), L.at(i + 1, j), L.at(i, j - 1), L.at(i, j + 1)}) {
+        if (fixed[m]) {
+          rhs(index[k], 0) += L.uv[m].x(), rhs(index[k], 1) += L.uv[m].y();
+        } else {
+          entries.emplace_back(index[k], index[m], -1.0);
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  if (solver.info() != Eigen::Success) return;
+  const Eigen::MatrixXd x = solver.solve(rhs);
+  for (std::size_t k = 0; k < L.uv.size(); ++k)
+    if (index[k] >= 0) L.uv[k] = {x(index[k], 0), x(index[k], 1)};
 }
 
 }  // namespace
@@ -321,11 +383,24 @@ ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetPa
   for (int margin = 1; margin <= 64; margin *= 2) {
     Lattice L = build_lattice(face, b, seed, params.size, margin, max_nodes);
     if (!covers_bounds(L, b)) continue;
-    if (const std::optional<Vec2> fold = folded_cell(L, b)) {
-      throw InvalidGeometry("the Chebyshev net folds over this face near (u,v) = (" +
-                            std::to_string(fold->x()) + ", " + std::to_string(fold->y()) +
-                            "): its cells turn over where the surface shears it too far; "
-                            "try a smaller size or another seed (seed_u, seed_v)");
+    // Folds: the guesses relaxed, then the net's nodes round the folds
+    // freed in widening rings until none is left (at last the whole
+    // lattice is a Tutte embedding, which cannot fold).
+    std::vector<std::pair<int, int>> folds = folded_cells(L, b);
+    for (int ring = 0; !folds.empty(); ring = std::max(ring + 1, 3 * ring / 2)) {
+      if (ring > L.nu() + L.nv()) {
+        throw InvalidGeometry("the Chebyshev net folds over this face near (u,v) = (" +
+                              std::to_string(L.uv[L.at(folds[0].first, folds[0].second)].x()) +
+                              ", " +
+                              std::to_string(L.uv[L.at(folds[0].first, folds[0].second)].y()) +
+                              "); try a smaller size or another seed (seed_u, seed_v)");
+      }
+      for (const auto& [fi, fj] : folds)
+        for (int j = std::max(L.j_lo, fj - ring); j <= std::min(L.j_hi, fj + 1 + ring); ++j)
+          for (int i = std::max(L.i_lo, fi - ring); i <= std::min(L.i_hi, fi + 1 + ring); ++i)
+            L.on_net[L.at(i, j)] = 0;
+      relax_guesses(L, b);
+      folds = folded_cells(L, b);
     }
     return {std::move(L.uv), std::move(L.on_net), L.nu(), L.nv()};
   }
