@@ -1,0 +1,135 @@
+"""chebyshev_net (equal rods, the layout made for repetition): on the bundled
+doubly curved examples every rod between two nodes inside the face is `size`
+long, measured from the result's vertices (checked on the surface by
+FreeCAD); the panels cover the face (independent sampling); on the Chen Shan
+dome, 2 mm families are at least 50% fewer than exactly congruent ones
+(issue 17), every panel within 2 mm of its template by a Kabsch fit written
+in the families tests; determinism and clear errors."""
+
+import os
+import sys
+from collections import Counter
+
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+HERE = os.path.dirname(os.path.abspath(__file__))
+for _p in ("/usr/lib/freecad-python3/lib", REPO, HERE):
+    if _p not in sys.path:
+        sys.path.append(_p)
+
+import FreeCAD  # noqa: E402  (before Part, or Part segfaults)
+import Part  # noqa: E402
+import numpy as np  # noqa: E402
+
+import freecad_workbench as tessella  # noqa: E402
+from conftest import independent_coverage  # noqa: E402
+from freecad_workbench import families  # noqa: E402
+from test_families import check_tolerance  # noqa: E402
+
+EXAMPLES = os.path.join(REPO, "examples")
+
+
+def example_face(name):
+    return Part.read(os.path.join(EXAMPLES, name + ".brep")).Faces[0]
+
+
+def rim_vertices(r):
+    """The vertices on the face's boundary: of a panel side only one panel has
+    (a boundary panel's outline points lie on its flat pieces, not on the
+    surface: mesh/boundary_pieces)."""
+    sides = Counter()
+    for p in r.panels:
+        for a, b in zip(p, list(p[1:]) + [p[0]]):
+            sides[(min(a, b), max(a, b))] += 1
+    return {v for side, n in sides.items() if n == 1 for v in side}
+
+
+def interior_rod_lengths(r):
+    """Lengths of the rods with no end on the face's boundary, from the
+    vertices alone."""
+    xyz = np.asarray(r.vertices, dtype=float).reshape(-1, 3)
+    rim = rim_vertices(r)
+    rods = [(a, b) for a, b in np.asarray(r.rods) if a not in rim and b not in rim]
+    return np.array([np.linalg.norm(xyz[a] - xyz[b]) for a, b in rods])
+
+
+@pytest.fixture(scope="module")
+def dome():
+    face = example_face("chen_shan_dome")
+    return face, tessella.panelize(face, method="chebyshev_net", size=1500.0)
+
+
+@pytest.mark.parametrize("name, share", [("chen_shan_dome", 1.0), ("british_museum_roof", 0.97),
+                                         ("trimmed_bspline_holes", 1.0)])
+def test_every_rod_inside_the_face_has_the_size(name, share):
+    size = 1500.0 if name != "trimmed_bspline_holes" else 400.0
+    face = example_face(name)
+    r = tessella.panelize(face, method="chebyshev_net", size=size)
+    lengths = interior_rod_lengths(r)
+    assert len(lengths) > 500
+    equal = np.abs(lengths - size) <= 1e-6 * size
+    # The roof's net crosses its drum opening on the surface beneath it and
+    # shears there: a few rows beyond it are guesses (about 1%).
+    assert equal.mean() >= share, f"{equal.mean():.4f} of {len(lengths)} rods are {size} mm"
+    # The nodes inside are on the surface (FreeCAD's own distance to the face).
+    xyz = np.asarray(r.vertices, dtype=float).reshape(-1, 3)
+    inside = sorted(set(range(len(xyz))) - rim_vertices(r))
+    for k in inside[:: max(1, len(inside) // 200)]:
+        assert face.distToShape(Part.Vertex(FreeCAD.Vector(*xyz[k])))[0] < 1e-6 * size
+    gap, extra = independent_coverage(face, r)
+    assert gap < 0.003 and extra < 0.003
+
+
+def test_the_dome_has_half_the_families_of_exact_congruence(dome):
+    face, r = dome
+    exact = tessella.panel_families(r, family_tolerance=1e-3)
+    fam = tessella.panel_families(r, family_tolerance=2.0)
+    # Issue 17: at least 50% fewer at 2 mm than at 1e-3 mm (iso_grid 41%,
+    # equal_size_grid 43%; no grouping of theirs can reach 50%).
+    assert fam.count <= 0.5 * exact.count, (fam.count, exact.count)
+    check_tolerance(families.panel_corners(r), fam, 2.0)
+
+
+def test_deterministic():
+    face = example_face("notched_shell")
+    a = tessella.panelize(face, method="chebyshev_net", size=900.0, seed_u=0.4)
+    b = tessella.panelize(face, method="chebyshev_net", size=900.0, seed_u=0.4)
+    assert np.asarray(a.vertices).tobytes() == np.asarray(b.vertices).tobytes()
+    assert [list(p) for p in a.panels] == [list(p) for p in b.panels]
+    c = tessella.panelize(face, method="chebyshev_net", size=900.0)
+    assert np.asarray(a.vertices).tobytes() != np.asarray(c.vertices).tobytes()  # the seed moved
+
+
+@pytest.mark.parametrize("params, words", [
+    ({}, "size"),
+    ({"size": 0.0}, "size"),
+    ({"size": -100.0}, "size"),
+    ({"size": 500.0, "seed_u": 1.5}, "seed_u"),
+    ({"size": 500.0, "seed_v": -0.1}, "seed_v"),
+    ({"size": 1.0}, "max_panels"),
+    ({"size": 500.0, "max_panels": 10}, "max_panels"),
+])
+def test_bad_parameters_are_clear_errors(params, words):
+    with pytest.raises((ValueError, RuntimeError)) as e:
+        tessella.panelize(example_face("bezier_patch"), method="chebyshev_net", **params)
+    assert words in str(e.value)
+
+
+def test_a_whole_sphere_is_panelized_without_a_turned_panel():
+    # No Chebyshev net covers a sphere (its total curvature is over 2 pi);
+    # beyond the net the lattice is laid out again so that no cell turns over.
+    radius = 5000.0
+    r = tessella.panelize(Part.makeSphere(radius).Faces[0], method="chebyshev_net", size=800.0)
+    xyz = np.asarray(r.vertices, dtype=float).reshape(-1, 3)
+    areas, sides = [], []
+    for p in r.panels:
+        c = xyz[list(p)]
+        n = sum(np.cross(c[k] - c[0], c[k + 1] - c[0]) for k in range(1, len(c) - 1)) / 2
+        areas.append(np.linalg.norm(n))
+        sides.append(np.sign(np.dot(n, c.mean(axis=0))))  # outwards or inwards
+    assert len(set(sides)) == 1 and sides[0] != 0  # no panel turned over
+    # Flat panels on the sphere: their area a little under the sphere's.
+    assert 0.97 * 4 * np.pi * radius**2 < sum(areas) <= 4 * np.pi * radius**2
+    lengths = interior_rod_lengths(r)
+    assert (np.abs(lengths - 800.0) <= 1e-6 * 800.0).sum() > 50  # the net's middle
