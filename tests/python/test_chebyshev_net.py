@@ -133,3 +133,40 @@ def test_a_whole_sphere_is_panelized_without_a_turned_panel():
     assert 0.97 * 4 * np.pi * radius**2 < sum(areas) <= 4 * np.pi * radius**2
     lengths = interior_rod_lengths(r)
     assert (np.abs(lengths - 800.0) <= 1e-6 * 800.0).sum() > 50  # the net's middle
+
+
+def test_the_net_runs_on_across_faces_of_one_surface():
+    """A face set whose faces lie on one surface (not a bundled example: the
+    face-set tests' wavy surface with a hole, cut along its plan's
+    diagonals) cuts one net made on their union: the one face's nodes away
+    from the cuts are the set's, the rows carry on across the cuts, and the
+    faces conform."""
+    from test_face_sets import (assert_same_result, check_conforming, rows_carried,
+                                wavy_face_with_a_hole_split_along_diagonals)
+
+    face, pieces = wavy_face_with_a_hole_split_along_diagonals()
+    size = 800.0
+    one = tessella.panelize(face, method="chebyshev_net", size=size)
+    r = tessella.panelize_faces(pieces, method="chebyshev_net", size=size, threads=2)
+    assert_same_result(r, tessella.panelize_faces(pieces, method="chebyshev_net", size=size,
+                                                  threads=1))
+    assert check_conforming(pieces, r) > 20
+    assert abs(r.metrics["panel_area"].sum() / pieces.Area - 1) < 5e-3
+    share, count = rows_carried(pieces, r)
+    assert count >= 20 and share >= 0.5, (share, count)
+    # The one face's nodes inside, away from the cuts, are nodes of the set.
+    cuts = [e for e in pieces.Edges
+            if sum(any(e.isSame(g) for g in f.Edges) for f in pieces.Faces) == 2]
+    rim = rim_vertices(one)
+    xyz = np.asarray(one.vertices, dtype=float).reshape(-1, 3)
+    theirs = np.asarray(r.vertices, dtype=float).reshape(-1, 3)
+    checked = 0
+    for k in range(0, len(xyz), 3):
+        if k in rim:
+            continue
+        p = Part.Vertex(FreeCAD.Vector(*xyz[k]))
+        if min(e.distToShape(p)[0] for e in cuts) < 1.5 * size:
+            continue
+        assert np.min(np.linalg.norm(theirs - xyz[k], axis=1)) < 1e-6 * size, k
+        checked += 1
+    assert checked > 30

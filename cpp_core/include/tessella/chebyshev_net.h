@@ -58,6 +58,12 @@ struct ChebyshevLattice {
 };
 ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params);
 
+// A lattice cut by the face's trims: chebyshev_net's last step. A face set
+// makes one lattice on the union of the faces lying on one surface and cuts
+// it by each, so the net's rows and equal rods run on across their edges.
+PanelMesh chebyshev_net_on_lattice(const SurfaceFace& face, const ChebyshevLattice& lattice,
+                                   const GridClipParams& clip);
+
 // Parameters from values as the method declarations read them (checked).
 ChebyshevNetParams chebyshev_net_params(const ParamValues& values);
 

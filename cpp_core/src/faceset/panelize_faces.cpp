@@ -22,6 +22,7 @@
 #include "methods/boundary_driven/bd_across_faces.h"
 #include "methods/boundary_driven/bd_across_surfaces.h"
 #include "pipeline/stages.h"
+#include "tessella/chebyshev_net.h"
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
 #include "tessella/grid_methods.h"
@@ -588,6 +589,28 @@ std::vector<std::shared_ptr<const GridLines>> grid_lines_across(const FaceSet& s
   return out;
 }
 
+// chebyshev_net's lattice made once on each group of faces lying on one
+// surface (on their union's bounds, from its seed), so the net's rows and
+// its equal rods run on across the edges between them, as on the one face;
+// per face, the lattice it cuts (null: the face makes its own).
+std::vector<std::shared_ptr<const ChebyshevLattice>> lattices_across_faces(
+    const FaceSet& set, const ParamValues& values) {
+  std::vector<std::shared_ptr<const ChebyshevLattice>> out(set.size());
+  if (set.size() < 2) return out;
+  const ChebyshevNetParams params = chebyshev_net_params(values);
+  for (const SurfaceGroup& group : surface_groups(set)) {
+    std::shared_ptr<const ChebyshevLattice> lattice;
+    try {
+      const SurfaceFace::FastEvaluation fast(*group.face);
+      lattice = std::make_shared<const ChebyshevLattice>(chebyshev_lattice(*group.face, params));
+    } catch (const std::exception&) {  // the faces make their own
+      continue;
+    }
+    for (int f : group.members) out[static_cast<std::size_t>(f)] = lattice;
+  }
+  return out;
+}
+
 // boundary_driven on faces of different surfaces that meet tangentially
 // (smooth_groups.h, bd_across_surfaces.h): each group's curves traced once
 // across its faces. Faces traced on one surface's union, and runs with
@@ -728,6 +751,11 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
   std::vector<char> group_traced(n, 0);
   const std::vector<std::shared_ptr<const GridLines>> grid_lines =
       grid_lines_across(set, method, values, workers);
+  std::vector<std::shared_ptr<const ChebyshevLattice>> lattices;
+  if (method == "chebyshev_net") {
+    report_stage(0.0, "laying the net across faces of one surface");
+    lattices = lattices_across_faces(set, values);
+  }
   std::vector<std::shared_ptr<const WalkingAgentLines>> walked;
   if (method == "walking_agent") {
     report_stage(0.0, "walking the lines across faces of one surface");
@@ -794,6 +822,12 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
           modelled[f] = run_method_with(face, decl, face_values[f],
                                         [&] { return grid_on_lines(face, *grid_lines[f], clip); });
           done = true;
+        }
+        if (!done && f < lattices.size() && lattices[f]) {
+          done = from_shared([&] {
+            return chebyshev_net_on_lattice(face, *lattices[f],
+                                            chebyshev_net_params(face_values[f]).clip);
+          });
         }
         if (!done && method == "boundary_driven") {
           // A face the set's size is too coarse for (a notch or an opening

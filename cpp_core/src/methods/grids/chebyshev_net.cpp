@@ -421,14 +421,19 @@ PanelMesh chebyshev_net(const SurfaceFace& face, const ChebyshevNetParams& param
       ++(lattice.on_net[k] ? report->net_nodes : report->extrapolated_nodes);
     }
   }
+  return chebyshev_net_on_lattice(face, lattice, params.clip);
+}
+
+PanelMesh chebyshev_net_on_lattice(const SurfaceFace& face, const ChebyshevLattice& lattice,
+                                   const GridClipParams& clip) {
   // The lattice's cells off the face go in the cut; only the panels count.
-  GridClipParams clip = params.clip;
-  clip.max_panels = std::max<int>(clip.max_panels, (lattice.nu - 1) * (lattice.nv - 1));
-  PanelMesh mesh = clip_cells(face, lattice.uv, lattice.nu, lattice.nv, clip);
-  if (mesh.panels.size() > std::size_t(params.clip.max_panels)) {
-    throw LimitExceeded(
-        "the net has " + std::to_string(mesh.panels.size()) + " panels, more than max_panels = " +
-        std::to_string(params.clip.max_panels) + ": choose a larger size or raise max_panels");
+  GridClipParams cut = clip;
+  cut.max_panels = std::max<int>(clip.max_panels, (lattice.nu - 1) * (lattice.nv - 1));
+  PanelMesh mesh = clip_cells(face, lattice.uv, lattice.nu, lattice.nv, cut);
+  if (mesh.panels.size() > std::size_t(clip.max_panels)) {
+    throw LimitExceeded("the net has " + std::to_string(mesh.panels.size()) +
+                        " panels, more than max_panels = " + std::to_string(clip.max_panels) +
+                        ": choose a larger size or raise max_panels");
   }
   return mesh;
 }
