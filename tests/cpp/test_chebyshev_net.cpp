@@ -26,6 +26,22 @@ std::pair<int, int> seed_index(const ChebyshevLattice& l, const Vec2& seed) {
   return {0, 0};
 }
 
+// Calls fn(k, di, dj) for every node k of the net, (di, dj) its lattice
+// offset from the seed; returns their count.
+template <class Fn>
+int for_each_net_node(const ChebyshevLattice& l, const Vec2& seed, Fn fn) {
+  const auto [si, sj] = seed_index(l, seed);
+  int count = 0;
+  for (int j = 0; j < l.nv; ++j)
+    for (int i = 0; i < l.nu; ++i) {
+      const std::size_t k = std::size_t(j) * l.nu + i;
+      if (!l.on_net[k]) continue;
+      ++count;
+      fn(k, i - si, j - sj);
+    }
+  return count;
+}
+
 Vec2 seed_of(const SurfaceFace& f, const ChebyshevNetParams& p) {
   const UvBounds b = f.bounds();
   return {b.u_min + p.seed_u * (b.u_max - b.u_min), b.v_min + p.seed_v * (b.v_max - b.v_min)};
@@ -53,18 +69,13 @@ TEST(ChebyshevNet, OnAStretchedPlaneItIsTheSquareGridOfItsSize) {
   p.size = 70.0;
   p.seed_u = 0.3, p.seed_v = 0.6;
   const ChebyshevLattice l = chebyshev_lattice(f, p);
-  const auto [si, sj] = seed_index(l, seed_of(f, p));
-  const Vec3 s = f.point(seed_of(f, p).x(), seed_of(f, p).y());
-  int on_net = 0;
-  for (int j = 0; j < l.nv; ++j)
-    for (int i = 0; i < l.nu; ++i) {
-      const std::size_t k = std::size_t(j) * l.nu + i;
-      if (!l.on_net[k]) continue;
-      ++on_net;
-      const Vec3 expected = s + Vec3((i - si) * p.size, (j - sj) * p.size, 0);
-      ASSERT_LT((f.point(l.uv[k].x(), l.uv[k].y()) - expected).norm(), 1e-9 * p.size)
-          << "node " << i - si << ", " << j - sj;
-    }
+  const Vec2 seed = seed_of(f, p);
+  const Vec3 s = f.point(seed.x(), seed.y());
+  const int on_net = for_each_net_node(l, seed, [&](std::size_t k, int di, int dj) {
+    const Vec3 expected = s + Vec3(di * p.size, dj * p.size, 0);
+    EXPECT_LT((f.point(l.uv[k].x(), l.uv[k].y()) - expected).norm(), 1e-9 * p.size)
+        << "node " << di << ", " << dj;
+  });
   // Nodes 70 mm apart from the seed (x = 400 0.3 + 600 0.09 = 174, y = 600)
   // within the square [0,1000]^2: x from 34 to 944, y from 40 to 950.
   EXPECT_EQ(on_net, 14 * 14);
@@ -79,17 +90,11 @@ TEST(ChebyshevNet, OnACylinderItStepsEqualAnglesAndHeights) {
   p.size = 90.0;
   const ChebyshevLattice l = chebyshev_lattice(f, p);
   const Vec2 seed = seed_of(f, p);
-  const auto [si, sj] = seed_index(l, seed);
   const double angle = 2 * std::asin(p.size / (2 * r));
-  int on_net = 0;
-  for (int j = 0; j < l.nv; ++j)
-    for (int i = 0; i < l.nu; ++i) {
-      const std::size_t k = std::size_t(j) * l.nu + i;
-      if (!l.on_net[k]) continue;
-      ++on_net;
-      EXPECT_NEAR(l.uv[k].x(), seed.x() + (i - si) * angle, 1e-9);
-      EXPECT_NEAR(l.uv[k].y(), seed.y() + (j - sj) * p.size, 1e-9 * h);
-    }
+  const int on_net = for_each_net_node(l, seed, [&](std::size_t k, int di, int dj) {
+    EXPECT_NEAR(l.uv[k].x(), seed.x() + di * angle, 1e-9);
+    EXPECT_NEAR(l.uv[k].y(), seed.y() + dj * p.size, 1e-9 * h);
+  });
   // Round the seam: every node of angle within the period, height within 800.
   const int around = 2 * int(std::floor(M_PI / angle)) + 1, up = 2 * int(400 / 90.0) + 1;
   EXPECT_EQ(on_net, around * up);

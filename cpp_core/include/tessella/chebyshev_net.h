@@ -10,14 +10,16 @@
 // intersection of two spheres with the surface, Newton in (u,v) from the
 // parallelogram guess), quadrant by quadrant away from the seed.
 //
-// Where the net cannot go on (the surface's edge, a shear sharper than
+// Where the rule fails (the surface's edge, a shear sharper than
 // kChebyshevMinShearDeg, Newton not converging), a node takes the
-// parallelogram guess in (u,v) instead, and so does every node beyond it:
-// rods there are no longer of equal length (counted in the report). The
-// lattice is extended this way past the face's (u,v) bounds and cut by the
-// trims like the relaxed grid's cells (mesh/cell_clipping.h), so the panels
-// tile the face. A lattice that folds over the face (cells turned over) is
-// refused with a clear error.
+// parallelogram guess in (u,v) instead and the rule goes on from it, so a
+// failure stays local: rods at a guess are not of equal length (counted in
+// the report). The lattice is extended by guesses past the face's (u,v)
+// bounds and cut by the trims like the relaxed grid's cells
+// (mesh/cell_clipping.h), so the panels tile the face. Where guesses fold
+// (no Chebyshev net covers a region of total curvature over 2 pi: a whole
+// sphere), the lattice is laid out again as a Tutte embedding round the
+// net, freeing the net's nodes near the folds until none is left.
 #pragma once
 
 #include "tessella/grid_methods.h"
