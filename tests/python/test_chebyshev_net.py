@@ -170,3 +170,16 @@ def test_the_net_runs_on_across_faces_of_one_surface():
         assert np.min(np.linalg.norm(theirs - xyz[k], axis=1)) < 1e-6 * size, k
         checked += 1
     assert checked > 30
+
+
+def test_a_face_smaller_than_the_size_is_one_or_two_panels():
+    # No rod of the net fits: its lattice steps one rod by the surface's
+    # speed (a step of 1/64 of the face made a 1,912-panel sliver of a
+    # random shape's split).
+    surf = Part.BSplineSurface()
+    surf.interpolate([[FreeCAD.Vector(150.0 * i, 100.0 * j, 20.0 * i * j) for j in range(3)]
+                      for i in range(3)])
+    face = surf.toShape()
+    r = tessella.panelize(face, method="chebyshev_net", size=1000.0)
+    assert 1 <= len(r.panels) <= 4
+    assert abs(r.metrics["panel_area"].sum() / face.Area - 1) < 5e-3

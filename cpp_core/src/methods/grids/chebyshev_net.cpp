@@ -165,8 +165,13 @@ std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBo
   if (!nodes.empty())
     step = nodes.back().first - (nodes.size() > 1 ? nodes[nodes.size() - 2].first : seed);
   if (!(step.norm() > 0)) {
+    // No rod fits (a face smaller than the size): a step of one rod by the
+    // seed's speed, at most the span (one cell over the face, not dozens).
+    const SurfacePoint d = face.derivatives(seed.x(), seed.y());
+    const double speed = (axis == 0 ? d.du : d.dv).norm();
     const double span = axis == 0 ? b.u_max - b.u_min : b.v_max - b.v_min;
-    step = axis == 0 ? Vec2(sign * span / 64, 0) : Vec2(0, sign * span / 64);
+    const double t = speed > 0 ? std::min(length / speed, span) : span;
+    step = axis == 0 ? Vec2(sign * t, 0) : Vec2(0, sign * t);
   }
   int past = 0;
   while (past < margin) {
