@@ -183,3 +183,19 @@ def test_a_face_smaller_than_the_size_is_one_or_two_panels():
     r = tessella.panelize(face, method="chebyshev_net", size=1000.0)
     assert 1 <= len(r.panels) <= 4
     assert abs(r.metrics["panel_area"].sum() / face.Area - 1) < 5e-3
+
+
+def test_a_cylinder_thinner_than_the_size_keeps_three_panels_round():
+    # A rod longer than the diameter fits nowhere round the cylinder: the net
+    # steps a third of the turn (two cells made the two halves one flat
+    # panel twice, and broke the join of random shape 529's fused cylinder).
+    import math
+
+    from conftest import widest_turn_round_z
+
+    face = Part.makeCylinder(700.0, 5000.0).Faces[0]
+    r = tessella.panelize(face, method="chebyshev_net", size=2400.0)
+    corner_sets = [frozenset(int(v) for v in p) for p in r.panels]
+    assert len(set(corner_sets)) == len(corner_sets)  # no panel twice
+    assert widest_turn_round_z(r) < math.pi - 1e-6
+    assert min(r.metrics["panel_area"]) > 0

@@ -11,6 +11,7 @@
 #include "geometry/trim_deflection.h"
 #include "geometry/uv_trim_classifier.h"
 #include "mesh/cell_clipping.h"
+#include "mesh/seam_sides.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
@@ -153,11 +154,16 @@ struct Lattice {
 std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBounds& b,
                                              const Vec2& seed, int axis, int sign, double length,
                                              int margin) {
+  // At most a third of a closed direction a step (fewer cells round it give
+  // panels that coincide: two halves of a cylinder as one flat panel twice),
+  // half of one between two poles (seam_sides.h).
+  const double span = axis == 0 ? b.u_max - b.u_min : b.v_max - b.v_min;
+  const double widest = span / fewest_cells_along(face, axis == 0);
   std::vector<std::pair<Vec2, bool>> nodes;
   Vec2 cur = seed;
   for (;;) {
     const std::optional<Vec2> next = chord_step(face, b, cur, axis, sign, length);
-    if (!next) break;
+    if (!next || (*next - cur).norm() > widest) break;
     nodes.push_back({*next, true});
     cur = *next;
   }
@@ -166,11 +172,10 @@ std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBo
     step = nodes.back().first - (nodes.size() > 1 ? nodes[nodes.size() - 2].first : seed);
   if (!(step.norm() > 0)) {
     // No rod fits (a face smaller than the size): a step of one rod by the
-    // seed's speed, at most the span (one cell over the face, not dozens).
+    // seed's speed, at most the widest (one cell over the face, not dozens).
     const SurfacePoint d = face.derivatives(seed.x(), seed.y());
     const double speed = (axis == 0 ? d.du : d.dv).norm();
-    const double span = axis == 0 ? b.u_max - b.u_min : b.v_max - b.v_min;
-    const double t = speed > 0 ? std::min(length / speed, span) : span;
+    const double t = speed > 0 ? std::min(length / speed, widest) : widest;
     step = axis == 0 ? Vec2(sign * t, 0) : Vec2(0, sign * t);
   }
   int past = 0;
