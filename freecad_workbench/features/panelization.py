@@ -79,6 +79,30 @@ def _method_properties():
             if not all(p.shared for p in params)}
 
 
+def _defaults_by_method():
+    """{property: {method: declared default}} of the properties that methods
+    share with different defaults (Quadrangulate: boundary_driven True,
+    curvature_lines False)."""
+    out = {}
+    for prop, params in _declared_properties().items():
+        if params[0].type in ("curves", "uv_curves", "int_list"):
+            continue
+        defaults = {}
+        for p in params:
+            for m in _methods_of([p]):
+                defaults[m] = p.default
+        if len(set(map(repr, defaults.values()))) > 1:
+            out[prop] = defaults
+    return out
+
+
+def _same_value(raw, default):
+    value = value_of(raw) if hasattr(raw, "Value") else raw
+    if isinstance(default, float):
+        return abs(float(value) - default) <= 1e-12 * max(1.0, abs(default))
+    return value == default
+
+
 #: Roles of the children, in tree order.
 ROLES = ("Panels", "Rods", "Nodes")
 
@@ -241,6 +265,23 @@ class Panelization(_StateMixin):
     def onChanged(self, obj, prop):
         if prop == "Method":
             self._update_editor_modes(obj)
+            if "Restore" not in obj.State:
+                self._take_method_defaults(obj)
+
+    @staticmethod
+    def _take_method_defaults(obj):
+        """A property that methods share with different defaults, still at one
+        of their defaults (not set by the user), takes the new method's: a
+        curvature_lines panelization otherwise recomputed with boundary_driven's
+        quadrangulation and smoothing, which the console did not run."""
+        method = obj.Method
+        for prop, defaults in _defaults_by_method().items():
+            if method not in defaults or prop not in obj.PropertiesList:
+                continue
+            current = getattr(obj, prop)
+            if any(_same_value(current, d) for d in defaults.values()) and not _same_value(
+                    current, defaults[method]):
+                setattr(obj, prop, defaults[method])
 
     def onDocumentRestored(self, obj):
         self._ensure_runtime()

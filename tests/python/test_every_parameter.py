@@ -39,7 +39,7 @@ def _iso_edges(face):
 
 
 def _base(method, doc_edges):
-    if method in ("iso_grid", "equal_size_grid"):
+    if method in ("iso_grid", "equal_size_grid", "chebyshev_net", "curvature_lines"):
         return {"size": STEP}
     if method == "boundary_driven":
         # Coarser, its network puts panels into this face's openings (refused
@@ -51,7 +51,9 @@ def _base(method, doc_edges):
         return {"rod_length": STEP, "guides": list(doc_edges)}
     if method in ("walking_agent", "gradient_descent"):
         return {"max_deviation": DEVIATION}
-    return {"u_count": 5, "v_count": 4}  # relaxed_grid
+    if method == "relaxed_grid":
+        return {"u_count": 5, "v_count": 4}
+    raise AssertionError(f"no base parameters for {method}: add them here")
 
 
 #: Non-default values where the generic rule (below) would not give a usable one.
@@ -268,3 +270,50 @@ def test_the_parameter_reference_is_current():
         assert f.read() == methods.markdown_tables(), (
             "docs/parameters.md is stale: regenerate it with "
             "freecad_workbench.methods.markdown_tables()")
+
+
+def test_a_property_methods_share_takes_each_method_s_default(source_doc):
+    """Quadrangulate, SmoothingIterations and AngleTarget serve boundary_driven
+    and curvature_lines with different defaults (UCount / VCount: iso_grid and
+    relaxed_grid). A panelization switched to a method, or made with it, runs
+    that method's defaults (a curvature_lines document recomputed with
+    boundary_driven's quadrangulation: 172 panels against the console's
+    150); a value the user set stays, and reopening changes nothing."""
+    doc, src, _edges, folder = source_doc
+    parent = tessella.make_panelization((src, "Face1"), method="boundary_driven", size=STEP)
+    try:
+        assert parent.Quadrangulate is True and parent.SmoothingIterations == 10
+        parent.Method = "curvature_lines"
+        doc.recompute()
+        assert parent.Quadrangulate is False and parent.SmoothingIterations == 0
+        assert parent.AngleTarget.Value == 0.0
+        _same(parent, tessella.panelize((src, "Face1"), method="curvature_lines", size=STEP))
+        # A value the user chose stays across a switch.
+        parent.SmoothingIterations = 4
+        parent.Method = "boundary_driven"
+        assert parent.SmoothingIterations == 4 and parent.Quadrangulate is True
+        # Reopening keeps curvature_lines with boundary_driven's quadrangulation
+        # when the user asked for it.
+        parent.Method = "curvature_lines"
+        parent.Quadrangulate = True
+        doc.recompute()
+        path = str(folder / "shared-defaults.FCStd")
+        doc.saveCopy(path)
+        reopened = FreeCAD.openDocument(path)
+        try:
+            p2 = reopened.getObjectsByLabel(parent.Label)[0]
+            assert p2.Method == "curvature_lines" and p2.Quadrangulate is True
+        finally:
+            FreeCAD.closeDocument(reopened.Name)
+    finally:
+        for o in children_of(parent) + [parent]:
+            doc.removeObject(o.Name)
+    relaxed = tessella.make_panelization((src, "Face1"), method="relaxed_grid")
+    try:
+        assert relaxed.UCount == 10 and relaxed.VCount == 10  # not iso_grid's 0
+        relaxed.touch()
+        doc.recompute()
+        _same(relaxed, tessella.panelize((src, "Face1"), method="relaxed_grid"))
+    finally:
+        for o in children_of(relaxed) + [relaxed]:
+            doc.removeObject(o.Name)
