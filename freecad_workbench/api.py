@@ -284,7 +284,8 @@ def core_values(method, params, surface=None):
             except (TypeError, ValueError):
                 raise ValueError(f"{name} must be a list of whole numbers, got {value!r}") from None
         elif kind == "curves":
-            values[name] = _curves(name, value, int(declared[name].minimum))
+            values[name] = _curves(name, value, int(declared[name].minimum),
+                                   int(declared[name].maximum))
         elif kind == "uv_curves":
             values[name] = _uv_curves(name, value, surface)
         else:  # pragma: no cover - a kind the core added without a converter here
@@ -292,13 +293,14 @@ def core_values(method, params, surface=None):
     return values
 
 
-def _curves(name, value, count):
-    """Exactly `count` edges -> (N,3) polylines (a selection pair is one edge)."""
+def _curves(name, value, fewest, most):
+    """`fewest` to `most` edges -> (N,3) polylines (a selection pair is one edge)."""
     from .selection import edges_of
 
     value = edges_of(value, context=name)
-    if len(value) != count:
-        raise ValueError(f"{name} must hold exactly {count} edge(s), got {len(value)}")
+    if not fewest <= len(value) <= most:
+        held = f"exactly {fewest}" if fewest == most else f"{fewest} to {most}"
+        raise ValueError(f"{name} must hold {held} edge(s), got {len(value)}")
     return [edge_polyline(e) for e in value]
 
 

@@ -178,7 +178,7 @@ def _check_edge_count(obj, param, edges):
     """A user's sentence for a guide link that holds the wrong number of edges
     (typically: the guide's object was deleted)."""
     need = int(param.minimum)
-    if len(edges) == need:
+    if need <= len(edges) <= int(param.maximum):
         return
     what = "one edge" if need == 1 else f"{need} edges"
     held = {0: "none"}.get(len(edges), str(len(edges)))

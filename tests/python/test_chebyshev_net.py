@@ -199,3 +199,69 @@ def test_a_cylinder_thinner_than_the_size_keeps_three_panels_round():
     assert len(set(corner_sets)) == len(corner_sets)  # no panel twice
     assert widest_turn_round_z(r) < math.pi - 1e-6
     assert min(r.metrics["panel_area"]) > 0
+
+
+def _roof_diagonals(roof):
+    """The British Museum roof's plan diagonals as edges on its surface (its
+    (u, v) is the plan's (x, y)): interpolated through 401 surface points."""
+    s = roof.Surface
+    u0, u1, v0, v1 = roof.ParameterRange
+    out = []
+    for flip in (False, True):
+        pts = [s.value(u0 + t * (u1 - u0), (v1 - t * (v1 - v0)) if flip else (v0 + t * (v1 - v0)))
+               for t in np.linspace(0.0, 1.0, 401)]
+        c = Part.BSplineCurve()
+        c.interpolate(pts)
+        out.append(c.toShape())
+    return out
+
+
+def test_guides_are_the_generators():
+    """Two crossing edges as the generators: the net's rows run along them,
+    their nodes a rod apart on each (here the roof's plan diagonals)."""
+    roof = example_face("british_museum_roof")
+    guides = _roof_diagonals(roof)
+    size = 1500.0
+    r = tessella.panelize(roof, method="chebyshev_net", size=size, guides=guides)
+    xyz = np.asarray(r.vertices, dtype=float).reshape(-1, 3)
+    nodes = xyz[np.asarray(r.nodes)]
+    bb = roof.BoundBox
+    for a, b in (((bb.XMin, bb.YMin), (bb.XMax, bb.YMax)), ((bb.XMin, bb.YMax), (bb.XMax, bb.YMin))):
+        a, b = np.array(a), np.array(b)
+        d = (b - a) / np.linalg.norm(b - a)
+        off = np.abs((nodes[:, 0] - a[0]) * d[1] - (nodes[:, 1] - a[1]) * d[0])
+        on = nodes[off < 1.0]  # the guide is the diagonal within its interpolation
+        on = on[np.argsort((on[:, :2] - a) @ d)]
+        steps = np.linalg.norm(np.diff(on, axis=0), axis=1)
+        assert (np.abs(steps - size) < 1e-6 * size).sum() >= 20, steps
+    gap, extra = independent_coverage(roof, r)
+    assert gap < 0.003 and extra < 0.003
+
+
+@pytest.mark.parametrize("which, words", [
+    ("one", "guides"),
+    ("apart", "do not cross"),
+])
+def test_bad_guides_are_clear_errors(which, words):
+    roof = example_face("british_museum_roof")
+    a, b = _roof_diagonals(roof)
+    if which == "one":
+        guides = [a]
+    else:  # one diagonal's first half, the other's last 40%: they miss each other
+        guides = [Part.Edge(a.Curve, a.FirstParameter, 0.5 * (a.FirstParameter + a.LastParameter)),
+                  Part.Edge(b.Curve, 0.6 * b.LastParameter + 0.4 * b.FirstParameter,
+                            b.LastParameter)]
+    with pytest.raises((ValueError, RuntimeError)) as e:
+        tessella.panelize(roof, method="chebyshev_net", size=1500.0, guides=guides)
+    assert words in str(e.value)
+
+
+def test_guides_on_a_face_set_are_a_clear_error():
+    # Guides lie on one face (a net whose rows run along a set's cuts meets
+    # the cuts as trims a hair off its rows: refused, not half-joined).
+    roof = example_face("british_museum_roof")
+    pieces = Part.read(os.path.join(EXAMPLES, "face_sets", "british_museum_roof_diagonals.brep"))
+    with pytest.raises(ValueError) as e:
+        tessella.panelize_faces(pieces, method="chebyshev_net", size=1500.0,
+                                guides=_roof_diagonals(roof))
+    assert "guides" in str(e.value) and "one face" in str(e.value)

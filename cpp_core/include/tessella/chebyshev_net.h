@@ -23,6 +23,7 @@
 #pragma once
 
 #include "tessella/grid_methods.h"
+#include "tessella/methods.h"
 #include "tessella/panel_mesh.h"
 
 namespace tessella {
@@ -39,6 +40,11 @@ struct ChebyshevNetParams {
   // (u,v) bounds.
   double seed_u = 0.5;
   double seed_v = 0.5;
+  // Two crossing curves (3D polylines on or near the face) to take as the
+  // generators instead of the iso-lines: the seed is their first crossing,
+  // and the net's rows run along them (a grid shell's chosen lines, a face
+  // set's cuts). Empty: the iso-lines through the seed.
+  Polylines guides;
   GridClipParams clip;
 };
 

@@ -35,26 +35,53 @@ bool shear_ok(double deg) {
   return deg >= kChebyshevMinShearDeg && deg <= 180.0 - kChebyshevMinShearDeg;
 }
 
-// The next generator node: the first point of the iso-curve through `from`
-// (along u for axis 0, v for 1, in direction `sign`) at chord `length` from
-// it, or nothing when the curve leaves the bounds first. Marching in quarter
-// steps finds the first crossing of the chord length (a wavy curve may cross
-// it again later); bisection with secant steps then refines it.
-std::optional<Vec2> chord_step(const SurfaceFace& face, const UvBounds& b, const Vec2& from,
-                               int axis, int sign, double length) {
+// A generator's way in (u,v) from the seed: a polyline (an iso-line's two
+// points, or a guide's projection), walked by its (u,v) arc length t.
+struct GeneratorPath {
+  std::vector<Vec2> pts;    // pts[0]: the seed
+  std::vector<Vec2> unit;   // unit direction of each segment
+  std::vector<double> cum;  // (u,v) length up to each point
+  Vec2 heading;             // the way out where the path has no length (unit)
+  double widest = 0;        // the largest (u,v) step a rod may take
+
+  GeneratorPath(std::vector<Vec2> points, const Vec2& way_out, double widest_step)
+      : heading(way_out), widest(widest_step) {
+    for (const Vec2& p : points)
+      if (pts.empty() || (p - pts.back()).norm() > 0) pts.push_back(p);
+    cum.assign(1, 0.0);
+    for (std::size_t k = 1; k < pts.size(); ++k) {
+      const double l = (pts[k] - pts[k - 1]).norm();
+      unit.push_back((pts[k] - pts[k - 1]) / l);
+      cum.push_back(cum.back() + l);
+    }
+  }
+  double room() const { return cum.back(); }
+  std::size_t segment(double t) const {
+    const std::size_t k = std::size_t(std::upper_bound(cum.begin(), cum.end(), t) - cum.begin());
+    return std::min(k == 0 ? 0 : k - 1, unit.size() - 1);
+  }
+  Vec2 at(double t) const {
+    const std::size_t k = segment(t);
+    return pts[k] + (t - cum[k]) * unit[k];
+  }
+  Vec2 direction(double t) const { return unit[segment(t)]; }
+};
+
+// The next generator node from t_from: the first point of the path at
+// chord `length` from it, or nothing when the path ends first. Marching in
+// quarter steps finds the first crossing of the chord length (a wavy curve
+// may cross it again later); bisection with secant steps then refines it.
+std::optional<double> chord_step(const SurfaceFace& face, const GeneratorPath& path, double t_from,
+                                 double length) {
+  const double room = path.room() - t_from;
+  if (path.unit.empty() || !(room > 0)) return std::nullopt;
+  const Vec2 from = path.at(t_from), dir = path.direction(t_from);
   const Vec3 p0 = face.point(from.x(), from.y());
   const SurfacePoint d = face.derivatives(from.x(), from.y());
-  const double speed = (axis == 0 ? d.du : d.dv).norm();
-  const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
-  const double start = axis == 0 ? from.x() : from.y();
-  const double room = sign > 0 ? hi - start : start - lo;
-  if (!(room > 0)) return std::nullopt;
+  const double speed = (d.du * dir.x() + d.dv * dir.y()).norm();
   const double dt = speed > 0 ? std::min(0.25 * length / speed, room / 8) : room / 64;
-  auto at = [&](double t) {
-    return axis == 0 ? Vec2(start + sign * t, from.y()) : Vec2(from.x(), start + sign * t);
-  };
   auto gap = [&](double t) {
-    const Vec2 q = at(t);
+    const Vec2 q = path.at(t_from + t);
     return (face.point(q.x(), q.y()) - p0).norm() - length;
   };
   double t0 = 0, g0 = -length, t1 = 0, g1 = -length;
@@ -75,7 +102,7 @@ std::optional<Vec2> chord_step(const SurfaceFace& face, const UvBounds& b, const
     else
       t0 = t, g0 = g;
   }
-  return at(t1);
+  return t_from + t1;
 }
 
 // The fishnet rule: the point of the surface at `length` from both a and b,
@@ -149,23 +176,19 @@ struct Lattice {
   }
 };
 
-// A generator from the seed: its net nodes (at chord `length`), then
-// `margin` steps past the bounds by the last (u,v) step.
+// A generator from the seed along its path: its net nodes (at chord
+// `length`), then `margin` steps past the bounds by the last (u,v) step.
 std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBounds& b,
-                                             const Vec2& seed, int axis, int sign, double length,
-                                             int margin) {
-  // At most a third of a closed direction a step (fewer cells round it give
-  // panels that coincide: two halves of a cylinder as one flat panel twice),
-  // half of one between two poles (seam_sides.h).
-  const double span = axis == 0 ? b.u_max - b.u_min : b.v_max - b.v_min;
-  const double widest = span / fewest_cells_along(face, axis == 0);
+                                             const GeneratorPath& path, double length, int margin) {
+  const Vec2 seed = path.pts[0];
   std::vector<std::pair<Vec2, bool>> nodes;
   Vec2 cur = seed;
-  for (;;) {
-    const std::optional<Vec2> next = chord_step(face, b, cur, axis, sign, length);
-    if (!next || (*next - cur).norm() > widest) break;
-    nodes.push_back({*next, true});
-    cur = *next;
+  for (double t = 0;;) {
+    const std::optional<double> next = chord_step(face, path, t, length);
+    if (!next || (path.at(*next) - cur).norm() > path.widest) break;
+    t = *next;
+    cur = path.at(t);
+    nodes.push_back({cur, true});
   }
   Vec2 step = Vec2::Zero();
   if (!nodes.empty())
@@ -173,10 +196,10 @@ std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBo
   if (!(step.norm() > 0)) {
     // No rod fits (a face smaller than the size): a step of one rod by the
     // seed's speed, at most the widest (one cell over the face, not dozens).
+    const Vec2 dir = path.unit.empty() ? path.heading : path.unit[0];
     const SurfacePoint d = face.derivatives(seed.x(), seed.y());
-    const double speed = (axis == 0 ? d.du : d.dv).norm();
-    const double t = speed > 0 ? std::min(length / speed, widest) : widest;
-    step = axis == 0 ? Vec2(sign * t, 0) : Vec2(0, sign * t);
+    const double speed = (d.du * dir.x() + d.dv * dir.y()).norm();
+    step = dir * (speed > 0 ? std::min(length / speed, path.widest) : path.widest);
   }
   int past = 0;
   while (past < margin) {
@@ -187,12 +210,17 @@ std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBo
   return nodes;
 }
 
-Lattice build_lattice(const SurfaceFace& face, const UvBounds& b, const Vec2& seed, double length,
-                      int margin, std::size_t max_nodes) {
-  std::vector<std::pair<Vec2, bool>> gen[2][2];  // [axis][sign > 0]
+// paths[axis][s]: the generators from the seed, i (axis 0) and j (axis 1),
+// backwards (s = 0) and forwards; forwards i then forwards j turn
+// counter-clockwise in (u,v).
+Lattice build_lattice(const SurfaceFace& face, const UvBounds& b,
+                      const std::vector<GeneratorPath>& paths, double length, int margin,
+                      std::size_t max_nodes) {
+  const Vec2 seed = paths[0].pts[0];
+  std::vector<std::pair<Vec2, bool>> gen[2][2];  // [axis][forwards]
   for (int axis = 0; axis < 2; ++axis)
     for (int s = 0; s < 2; ++s)
-      gen[axis][s] = generator(face, b, seed, axis, s ? 1 : -1, length, margin);
+      gen[axis][s] = generator(face, b, paths[std::size_t(2 * axis + s)], length, margin);
   Lattice L;
   L.i_lo = -int(gen[0][0].size()), L.i_hi = int(gen[0][1].size());
   L.j_lo = -int(gen[1][0].size()), L.j_hi = int(gen[1][1].size());
@@ -369,6 +397,113 @@ void relax_guesses(Lattice& L, const UvBounds& b) {
     if (index[k] >= 0) L.uv[k] = {x(index[k], 0), x(index[k], 1)};
 }
 
+// The generators along the face's u and v iso-lines through the seed, each
+// way to the bounds.
+std::vector<GeneratorPath> iso_paths(const SurfaceFace& face, const UvBounds& b, const Vec2& seed) {
+  std::vector<GeneratorPath> out;
+  for (int axis = 0; axis < 2; ++axis) {
+    // At most a third of a closed direction a step (fewer cells round it
+    // give panels that coincide: two halves of a cylinder as one flat panel
+    // twice), half of one between two poles (seam_sides.h).
+    const double span = axis == 0 ? b.u_max - b.u_min : b.v_max - b.v_min;
+    const double widest = span / fewest_cells_along(face, axis == 0);
+    for (const int sign : {-1, 1}) {
+      const Vec2 e = axis == 0 ? Vec2(sign, 0) : Vec2(0, sign);
+      const double start = axis == 0 ? seed.x() : seed.y();
+      const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
+      const double room = std::max(0.0, sign > 0 ? hi - start : start - lo);
+      GeneratorPath path(std::vector<Vec2>{seed, seed + room * e}, e, widest);
+      if (!path.unit.empty()) path.unit[0] = e, path.cum[1] = room;  // exactly along the axis
+      out.push_back(std::move(path));
+    }
+  }
+  return out;
+}
+
+// The guides projected onto the surface, in (u,v); InvalidParameter where a
+// guide lies farther than 5% of the model from it.
+std::vector<Vec2> guide_on_surface(const SurfaceFace& face, const std::vector<Vec3>& guide,
+                                   int index) {
+  if (guide.size() < 2)
+    throw InvalidParameter("guides: guide " + std::to_string(index + 1) + " has no length");
+  const double tolerance = 0.05 * face.model_size();
+  std::vector<Vec2> uv;
+  for (const Vec3& p : guide) {
+    const Projection f = uv.empty() ? face.project(p) : face.project(p, uv.back());
+    if (!(f.distance <= tolerance)) {
+      throw InvalidParameter("guides: guide " + std::to_string(index + 1) + " lies " +
+                             std::to_string(f.distance) + " mm from the face (at most " +
+                             std::to_string(tolerance) + ": 5% of the model)");
+    }
+    uv.push_back(f.uv);
+  }
+  return uv;
+}
+
+// The part of a (u,v) polyline from its first point up to where it leaves
+// the bounds (that point moved onto them).
+std::vector<Vec2> within_bounds(const std::vector<Vec2>& pts, const UvBounds& b) {
+  std::vector<Vec2> out{pts[0]};
+  for (std::size_t k = 1; k < pts.size(); ++k) {
+    if (in_bounds(b, pts[k])) {
+      out.push_back(pts[k]);
+      continue;
+    }
+    // The exit of segment k-1..k from the box: bisection on the segment.
+    Vec2 in = pts[k - 1], out_p = pts[k];
+    for (int it = 0; it < 60; ++it) {
+      const Vec2 mid = 0.5 * (in + out_p);
+      (in_bounds(b, mid) ? in : out_p) = mid;
+    }
+    out.push_back(in);
+    break;
+  }
+  return out;
+}
+
+// The generators along two crossing guides: their first crossing in (u,v)
+// is the seed; guide 1 gives i, guide 2 j (its direction turned so that the
+// cells run counter-clockwise).
+std::vector<GeneratorPath> guide_paths(const SurfaceFace& face, const UvBounds& b,
+                                       const Polylines& guides) {
+  const std::vector<Vec2> a = guide_on_surface(face, guides[0], 0);
+  const std::vector<Vec2> c = guide_on_surface(face, guides[1], 1);
+  for (std::size_t i = 0; i + 1 < a.size(); ++i) {
+    for (std::size_t j = 0; j + 1 < c.size(); ++j) {
+      const Vec2 r = a[i + 1] - a[i], q = c[j + 1] - c[j];
+      const double den = cross(r, q);
+      if (den == 0) continue;
+      const double t = cross(c[j] - a[i], q) / den, u = cross(c[j] - a[i], r) / den;
+      if (t < 0 || t >= 1 || u < 0 || u >= 1) continue;
+      const Vec2 x = a[i] + t * r;
+      if (!in_bounds(b, x))
+        throw InvalidParameter("guides: the two guides cross outside the face's (u,v) bounds");
+      auto way = [&](const std::vector<Vec2>& g, std::size_t k, bool forwards) {
+        std::vector<Vec2> pts{x};
+        if (forwards)
+          for (std::size_t m = k + 1; m < g.size(); ++m) pts.push_back(g[m]);
+        else
+          for (std::size_t m = k + 1; m-- > 0;) pts.push_back(g[m]);
+        return within_bounds(pts, b);
+      };
+      const double widest = std::min((b.u_max - b.u_min) / fewest_cells_along(face, true),
+                                     (b.v_max - b.v_min) / fewest_cells_along(face, false));
+      const Vec2 ra = r.normalized();
+      const Vec2 rq = (cross(r, q) > 0 ? 1.0 : -1.0) * q.normalized();
+      const bool flip = cross(r, q) < 0;
+      if (std::abs(cross(ra, q.normalized())) < std::sin(kChebyshevMinShearDeg * kPi / 180)) {
+        throw InvalidParameter("guides: the two guides cross at under " +
+                               std::to_string(int(kChebyshevMinShearDeg)) +
+                               " degrees in (u,v): a net needs them to cross at an angle");
+      }
+      return {
+          GeneratorPath(way(a, i, false), -ra, widest), GeneratorPath(way(a, i, true), ra, widest),
+          GeneratorPath(way(c, j, flip), -rq, widest), GeneratorPath(way(c, j, !flip), rq, widest)};
+    }
+  }
+  throw InvalidParameter("guides: the two guides do not cross on the face's surface");
+}
+
 }  // namespace
 
 ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params) {
@@ -384,14 +519,18 @@ ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetPa
         " panels, more than max_panels = " + std::to_string(params.clip.max_panels) +
         ": choose a larger size or raise max_panels");
   }
+  if (!params.guides.empty() && params.guides.size() != 2)
+    throw InvalidParameter("guides: give two crossing guide curves, or none (the iso-lines)");
   const UvBounds b = face.bounds();
   const Vec2 seed(b.u_min + params.seed_u * (b.u_max - b.u_min),
                   b.v_min + params.seed_v * (b.v_max - b.v_min));
+  const std::vector<GeneratorPath> paths =
+      params.guides.empty() ? iso_paths(face, b, seed) : guide_paths(face, b, params.guides);
   // The lattice may hold many cells off the face (a face far from its
   // bounds' rectangle): room for 16 times the panels, and more on small runs.
   const std::size_t max_nodes = 16 * std::size_t(params.clip.max_panels) + 100000;
   for (int margin = 1; margin <= 64; margin *= 2) {
-    Lattice L = build_lattice(face, b, seed, params.size, margin, max_nodes);
+    Lattice L = build_lattice(face, b, paths, params.size, margin, max_nodes);
     if (!covers_bounds(L, b)) continue;
     // Folds: the guesses relaxed, then the net's nodes round the folds
     // freed in widening rings until none is left (at last the whole

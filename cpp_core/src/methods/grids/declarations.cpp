@@ -62,7 +62,12 @@ MethodBuilder<ChebyshevNetParams> chebyshev_net_builder() {
              decl("seed_v", ParamKind::Real, "", 0.0, 1.0, "Seed v",
                   "Where the net's two generators cross, as a fraction of the face's v range "
                   "(0.5: the middle)",
-                  "Chebyshev net", "SeedV"));
+                  "Chebyshev net", "SeedV"))
+      .param(&ChebyshevNetParams::guides,
+             decl("guides", ParamKind::Curves, "", 0, 2, "Generator edges (optional)",
+                  "Two crossing edges on or near the face for the net's generators instead of "
+                  "the iso-lines through the seed (none: the iso-lines)",
+                  "Input", "Guides"));
   with_clip(b);
   return b;
 }
