@@ -45,24 +45,25 @@ MethodBuilder<EqualSizeGridParams> equal_size_grid_builder() {
   return b;
 }
 
+// Where the net's generators cross, as a fraction of the face's u or v range.
+ParamDeclaration seed_fraction(const std::string& axis) {
+  return decl("seed_" + axis, ParamKind::Real, "", 0.0, 1.0, "Seed " + axis,
+              "Where the net's two generators cross, as a fraction of the face's " + axis +
+                  " range (0.5: the middle; unused with guides)",
+              "Chebyshev net", axis == "u" ? "SeedU" : "SeedV");
+}
+
 MethodBuilder<ChebyshevNetParams> chebyshev_net_builder() {
   MethodBuilder<ChebyshevNetParams> b("chebyshev_net", "Chebyshev net (equal rods)",
                                       "every interior rod the same length (a fishnet from two "
-                                      "crossing iso-curves), cut by the trims");
+                                      "crossing generators: iso-curves or two guide edges), cut "
+                                      "by the trims");
   b.param(&ChebyshevNetParams::size,
           decl("size", ParamKind::Real, "mm", 0.0, 1e9, "Size",
                "Rod length: every rod of the net is this long, but where it meets a trim",
                "Panelization", "Size"))
-      .param(&ChebyshevNetParams::seed_u,
-             decl("seed_u", ParamKind::Real, "", 0.0, 1.0, "Seed u",
-                  "Where the net's two generators cross, as a fraction of the face's u range "
-                  "(0.5: the middle)",
-                  "Chebyshev net", "SeedU"))
-      .param(&ChebyshevNetParams::seed_v,
-             decl("seed_v", ParamKind::Real, "", 0.0, 1.0, "Seed v",
-                  "Where the net's two generators cross, as a fraction of the face's v range "
-                  "(0.5: the middle)",
-                  "Chebyshev net", "SeedV"))
+      .param(&ChebyshevNetParams::seed_u, seed_fraction("u"))
+      .param(&ChebyshevNetParams::seed_v, seed_fraction("v"))
       .param(&ChebyshevNetParams::guides,
              decl("guides", ParamKind::Curves, "", 0, 2, "Generator edges (optional)",
                   "Two crossing edges on or near the face for the net's generators instead of "
