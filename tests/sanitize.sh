@@ -9,7 +9,7 @@
 #
 # Builds a copy of the working tree (tracked and new files) in
 # build-sanitize/src, so the normal build's module is left alone, then runs
-# the C++ tests, the 99 fingerprint cases and the Python tests given in
+# the C++ tests, the fingerprint cases and the Python tests given in
 # SANITIZE_PYTEST (default: the face-set and boundary_driven tests; "all" for
 # every Python test). Exits non-zero when a test fails or a sanitizer
 # reported anything (the reports are in build-sanitize/logs).
