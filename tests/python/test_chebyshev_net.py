@@ -265,3 +265,31 @@ def test_guides_on_a_face_set_are_a_clear_error():
         tessella.panelize_faces(pieces, method="chebyshev_net", size=1500.0,
                                 guides=_roof_diagonals(roof))
     assert "guides" in str(e.value) and "one face" in str(e.value)
+
+
+@pytest.mark.parametrize("turn", [(2.5, 4.0), (5.5, 7.0)])  # the second crosses the seam
+def test_two_helices_on_a_cylinder_are_the_generators(turn):
+    """Guides on a closed face: two helices crossing at 74 deg on the
+    surface, nearly parallel in (u, v) (u an angle, v a height in mm: the
+    crossing angle is taken on the surface), one pair across the seam (the
+    second guide found a period over). Rods along the helices are a rod long."""
+    import math
+
+    radius, size = 3000.0, 900.0
+    face = Part.makeCylinder(radius, 8000.0).Faces[0]
+
+    def helix(t0, t1):
+        pts = [FreeCAD.Vector(radius * math.cos(t), radius * math.sin(t), z)
+               for t, z in zip(np.linspace(t0, t1, 200), np.linspace(1000.0, 7000.0, 200))]
+        c = Part.BSplineCurve()
+        c.interpolate(pts)
+        return c.toShape()
+
+    a, b = turn
+    r = tessella.panelize(face, method="chebyshev_net", size=size,
+                          guides=[helix(a, b), helix(b, a)])
+    assert r.summary["gap_fraction"] < 1e-3 and r.summary["overlap_fraction"] < 1e-3
+    lengths = interior_rod_lengths(r)
+    # A cylinder is developable: the net holds everywhere but at the seam's
+    # cut (one rod in 170 crosses it).
+    assert (np.abs(lengths - size) <= 1e-6 * size).mean() > 0.98

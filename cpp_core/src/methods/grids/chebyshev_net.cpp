@@ -5,6 +5,7 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -42,9 +43,11 @@ struct GeneratorPath {
   std::vector<Vec2> unit;   // unit direction of each segment
   std::vector<double> cum;  // (u,v) length up to each point
   Vec2 heading;             // the way out where the path has no length (unit)
-  double widest = 0;        // the largest (u,v) step a rod may take
+  // The largest step a rod may take along u and along v (a third of a
+  // closed direction, half of one between two poles; seam_sides.h).
+  Vec2 widest;
 
-  GeneratorPath(std::vector<Vec2> points, const Vec2& way_out, double widest_step)
+  GeneratorPath(std::vector<Vec2> points, const Vec2& way_out, const Vec2& widest_step)
       : heading(way_out), widest(widest_step) {
     for (const Vec2& p : points)
       if (pts.empty() || (p - pts.back()).norm() > 0) pts.push_back(p);
@@ -65,6 +68,16 @@ struct GeneratorPath {
     return pts[k] + (t - cum[k]) * unit[k];
   }
   Vec2 direction(double t) const { return unit[segment(t)]; }
+  bool too_wide(const Vec2& step) const {
+    return std::abs(step.x()) > widest.x() || std::abs(step.y()) > widest.y();
+  }
+  // The longest step along unit direction `dir` that is not too wide.
+  double longest_along(const Vec2& dir) const {
+    double t = std::numeric_limits<double>::infinity();
+    if (dir.x() != 0) t = std::min(t, widest.x() / std::abs(dir.x()));
+    if (dir.y() != 0) t = std::min(t, widest.y() / std::abs(dir.y()));
+    return t;
+  }
 };
 
 // The next generator node from t_from: the first point of the path at
@@ -185,7 +198,7 @@ std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBo
   Vec2 cur = seed;
   for (double t = 0;;) {
     const std::optional<double> next = chord_step(face, path, t, length);
-    if (!next || (path.at(*next) - cur).norm() > path.widest) break;
+    if (!next || path.too_wide(path.at(*next) - cur)) break;
     t = *next;
     cur = path.at(t);
     nodes.push_back({cur, true});
@@ -199,7 +212,8 @@ std::vector<std::pair<Vec2, bool>> generator(const SurfaceFace& face, const UvBo
     const Vec2 dir = path.unit.empty() ? path.heading : path.unit[0];
     const SurfacePoint d = face.derivatives(seed.x(), seed.y());
     const double speed = (d.du * dir.x() + d.dv * dir.y()).norm();
-    step = dir * (speed > 0 ? std::min(length / speed, path.widest) : path.widest);
+    const double widest = path.longest_along(dir);
+    step = dir * (speed > 0 ? std::min(length / speed, widest) : widest);
   }
   int past = 0;
   while (past < margin) {
@@ -397,16 +411,19 @@ void relax_guesses(Lattice& L, const UvBounds& b) {
     if (index[k] >= 0) L.uv[k] = {x(index[k], 0), x(index[k], 1)};
 }
 
+// The largest step along u and v: fewer cells round a closed direction give
+// panels that coincide (two halves of a cylinder as one flat panel twice).
+Vec2 widest_steps(const SurfaceFace& face, const UvBounds& b) {
+  return {(b.u_max - b.u_min) / fewest_cells_along(face, true),
+          (b.v_max - b.v_min) / fewest_cells_along(face, false)};
+}
+
 // The generators along the face's u and v iso-lines through the seed, each
 // way to the bounds.
 std::vector<GeneratorPath> iso_paths(const SurfaceFace& face, const UvBounds& b, const Vec2& seed) {
   std::vector<GeneratorPath> out;
+  const Vec2 widest = widest_steps(face, b);
   for (int axis = 0; axis < 2; ++axis) {
-    // At most a third of a closed direction a step (fewer cells round it
-    // give panels that coincide: two halves of a cylinder as one flat panel
-    // twice), half of one between two poles (seam_sides.h).
-    const double span = axis == 0 ? b.u_max - b.u_min : b.v_max - b.v_min;
-    const double widest = span / fewest_cells_along(face, axis == 0);
     for (const int sign : {-1, 1}) {
       const Vec2 e = axis == 0 ? Vec2(sign, 0) : Vec2(0, sign);
       const double start = axis == 0 ? seed.x() : seed.y();
@@ -435,7 +452,15 @@ std::vector<Vec2> guide_on_surface(const SurfaceFace& face, const std::vector<Ve
                              std::to_string(f.distance) + " mm from the face (at most " +
                              std::to_string(tolerance) + ": 5% of the model)");
     }
-    uv.push_back(f.uv);
+    Vec2 q = f.uv;
+    // Round a closed direction the projection may land on the seam's other
+    // side: read it on the previous point's side (the path then leaves the
+    // bounds there, and the lattice goes on by guesses).
+    if (!uv.empty() && closed_along(face, 0))
+      q.x() += seam_shift(uv.back().x(), q.x(), face.u_period());
+    if (!uv.empty() && closed_along(face, 1))
+      q.y() += seam_shift(uv.back().y(), q.y(), face.v_period());
+    uv.push_back(q);
   }
   return uv;
 }
@@ -467,38 +492,53 @@ std::vector<Vec2> within_bounds(const std::vector<Vec2>& pts, const UvBounds& b)
 std::vector<GeneratorPath> guide_paths(const SurfaceFace& face, const UvBounds& b,
                                        const Polylines& guides) {
   const std::vector<Vec2> a = guide_on_surface(face, guides[0], 0);
-  const std::vector<Vec2> c = guide_on_surface(face, guides[1], 1);
-  for (std::size_t i = 0; i + 1 < a.size(); ++i) {
-    for (std::size_t j = 0; j + 1 < c.size(); ++j) {
-      const Vec2 r = a[i + 1] - a[i], q = c[j + 1] - c[j];
-      const double den = cross(r, q);
-      if (den == 0) continue;
-      const double t = cross(c[j] - a[i], q) / den, u = cross(c[j] - a[i], r) / den;
-      if (t < 0 || t >= 1 || u < 0 || u >= 1) continue;
-      const Vec2 x = a[i] + t * r;
-      if (!in_bounds(b, x))
-        throw InvalidParameter("guides: the two guides cross outside the face's (u,v) bounds");
-      auto way = [&](const std::vector<Vec2>& g, std::size_t k, bool forwards) {
-        std::vector<Vec2> pts{x};
-        if (forwards)
-          for (std::size_t m = k + 1; m < g.size(); ++m) pts.push_back(g[m]);
-        else
-          for (std::size_t m = k + 1; m-- > 0;) pts.push_back(g[m]);
-        return within_bounds(pts, b);
-      };
-      const double widest = std::min((b.u_max - b.u_min) / fewest_cells_along(face, true),
-                                     (b.v_max - b.v_min) / fewest_cells_along(face, false));
-      const Vec2 ra = r.normalized();
-      const Vec2 rq = (cross(r, q) > 0 ? 1.0 : -1.0) * q.normalized();
-      const bool flip = cross(r, q) < 0;
-      if (std::abs(cross(ra, q.normalized())) < std::sin(kChebyshevMinShearDeg * kPi / 180)) {
-        throw InvalidParameter("guides: the two guides cross at under " +
-                               std::to_string(int(kChebyshevMinShearDeg)) +
-                               " degrees in (u,v): a net needs them to cross at an angle");
+  const std::vector<Vec2> c0 = guide_on_surface(face, guides[1], 1);
+  // Round a closed direction the second guide may lie a period off the
+  // first: its copies a period either way are tried too.
+  std::vector<Vec2> shifts{Vec2::Zero()};
+  for (const double su : {-1.0, 1.0})
+    if (closed_along(face, 0)) shifts.push_back(Vec2(su * face.u_period(), 0));
+  for (const double sv : {-1.0, 1.0})
+    if (closed_along(face, 1)) shifts.push_back(Vec2(0, sv * face.v_period()));
+  for (const Vec2& shift : shifts) {
+    std::vector<Vec2> c = c0;
+    for (Vec2& p : c) p += shift;
+    for (std::size_t i = 0; i + 1 < a.size(); ++i) {
+      for (std::size_t j = 0; j + 1 < c.size(); ++j) {
+        const Vec2 r = a[i + 1] - a[i], q = c[j + 1] - c[j];
+        const double den = cross(r, q);
+        if (den == 0) continue;
+        const double t = cross(c[j] - a[i], q) / den, u = cross(c[j] - a[i], r) / den;
+        if (t < 0 || t >= 1 || u < 0 || u >= 1) continue;
+        const Vec2 x = a[i] + t * r;
+        if (!in_bounds(b, x))
+          throw InvalidParameter("guides: the two guides cross outside the face's (u,v) bounds");
+        // The crossing angle on the surface, not in (u,v).
+        const SurfacePoint d = face.derivatives(x.x(), x.y());
+        const double angle = angle_deg(d.du * r.x() + d.dv * r.y(), d.du * q.x() + d.dv * q.y());
+        if (!shear_ok(angle)) {
+          throw InvalidParameter("guides: the two guides cross at " + std::to_string(angle) +
+                                 " degrees; a net needs them to cross between " +
+                                 std::to_string(int(kChebyshevMinShearDeg)) + " and " +
+                                 std::to_string(int(180 - kChebyshevMinShearDeg)));
+        }
+        auto way = [&](const std::vector<Vec2>& g, std::size_t k, bool forwards) {
+          std::vector<Vec2> pts{x};
+          if (forwards)
+            for (std::size_t m = k + 1; m < g.size(); ++m) pts.push_back(g[m]);
+          else
+            for (std::size_t m = k + 1; m-- > 0;) pts.push_back(g[m]);
+          return within_bounds(pts, b);
+        };
+        const Vec2 widest = widest_steps(face, b);
+        // Guide 2 turned so that forwards i then forwards j run counter-clockwise.
+        const bool flip = den < 0;
+        const Vec2 ra = r.normalized(), rq = (flip ? -1.0 : 1.0) * q.normalized();
+        return {GeneratorPath(way(a, i, false), -ra, widest),
+                GeneratorPath(way(a, i, true), ra, widest),
+                GeneratorPath(way(c, j, flip), -rq, widest),
+                GeneratorPath(way(c, j, !flip), rq, widest)};
       }
-      return {
-          GeneratorPath(way(a, i, false), -ra, widest), GeneratorPath(way(a, i, true), ra, widest),
-          GeneratorPath(way(c, j, flip), -rq, widest), GeneratorPath(way(c, j, !flip), rq, widest)};
     }
   }
   throw InvalidParameter("guides: the two guides do not cross on the face's surface");
