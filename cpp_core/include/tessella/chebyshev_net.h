@@ -5,7 +5,8 @@
 // within a tolerance), and a grid shell of equal members.
 //
 // Construction: two generators through the seed, the face's u and v
-// iso-curves, are divided into equal chords of `size`; every further node is
+// iso-curves (or two crossing guide curves, the seed their crossing), are
+// divided into equal chords of `size`; every further node is
 // the surface point at distance `size` from its two known neighbours (the
 // intersection of two spheres with the surface, Newton in (u,v) from the
 // parallelogram guess), quadrant by quadrant away from the seed.
