@@ -177,6 +177,50 @@ TEST(CellClipping, CellsCrossingTheTrimFollowItAndShareTheirCrossings) {
   EXPECT_EQ(again.uv, m.uv);
 }
 
+TEST(CellClipping, RowsAHairOffATrimMeetItNodeToNode) {
+  // A 10 x 10 lattice of 100 mm cells and a hole whose sides run 0.03-0.04 mm
+  // beside its lines x, y = 300 and 700 (a net laid along the cuts it was
+  // split by, each computed to its own tolerance). Without the snap every
+  // cell beside the hole kept a 0.04 mm sliver and the rows met the trim in
+  // crossings at the slivers' ends.
+  const double lo = 300.04, hi = 699.97;
+  const SurfaceFace f = plate_with_square_hole(1000, lo, hi);
+  const int n = 11;
+  std::vector<Vec2> nodes;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) nodes.push_back({100.0 * i, 100.0 * j});
+  GridClipParams keep;
+  keep.sliver_fraction = 0.0;  // no merge hides a sliver
+  const PanelMesh m = clip_cells(f, nodes, n, n, keep);
+  // The 16 cells over the hole go; the 84 others stay whole quads.
+  ASSERT_EQ(m.panels.size(), 84u);
+  for (const auto& p : m.panels) EXPECT_EQ(p.size(), 4u);
+  EXPECT_NEAR(total_area(m), 1e6 - (hi - lo) * (hi - lo), 1e-6);
+  expect_no_t_junctions(m);
+  // Every vertex on the hole's border is a node moved onto it: 16 of them,
+  // the hole's four corners among them; every other vertex is a lattice node
+  // where it was.
+  int on_hole = 0;
+  for (std::size_t v = 0; v < m.uv.size(); ++v) {
+    const Vec2 q = m.uv[v];
+    const double dx = std::min(std::abs(q.x() - lo), std::abs(q.x() - hi));
+    const double dy = std::min(std::abs(q.y() - lo), std::abs(q.y() - hi));
+    const bool inside_x = q.x() > lo - 1e-9 && q.x() < hi + 1e-9;
+    const bool inside_y = q.y() > lo - 1e-9 && q.y() < hi + 1e-9;
+    if ((dx < 1e-9 && inside_y) || (dy < 1e-9 && inside_x)) {
+      ++on_hole;
+      EXPECT_TRUE(is_node(m, static_cast<int>(v)));
+      continue;
+    }
+    const double ri = q.x() / 100.0, rj = q.y() / 100.0;
+    EXPECT_NEAR(ri, std::round(ri), 1e-12) << q.transpose();
+    EXPECT_NEAR(rj, std::round(rj), 1e-12) << q.transpose();
+  }
+  EXPECT_EQ(on_hole, 16);
+  for (double x : {lo, hi})
+    for (double y : {lo, hi}) EXPECT_GE(vertex_at(m, x, y), 0) << x << " " << y;
+}
+
 TEST(RelaxedGrid, PlateWithAHoleIsTiledExactlyWithTheOpeningCutOut) {
   // On a plane every rod is straight: the grid stays uniform, 3 x 3 cells of
   // 1000/3 mm; the hole [400,600]^2 lies inside the middle cell, which is

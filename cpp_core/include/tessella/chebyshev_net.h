@@ -43,8 +43,9 @@ struct ChebyshevNetParams {
   double seed_v = 0.5;
   // Two crossing curves (3D polylines on or near the face) to take as the
   // generators instead of the iso-lines: the seed is their first crossing,
-  // and the net's rows run along them (a grid shell's chosen lines, a face
-  // set's cuts). Empty: the iso-lines through the seed.
+  // and the net's rows run along them (a grid shell's chosen lines; the
+  // lines a roof was cut along into faces of one surface, which then share
+  // one net whose rows are the cuts). Empty: the iso-lines through the seed.
   Polylines guides;
   GridClipParams clip;
 };

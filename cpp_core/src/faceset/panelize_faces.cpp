@@ -603,7 +603,11 @@ std::vector<std::shared_ptr<const ChebyshevLattice>> lattices_across_faces(
     try {
       const SurfaceFace::FastEvaluation fast(*group.face);
       lattice = std::make_shared<const ChebyshevLattice>(chebyshev_lattice(*group.face, params));
-    } catch (const std::exception&) {  // the faces make their own
+    } catch (const std::exception&) {
+      // Guides are the union's (each face alone would cut the generators
+      // at its own bounds): their error is the set's. Else the faces make
+      // their own.
+      if (!params.guides.empty()) throw;
       continue;
     }
     for (int f : group.members) out[static_cast<std::size_t>(f)] = lattice;
@@ -718,9 +722,20 @@ FaceSetResult panelize_faces(const FaceSet& set, const std::string& method,
   if (n == 0) throw InvalidGeometry("the face set has no face");
   if (n > 1) {
     const std::string curves = single_face_curves(decl, values);
-    if (!curves.empty())
+    if (!curves.empty() && method == "chebyshev_net") {
+      // One net on the union of faces of one surface: its guides, projected
+      // onto that union, serve every face (a roof cut along the guides).
+      const std::vector<SurfaceGroup>& groups = surface_groups(set);
+      if (groups.size() != 1 || groups[0].members.size() != n)
+        throw InvalidParameter(method + ": its " + curves +
+                               " serve faces of one surface (one net on their union); these " +
+                               std::to_string(n) +
+                               " faces do not all lie on one surface: pick faces of one "
+                               "surface, or leave the guides out");
+    } else if (!curves.empty()) {
       throw InvalidParameter(method + ": its " + curves + " lie on one face; pick one face (" +
                              std::to_string(n) + " are selected)");
+    }
   }
   const auto started = std::chrono::steady_clock::now();
   // Every loop inside (a face's own method and metrics) keeps to `threads`.

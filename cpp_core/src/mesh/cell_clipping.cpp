@@ -21,6 +21,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -222,6 +223,169 @@ double distance(const IntPoint& a, const IntPoint& b) {
   return std::hypot(double(a.X - b.X), double(a.Y - b.Y));
 }
 
+// A lattice node closer to a trim than this share of its shortest cell edge
+// goes onto the trim: rows that run along a trim a hair off it (a net laid
+// along the very curves a face set was cut along, each computed to its own
+// tolerance) would otherwise cut knife-edge slivers and crossings at grazing
+// angles that the two faces of a shared edge resolve differently.
+constexpr double kSnapShare = 1e-3;
+
+// Between a node put into a trim's path (or moved onto one of its points)
+// and the next such node or trim
+// corner, the trim points lying on one of the node's own lattice edges
+// (within its reach) go: there the trim runs along the row, and its points
+// would sit on the cell edge as crossings (nodes a few millimetres apart
+// along a row, on one side of a shared edge only). Trim corners stay, and
+// so do points where the trim leaves the row (a boundary panel's outline).
+// node_edges(k): the lattice edges at the node put in at path point k.
+Path without_points_along_rows(
+    const Path& path, const std::vector<double>& reach, const PointSet& corner,
+    const std::function<std::vector<std::array<IntPoint, 2>>(std::size_t)>& node_edges) {
+  const std::size_t n = path.size();
+  std::vector<std::size_t> put;  // nodes put in and trim corners, in path order
+  for (std::size_t k = 0; k < n; ++k)
+    if (reach[k] > 0 || corner.count(path[k])) put.push_back(k);
+  if (put.size() < 2) return path;
+  std::vector<char> drop(n, 0);
+  auto on_row = [&](const IntPoint& q, std::size_t node_at) {
+    if (reach[node_at] <= 0) return false;
+    for (const auto& e : node_edges(node_at))
+      if (segment_distance(q, e[0], e[1], nullptr) <= reach[node_at]) return true;
+    return false;
+  };
+  for (std::size_t m = 0; m < put.size(); ++m) {
+    const std::size_t a = put[m], b = put[(m + 1) % put.size()];
+    if ((b + n - a) % n < 2 || (reach[a] <= 0 && reach[b] <= 0)) continue;
+    for (std::size_t q = (a + 1) % n; q != b; q = (q + 1) % n)
+      if (on_row(path[q], a) || on_row(path[q], b)) drop[q] = 1;
+  }
+  Path out;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!drop[k]) out.push_back(path[k]);
+  return out.size() >= 3 ? out : path;
+}
+
+// Moves each node within kSnapShare of its shortest cell edge from a trim
+// segment onto the trim curve, and puts the moved node into the trim's path
+// as a point of its own, so that the cut meets it exactly (Clipper's integer
+// predicates then see the trim run through the cell corner). A node whose
+// foot lies past an end of the segment in (u,v) takes that trim point.
+// uv and N are the nodes' (u,v) and integer points, updated in place.
+void snap_nodes_onto_trims(const SurfaceFace& face, const Frame& frame, Domain& domain, int nu,
+                           int nv, std::vector<Vec2>& uv, std::vector<IntPoint>& N) {
+  const SegmentBuckets trim(domain.paths);
+  struct Insert {
+    int path;
+    std::size_t segment;
+    double t;
+    IntPoint point;
+    double reach;
+    std::size_t node;
+  };
+  std::vector<Insert> inserts;
+  // Nodes moved onto a trim point already in the path: its reach, the node.
+  PointMap<std::pair<double, std::size_t>> onto_point;
+  PointSet taken;
+  for (const Path& path : domain.paths)
+    for (const IntPoint& p : path) taken.insert(p);
+  // Segment index within its path, from the buckets' running index.
+  std::vector<std::size_t> first_of_path(domain.paths.size() + 1, 0);
+  for (std::size_t k = 0; k < domain.paths.size(); ++k)
+    first_of_path[k + 1] = first_of_path[k] + domain.paths[k].size();
+  for (int j = 0; j < nv; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      const std::size_t k = std::size_t(j) * std::size_t(nu) + std::size_t(i);
+      const IntPoint p = N[k];
+      double edge = std::numeric_limits<double>::infinity();
+      if (i > 0) edge = std::min(edge, distance(p, N[k - 1]));
+      if (i + 1 < nu) edge = std::min(edge, distance(p, N[k + 1]));
+      if (j > 0) edge = std::min(edge, distance(p, N[k - std::size_t(nu)]));
+      if (j + 1 < nv) edge = std::min(edge, distance(p, N[k + std::size_t(nu)]));
+      const double reach = kSnapShare * edge;
+      if (!(reach >= 1.0) || taken.count(p)) continue;
+      const double x = double(p.X), y = double(p.Y);
+      int best_segment = -1;
+      double best = reach, best_t = 0;
+      for (int seg : trim.near(x - reach, y - reach, x + reach, y + reach)) {
+        double t = 0;
+        const double d = segment_distance(p, trim[seg].a, trim[seg].b, &t);
+        if (d <= best) best = d, best_segment = seg, best_t = t;
+      }
+      if (best_segment < 0) continue;
+      const auto& seg = trim[best_segment];
+      const std::size_t in_path = std::size_t(best_segment) - first_of_path[std::size_t(seg.path)];
+      if (best <= kOnEdge) {
+        // On the trim within Clipper's exactness: the node stays where it
+        // is and goes into the path as it is.
+        if (best_t > 0 && best_t < 1) inserts.push_back({seg.path, in_path, best_t, p, reach, k});
+        taken.insert(p);
+        continue;
+      }
+      const Vec2 on_chord = frame.to_uv(seg.a) + best_t * (frame.to_uv(seg.b) - frame.to_uv(seg.a));
+      const Vec2 q = face.snap_to_trim(domain.loop[std::size_t(seg.path)], on_chord);
+      const double t = frame.parameter_on(q, seg.a, seg.b);
+      if (t <= 0 || t >= 1) {
+        // Past an end (or on it): the node becomes that trim point.
+        const IntPoint end = t <= 0 ? seg.a : seg.b;
+        if (onto_point.count(end)) continue;  // another node's place
+        const auto ex = domain.exact_uv.find(end);
+        uv[k] = ex != domain.exact_uv.end() ? ex->second : frame.to_uv(end);
+        N[k] = end;
+        onto_point.emplace(end, std::make_pair(reach, k));
+        continue;
+      }
+      const IntPoint at = frame.to_int(q);
+      if (const auto ex = domain.exact_uv.find(at); ex != domain.exact_uv.end()) {
+        if (onto_point.count(at)) continue;
+        uv[k] = ex->second, N[k] = at;  // onto a trim point (a corner, in rounding)
+        onto_point.emplace(at, std::make_pair(reach, k));
+        continue;
+      }
+      if (taken.count(at)) continue;  // another node's place
+      taken.insert(at);
+      inserts.push_back({seg.path, in_path, t, at, reach, k});
+      uv[k] = q;
+      N[k] = at;
+    }
+  }
+  if (inserts.empty() && onto_point.empty()) return;
+  // Into the paths, each segment's points in order along it.
+  std::sort(inserts.begin(), inserts.end(), [](const Insert& a, const Insert& b) {
+    return std::tie(a.path, a.segment, a.t) < std::tie(b.path, b.segment, b.t);
+  });
+  std::size_t next = 0;
+  for (std::size_t pi = 0; pi < domain.paths.size(); ++pi) {
+    const Path& old = domain.paths[pi];
+    bool any = next < inserts.size() && inserts[next].path == int(pi);
+    for (std::size_t s = 0; s < old.size() && !any; ++s) any = onto_point.count(old[s]) > 0;
+    if (!any) continue;
+    Path out;
+    std::vector<double> reach;    // of each point: > 0 where a node was put in
+    std::vector<std::size_t> at;  // that node
+    for (std::size_t s = 0; s < old.size(); ++s) {
+      out.push_back(old[s]);
+      const auto moved = onto_point.find(old[s]);
+      reach.push_back(moved != onto_point.end() ? moved->second.first : 0.0);
+      at.push_back(moved != onto_point.end() ? moved->second.second : 0);
+      while (next < inserts.size() && inserts[next].path == int(pi) && inserts[next].segment == s) {
+        out.push_back(inserts[next].point);
+        reach.push_back(inserts[next].reach);
+        at.push_back(inserts[next++].node);
+      }
+    }
+    domain.paths[pi] = without_points_along_rows(out, reach, domain.corner, [&](std::size_t q) {
+      const std::size_t k = at[q];
+      const int i = int(k % std::size_t(nu)), j = int(k / std::size_t(nu));
+      std::vector<std::array<IntPoint, 2>> edges;
+      if (i > 0) edges.push_back({N[k], N[k - 1]});
+      if (i + 1 < nu) edges.push_back({N[k], N[k + 1]});
+      if (j > 0) edges.push_back({N[k], N[k - std::size_t(nu)]});
+      if (j + 1 < nv) edges.push_back({N[k], N[k + std::size_t(nu)]});
+      return edges;
+    });
+  }
+}
+
 // A line the opening split ran along: x = at (axis 0) or y = at (axis 1).
 struct SplitLine {
   int axis;
@@ -336,9 +500,9 @@ enum Kind { kGridNode = 0, kTrimPoint = 1, kCrossing = 2 };
 
 }  // namespace
 
-PanelMesh clip_cells(const SurfaceFace& face, const std::vector<Vec2>& nodes, int nu, int nv,
+PanelMesh clip_cells(const SurfaceFace& face, const std::vector<Vec2>& grid_nodes, int nu, int nv,
                      const GridClipParams& params) {
-  if (nu < 2 || nv < 2 || nodes.size() != std::size_t(nu) * std::size_t(nv)) {
+  if (nu < 2 || nv < 2 || grid_nodes.size() != std::size_t(nu) * std::size_t(nv)) {
     throw InvalidParameter("a cell grid needs at least 2 x 2 nodes, row by row");
   }
   const int cu = nu - 1, cv = nv - 1;  // cells per row, per column
@@ -351,14 +515,15 @@ PanelMesh clip_cells(const SurfaceFace& face, const std::vector<Vec2>& nodes, in
   const std::vector<TrimLoop> loops =
       face.trim_loops(trim_deflection(face, params.trim_deflection));
   if (loops.empty()) throw InvalidGeometry("the face has no usable trim loop");
-  const Frame frame = frame_of(nodes, loops);
-  const Domain domain = domain_of(loops, frame);
+  const Frame frame = frame_of(grid_nodes, loops);
+  Domain domain = domain_of(loops, frame);
   if (domain.paths.empty()) throw InvalidGeometry("the face has no usable trim loop");
-  const SegmentBuckets trim(domain.paths);
-  const UvTrimClassifier inside(loops);
-
+  std::vector<Vec2> nodes = grid_nodes;
   std::vector<IntPoint> N(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) N[k] = frame.to_int(nodes[k]);
+  snap_nodes_onto_trims(face, frame, domain, nu, nv, nodes, N);
+  const SegmentBuckets trim(domain.paths);
+  const UvTrimClassifier inside(loops);
   auto node = [nu](int i, int j) { return j * nu + i; };
   auto corners = [&](int i, int j) -> std::array<int, 4> {
     return {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)};

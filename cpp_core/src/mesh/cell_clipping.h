@@ -6,6 +6,9 @@
 //
 // The cells must not overlap; where their union covers the face's (u,v)
 // region (relaxed_grid: the whole bounds rectangle), the panels tile the face.
+// A node within a thousandth of its shortest cell edge of a trim goes onto
+// the trim first (rows laid along a face set's cuts meet them node to node,
+// not in knife-edge slivers).
 #pragma once
 
 #include <vector>
