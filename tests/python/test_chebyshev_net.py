@@ -339,6 +339,45 @@ def test_guides_along_the_cuts_of_a_face_that_is_not_an_example():
     assert abs(r.metrics["panel_area"].sum() / pieces.Area - 1) < 5e-3
 
 
+def test_a_document_net_on_a_face_set_with_guides(tmp_path):
+    """The Panelization of the split roof with the diagonals (document edges)
+    as Guides: the console's panels, a Size change recomputes, and the
+    document saves and reopens with the same panels."""
+    from test_face_sets import check_conforming
+
+    roof = example_face("british_museum_roof")
+    pieces = Part.read(os.path.join(EXAMPLES, "face_sets", "british_museum_roof_diagonals.brep"))
+    doc = FreeCAD.newDocument("NetWithGuides")
+    try:
+        obj = doc.addObject("Part::Feature", "Roof")
+        obj.Shape = pieces
+        lines = []
+        for k, edge in enumerate(_roof_diagonals(roof)):
+            line = doc.addObject("Part::Feature", f"Diagonal{k}")
+            line.Shape = edge
+            lines.append((line, "Edge1"))
+        doc.recompute()
+        p = tessella.make_panelization(obj, method="chebyshev_net", size=1500.0, guides=lines)
+        console = tessella.panelize_faces(pieces, method="chebyshev_net", size=1500.0,
+                                          guides=_roof_diagonals(roof))
+        assert p.PanelCount == len(console.panels)
+        p.Size = 2000.0
+        doc.recompute()
+        r = p.Proxy.result(p).result
+        assert p.isValid() and r.face_count == 4 and p.PanelCount < len(console.panels)
+        assert check_conforming(pieces, r) > 50
+        count, path, name = p.PanelCount, str(tmp_path / "net.FCStd"), p.Name
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+        p = doc.getObject(name)
+        p.touch()
+        doc.recompute()
+        assert p.isValid() and p.PanelCount == count
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
 def test_guides_on_faces_of_several_surfaces_are_a_clear_error():
     # One net serves faces of one surface; the roof's four sub-surfaces
     # (each its own B-spline surface) have no common (u, v).
