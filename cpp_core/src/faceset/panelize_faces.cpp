@@ -14,6 +14,7 @@
 #include "common/parallel_chunks.h"
 #include "faceset/aligned_grid_lines.h"
 #include "faceset/face_set_impl.h"
+#include "faceset/guides_along_cuts.h"
 #include "faceset/shared_edge_check.h"
 #include "faceset/shared_edge_nodes.h"
 #include "faceset/smooth_groups.h"
@@ -597,17 +598,25 @@ std::vector<std::shared_ptr<const ChebyshevLattice>> lattices_across_faces(
     const FaceSet& set, const ParamValues& values) {
   std::vector<std::shared_ptr<const ChebyshevLattice>> out(set.size());
   if (set.size() < 2) return out;
-  const ChebyshevNetParams params = chebyshev_net_params(values);
+  const ChebyshevNetParams given = chebyshev_net_params(values);
   for (const SurfaceGroup& group : surface_groups(set)) {
     std::shared_ptr<const ChebyshevLattice> lattice;
     try {
+      ChebyshevNetParams params = given;
+      if (!params.guides.empty()) {
+        // Guides drawn along the cuts follow them: the cuts are rows.
+        std::vector<const SurfaceFace*> members;
+        for (int f : group.members) members.push_back(set.face(static_cast<std::size_t>(f)).get());
+        params.guides =
+            guides_along_cuts(members, params.guides, params.size, params.clip.trim_deflection);
+      }
       const SurfaceFace::FastEvaluation fast(*group.face);
       lattice = std::make_shared<const ChebyshevLattice>(chebyshev_lattice(*group.face, params));
     } catch (const std::exception&) {
       // Guides are the union's (each face alone would cut the generators
       // at its own bounds): their error is the set's. Else the faces make
       // their own.
-      if (!params.guides.empty()) throw;
+      if (!given.guides.empty()) throw;
       continue;
     }
     for (int f : group.members) out[static_cast<std::size_t>(f)] = lattice;
