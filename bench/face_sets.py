@@ -12,7 +12,9 @@ Prints:
    Then the roof split along its plan's diagonals, as seed 004 divides it
    (examples/face_sets/british_museum_roof_diagonals.brep), the same figures
    and, as a reference, the one face's rods cut where they cross the
-   diagonals (the change a split makes by cutting alone). Then the four faces each on a surface of its own (written to
+   diagonals (the change a split makes by cutting alone); and chebyshev_net
+   with the diagonals as its guides at 1000 / 1500 / 2200 mm (the cuts are
+   rows of the net). Then the four faces each on a surface of its own (written to
    examples/face_sets/british_museum_roof_subsurfaces.brep) at 1000 / 1500 /
    2200 mm, boundary_driven and iso_grid, against the one face.
    With --sweep-walking-agent: walking_agent's panels on the three split
@@ -78,6 +80,23 @@ def split_roof_diagonals(face):
         normal.normalize()
         planes.append(Part.Plane(V(x0, y0, 0), normal).toShape(-big, big, -big, big))
     return split_api.slice(face, planes, "Split")
+
+
+def plan_diagonal_guides(face):
+    """The curves split_roof_diagonals cuts along, over the whole surface
+    (through the drum): its vertical planes cut with the face's untrimmed
+    surface, as edges (chebyshev_net's guides: the net's rows are the cuts)."""
+    bb = face.BoundBox
+    big = 2 * bb.DiagonalLength
+    whole = face.Surface.toShape()
+    guides = []
+    for x0, y0, x1, y1 in ((bb.XMin, bb.YMin, bb.XMax, bb.YMax),
+                           (bb.XMin, bb.YMax, bb.XMax, bb.YMin)):
+        normal = V(-(y1 - y0), x1 - x0, 0)
+        normal.normalize()
+        plane = Part.Plane(V(x0, y0, 0), normal).toShape(-big, big, -big, big)
+        guides.append(whole.section(plane).Edges[0])
+    return guides
 
 
 def sub_surfaces(pieces):
@@ -270,6 +289,14 @@ def main(argv=None):
         print(f"  {method:16s} {against_one(one, r, diagonals, 'diagonals')}")
         print(f"  {'':16s} the one face's rods cut at the diagonals (no other change): "
               f"{cut_only(one, roof)}")
+    # A net whose generators are the diagonals: the cuts are rows of it.
+    guides = plan_diagonal_guides(roof)
+    print("  chebyshev_net with the diagonals as guides, by size (the cuts rows of the net):")
+    for size in (1000.0, 1500.0, 2200.0):
+        one = tessella.panelize(roof, method="chebyshev_net", size=size, guides=guides)
+        r = tessella.panelize_faces(diagonals, method="chebyshev_net", size=size, guides=guides)
+        print(f"  {size:16.0f} {against_one(one, r, diagonals, 'diagonals')}  "
+              f"unmatched segments {r.summary['unmatched_shared_segments']}")
 
     print("\nwalking_agent on the split roof (its lines walked on the faces' union):")
     for bound in (15.0, 60.0, 100.0):

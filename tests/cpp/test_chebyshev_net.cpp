@@ -8,6 +8,7 @@
 #include <map>
 #include <vector>
 
+#include "methods/grids/path_along_cuts.h"
 #include "tessella/chebyshev_net.h"
 #include "tessella/errors.h"
 #include "test_faces.h"
@@ -179,4 +180,39 @@ TEST(ChebyshevNet, RefusesBadParameters) {
   EXPECT_THROW(chebyshev_net(f, p), LimitExceeded);
   p.size = 50, p.clip.max_panels = 100;  // 400 panels
   EXPECT_THROW(chebyshev_net(f, p), LimitExceeded);
+}
+
+TEST(PathAlongCuts, APathBesideACutFollowsItAndStaysElsewhere) {
+  // A plane ((u,v) = (x,y) mm); the cut is the hole [400,600]^2's outline.
+  // Paths: along y = 400.6 (0.6 mm beside the cut's side, under 0.01 of the
+  // 100 mm rod), along y = 410 (10 mm off: beyond the reach), and across
+  // the side at x = 500 (crossing it: stays).
+  const SurfaceFace plate = plate_with_square_hole(1000, 400, 600);
+  const double size = 100.0;
+  const std::vector<std::vector<Vec2>> cuts = {{{400, 400}, {600, 400}, {600, 600}, {400, 600}}};
+  const std::vector<Vec2> beside = path_along_cuts(plate, {{0, 400.6}, {1000, 400.6}}, cuts, size);
+  ASSERT_GE(beside.size(), 161u);  // resampled: steps of at most size / 16
+  int on_cut = 0;
+  for (std::size_t k = 0; k < beside.size(); ++k) {
+    const Vec2& p = beside[k];
+    if (k > 0) {
+      EXPECT_LE((p - beside[k - 1]).norm(), size / 16 + 0.01 * size);  // a step and a move
+    }
+    if (p.x() > 401 && p.x() < 599) {
+      EXPECT_NEAR(p.y(), 400.0, 1e-9) << p.transpose();
+      ++on_cut;
+    } else if (p.x() < 399 || p.x() > 601) {
+      EXPECT_EQ(p.y(), 400.6) << p.transpose();  // on the path as given
+    }
+  }
+  EXPECT_GT(on_cut, 25);
+  for (const Vec2& p : path_along_cuts(plate, {{0, 410}, {1000, 410}}, cuts, size)) {
+    EXPECT_EQ(p.y(), 410.0);
+  }
+  for (const Vec2& p : path_along_cuts(plate, {{500, 0}, {500, 1000}}, cuts, size)) {
+    EXPECT_EQ(p.x(), 500.0);
+  }
+  // No cuts (one face): the path as given.
+  const std::vector<Vec2> path = {{0, 400.6}, {1000, 400.6}};
+  EXPECT_EQ(path_along_cuts(plate, path, {}, size), path);
 }

@@ -15,7 +15,6 @@
 #include <map>
 #include <set>
 
-#include "faceset/guides_along_cuts.h"
 #include "faceset/shared_edge_check.h"
 #include "tessella/errors.h"
 #include "tessella/face_set.h"
@@ -220,36 +219,6 @@ TEST(FaceSet, RefusesWhatItCannotJoin) {
   double area = 0;
   for (double a : r.combined.metrics.area) area += a;
   EXPECT_NEAR(area, 2 * (100 * 200 + 100 * 300 + 200 * 300), 1e-6);
-}
-
-TEST(GuidesAlongCuts, AGuideBesideATrimFollowsItAndStaysElsewhere) {
-  // The plate [0,1000]^2 with the hole [400,600]^2; a guide along y = 400.6
-  // (0.6 mm beside the hole's side, under 0.01 of the 100 mm rod) from
-  // x = 0 to 1000, and one along y = 410 (10 mm off: more than the reach).
-  const SurfaceFace plate = test::plate_with_square_hole(1000, 400, 600);
-  const double size = 100.0;
-  const Polylines guides = {{Vec3(0, 400.6, 0), Vec3(1000, 400.6, 0)},
-                            {Vec3(0, 410, 0), Vec3(1000, 410, 0)}};
-  const Polylines out = guides_along_cuts({&plate}, guides, size, 0.0);
-  ASSERT_EQ(out.size(), 2u);
-  for (const auto& g : out) {
-    ASSERT_GE(g.size(), 16u * 10u);
-    for (std::size_t k = 1; k < g.size(); ++k)
-      EXPECT_LE((g[k] - g[k - 1]).norm(), size / 16 + 0.01 * size);  // a step and a move
-  }
-  int on_side = 0;
-  for (const Vec3& p : out[0]) {
-    if (p.x() > 401 && p.x() < 599) {
-      EXPECT_NEAR(p.y(), 400.0, 1e-9) << p.transpose();  // on the hole's side
-      ++on_side;
-    } else if (p.x() < 399 || p.x() > 601) {
-      EXPECT_NEAR(p.y(), 400.6, 1e-12) << p.transpose();  // no trim near: as given
-    }
-  }
-  EXPECT_GT(on_side, 25);
-  for (const Vec3& p : out[1]) EXPECT_NEAR(p.y(), 410.0, 1e-12);
-  // The same again, point for point.
-  EXPECT_EQ(guides_along_cuts({&plate}, guides, size, 0.0), out);
 }
 
 }  // namespace

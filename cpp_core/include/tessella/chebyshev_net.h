@@ -66,7 +66,11 @@ struct ChebyshevLattice {
   std::vector<char> on_net;
   int nu = 0, nv = 0;
 };
-ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params);
+// cuts: (u,v) polylines on the face's surface that guides running along
+// them follow (a face set's trims, the lines it was cut along; see
+// methods/grids/path_along_cuts.h). None for one face.
+ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params,
+                                   const std::vector<std::vector<Vec2>>& cuts = {});
 
 // A lattice cut by the face's trims: chebyshev_net's last step. A face set
 // makes one lattice on the union of the faces lying on one surface and cuts

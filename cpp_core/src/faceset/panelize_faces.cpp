@@ -14,11 +14,11 @@
 #include "common/parallel_chunks.h"
 #include "faceset/aligned_grid_lines.h"
 #include "faceset/face_set_impl.h"
-#include "faceset/guides_along_cuts.h"
 #include "faceset/shared_edge_check.h"
 #include "faceset/shared_edge_nodes.h"
 #include "faceset/smooth_groups.h"
 #include "faceset/surface_groups.h"
+#include "geometry/trim_deflection.h"
 #include "mesh/pinned_lines.h"
 #include "methods/boundary_driven/bd_across_faces.h"
 #include "methods/boundary_driven/bd_across_surfaces.h"
@@ -602,16 +602,19 @@ std::vector<std::shared_ptr<const ChebyshevLattice>> lattices_across_faces(
   for (const SurfaceGroup& group : surface_groups(set)) {
     std::shared_ptr<const ChebyshevLattice> lattice;
     try {
-      ChebyshevNetParams params = given;
-      if (!params.guides.empty()) {
-        // Guides drawn along the cuts follow them: the cuts are rows.
-        std::vector<const SurfaceFace*> members;
-        for (int f : group.members) members.push_back(set.face(static_cast<std::size_t>(f)).get());
-        params.guides =
-            guides_along_cuts(members, params.guides, params.size, params.clip.trim_deflection);
-      }
+      // Guides drawn along the cuts between the faces follow them: the
+      // cuts are rows of the net.
+      std::vector<std::vector<Vec2>> cuts;
+      if (!given.guides.empty())
+        for (int f : group.members) {
+          const SurfaceFace& member = *set.face(static_cast<std::size_t>(f));
+          for (TrimLoop& loop :
+               member.trim_loops(trim_deflection(member, given.clip.trim_deflection)))
+            cuts.push_back(std::move(loop.uv));
+        }
       const SurfaceFace::FastEvaluation fast(*group.face);
-      lattice = std::make_shared<const ChebyshevLattice>(chebyshev_lattice(*group.face, params));
+      lattice =
+          std::make_shared<const ChebyshevLattice>(chebyshev_lattice(*group.face, given, cuts));
     } catch (const std::exception&) {
       // Guides are the union's (each face alone would cut the generators
       // at its own bounds): their error is the set's. Else the faces make

@@ -13,6 +13,7 @@
 #include "geometry/uv_trim_classifier.h"
 #include "mesh/cell_clipping.h"
 #include "mesh/seam_sides.h"
+#include "methods/grids/path_along_cuts.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
 
@@ -490,9 +491,12 @@ std::vector<Vec2> within_bounds(const std::vector<Vec2>& pts, const UvBounds& b)
 // is the seed; guide 1 gives i, guide 2 j (its direction turned so that the
 // cells run counter-clockwise).
 std::vector<GeneratorPath> guide_paths(const SurfaceFace& face, const UvBounds& b,
-                                       const Polylines& guides) {
-  const std::vector<Vec2> a = guide_on_surface(face, guides[0], 0);
-  const std::vector<Vec2> c0 = guide_on_surface(face, guides[1], 1);
+                                       const Polylines& guides,
+                                       const std::vector<std::vector<Vec2>>& cuts, double size) {
+  const std::vector<Vec2> a =
+      path_along_cuts(face, guide_on_surface(face, guides[0], 0), cuts, size);
+  const std::vector<Vec2> c0 =
+      path_along_cuts(face, guide_on_surface(face, guides[1], 1), cuts, size);
   // Round a closed direction the second guide may lie a period off the
   // first: its copies a period either way are tried too.
   std::vector<Vec2> shifts{Vec2::Zero()};
@@ -546,7 +550,8 @@ std::vector<GeneratorPath> guide_paths(const SurfaceFace& face, const UvBounds& 
 
 }  // namespace
 
-ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params) {
+ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetParams& params,
+                                   const std::vector<std::vector<Vec2>>& cuts) {
   if (params.size == 0.0) throw InvalidParameter("size (mm) is required for chebyshev_net");
   require_in_range("size (mm)", params.size, 1e-3, 1e9);
   require_in_range("seed_u", params.seed_u, 0.0, 1.0);
@@ -565,7 +570,8 @@ ChebyshevLattice chebyshev_lattice(const SurfaceFace& face, const ChebyshevNetPa
   const Vec2 seed(b.u_min + params.seed_u * (b.u_max - b.u_min),
                   b.v_min + params.seed_v * (b.v_max - b.v_min));
   const std::vector<GeneratorPath> paths =
-      params.guides.empty() ? iso_paths(face, b, seed) : guide_paths(face, b, params.guides);
+      params.guides.empty() ? iso_paths(face, b, seed)
+                            : guide_paths(face, b, params.guides, cuts, params.size);
   // The lattice may hold many cells off the face (a face far from its
   // bounds' rectangle): room for 16 times the panels, and more on small runs.
   const std::size_t max_nodes = 16 * std::size_t(params.clip.max_panels) + 100000;

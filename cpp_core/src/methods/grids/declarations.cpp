@@ -67,7 +67,8 @@ MethodBuilder<ChebyshevNetParams> chebyshev_net_builder() {
       .param(&ChebyshevNetParams::guides,
              decl("guides", ParamKind::Curves, "", 0, 2, "Generator edges (optional)",
                   "Two crossing edges on or near the face for the net's generators instead of "
-                  "the iso-lines through the seed (none: the iso-lines)",
+                  "the iso-lines through the seed (none: the iso-lines); on faces of one "
+                  "surface, a guide along a cut between them follows the cut",
                   "Input", "Guides"));
   with_clip(b);
   return b;
