@@ -84,8 +84,15 @@ def planarize_rows():
 
 
 def guides_needed(method):
-    """How many guide edges the method takes (0: none)."""
+    """How many guide edges the method needs (0: none, or optional)."""
     return api.GUIDE_COUNT.get(method, 0)
+
+
+def guides_taken(method):
+    """How many guide edges the method takes at most (0: it takes none):
+    chebyshev_net needs none and takes two."""
+    params = api.METHODS[method].params
+    return int(params["guides"].maximum) if "guides" in params else 0
 
 
 def default_of(method, name):
@@ -390,20 +397,24 @@ class ParameterForm:
         from PySide import QtGui
 
         self.guides_label = self.guides_pick = None
-        need = guides_needed(method)
-        if not need:
+        need, take = guides_needed(method), guides_taken(method)
+        if not take:
             return
         self.guides_label = QtGui.QLabel(self._guides_text())
         self.guides_label.setWordWrap(True)
         pick = QtGui.QPushButton("Pick edges...")
         pick.setCheckable(True)
-        pick.setToolTip(f"Then click {need} edge(s) in the 3D view (only edges can be selected)")
+        if need:
+            pick.setToolTip(f"Then click {need} edge(s) in the 3D view (only edges can be selected)")
+        else:  # optional (chebyshev_net's generators): picking anew clears them
+            pick.setToolTip(f"Then click {take} edges in the 3D view (only edges can be "
+                            "selected); press again and pick none to clear them")
         pick.toggled.connect(self._on_pick_guides)
         self.guides_pick = pick
         row = QtGui.QHBoxLayout()
         row.addWidget(self.guides_label, 1)
         row.addWidget(pick)
-        self.method_form.addRow("Guides", row)
+        self.method_form.addRow("Guides" if need else "Guides (optional)", row)
 
     def curvature(self):
         """The source faces' largest curvature, sampled once."""
@@ -432,7 +443,7 @@ class ParameterForm:
             else:
                 params.pop("u_count", None)
                 params.pop("v_count", None)
-        if guides_needed(method):
+        if guides_needed(method) or (guides_taken(method) and guides):  # optional: if picked
             params["guides"] = [(o, s) if s else o for o, s in guides]
         params.update(sliver_fraction=float(self.sliver.value()),
                       min_angle=value(self.min_angle), max_panels=int(self.max_panels.value()))

@@ -86,8 +86,12 @@ class PanelizationTaskPanel:
         return self.widgets[name]
 
     def guides_needed(self, method=None):
-        """How many guide edges the method takes (0: none)."""
+        """How many guide edges the method needs (0: none, or optional)."""
         return task_form.guides_needed(method or self.method.currentText())
+
+    def guides_taken(self, method=None):
+        """How many guide edges the method takes at most (0: none)."""
+        return task_form.guides_taken(method or self.method.currentText())
 
     def parameters(self):
         """(method, keyword parameters) as the panel shows them."""
@@ -152,7 +156,8 @@ class PanelizationTaskPanel:
         self._stop_picking()
         self._uncheck(self.pick)
         if on:
-            self.guides = []
+            self.guides = []  # picked anew (for optional guides: none, if none is picked)
+            self.guides_changed = True
             self.form_parts.show_guides()
             self._start_picking(selection.EDGE, self.add_guide)
 
@@ -194,7 +199,7 @@ class PanelizationTaskPanel:
         self.guides.append((obj, sub))
         self.guides_changed = True
         self.form_parts.show_guides()
-        if len(self.guides) >= self.guides_needed():
+        if len(self.guides) >= self.guides_taken():
             self.guides_pick.setChecked(False)
             Gui.Selection.clearSelection()
         self.schedule_preview()
@@ -202,11 +207,15 @@ class PanelizationTaskPanel:
     # -------------------------------------------------------------- preview
     def _preview_inputs(self):
         method, params = self.parameters()
-        need = self.guides_needed(method)
-        if need and len(params.get("guides") or []) < need:
+        need, take = self.guides_needed(method), self.guides_taken(method)
+        picked = len(params.get("guides") or [])
+        if need and picked < need:
             what = "one guide edge" if need == 1 else f"{need} guide edges"
             raise ValueError(f"Pick {what} (Pick edges…): {method} grows its panels from "
                              f"{'it' if need == 1 else 'them'}")
+        if not need and 0 < picked < take:  # optional guides, half picked
+            raise ValueError(f"Pick {take} guide edges or none (Pick edges…): {method} takes "
+                             f"them as its generators")
         return self.face_arg(), method, params
 
     def schedule_preview(self, *args):
@@ -355,6 +364,8 @@ class PanelizationTaskPanel:
                     lines.append(f"{ref}.Guides = [{items}]")
                     continue
                 lines.append(f"{ref}.{task_form.property_of(name)} = {value!r}")
+            if "guides" not in params and self.guides_taken(method) and self.guides_changed:
+                lines.append(f"{ref}.Guides = []")  # optional guides picked anew: none
             for line in lines:
                 Gui.doCommand(line)
             obj.Proxy.seed(obj, result)  # the result computed above, not again

@@ -573,6 +573,88 @@ def test_task_panel_guides():
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_task_panel_optional_guides():
+    """chebyshev_net's guides are optional: the row says so, the net previews
+    without them, one of two is an error in the summary (not a box), two
+    crossing edges are its generators, and picking anew with none clears
+    them in edit mode."""
+    import Part
+    import freecad_workbench as tessella
+    from freecad_workbench.gui import task_panel
+
+    doc = FreeCAD.newDocument("TessellaOptionalGuides")
+    try:
+        Gui.activateWorkbench("TessellaWorkbench")
+        surf = doc.addObject("Part::Feature", "Plate")
+        surf.Shape = Part.makePlane(10000, 8000)
+        lines = []
+        for k, (a, b) in enumerate((((0, 0), (10000, 8000)), ((0, 8000), (10000, 0)))):
+            line = doc.addObject("Part::Feature", f"Diagonal{k}")
+            line.Shape = Part.LineSegment(FreeCAD.Vector(*a, 0), FreeCAD.Vector(*b, 0)).toShape()
+            lines.append(line)
+        doc.recompute()
+        doc.clearUndos()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
+        Gui.runCommand("Tessella_Panelize")
+        panel = task_panel.active()
+        if not check("optional guides: panel open", panel is not None):
+            return
+        panel.method.setCurrentIndex(list(tessella.METHODS).index("chebyshev_net"))
+        check("optional guides: row shown", panel.guides_label is not None
+              and panel.guides_needed() == 0 and panel.guides_taken() == 2)
+        panel.widget("size").setProperty("rawValue", 1000.0)
+        n = panel.preview_count
+        panel.timer.stop()
+        panel.update_preview()
+        check("optional guides: previews without guides", panel.last_result is not None
+              and len(panel.last_result.panels) > 50, panel.summary.text())
+        panel.guides_pick.setChecked(True)
+        Gui.Selection.addSelection(doc.Name, lines[0].Name, "Edge1")
+        process_events()
+        check("optional guides: still picking after one of two", panel.guides_pick.isChecked())
+        panel.timer.stop()
+        with DialogCatcher() as dc:
+            panel.update_preview()
+        check("optional guides: one of two is said in the summary",
+              "2 guide edges or none" in panel.summary.text() and not dc.texts,
+              panel.summary.text())
+        Gui.Selection.addSelection(doc.Name, lines[1].Name, "Edge1")
+        process_events()
+        check("optional guides: two taken, picking ends",
+              len(panel.guides) == 2 and not panel.guides_pick.isChecked(), str(panel.guides))
+        panel.timer.stop()
+        panel.update_preview()
+        check("optional guides: the net on the diagonals", panel.last_result is not None,
+              panel.summary.text())
+        with DialogCatcher() as dc:
+            ok = panel.accept()
+        process_events()
+        ps = panelizations(doc)
+        check("optional guides: created with two guides", ok and not dc.texts and len(ps) == 1
+              and sum(len(s) for o, s in ps[0].Guides) == 2, f"{dc.texts} {len(ps)}")
+        if ps:
+            p = ps[0]
+            with_guides = p.PanelCount
+            p.ViewObject.Proxy.doubleClicked(p.ViewObject)
+            panel = task_panel.active()
+            panel.guides_pick.setChecked(True)  # picking anew ...
+            panel.guides_pick.setChecked(False)  # ... with none picked
+            with DialogCatcher() as dc:
+                ok = panel.accept()
+            process_events()
+            check("optional guides: cleared in edit mode", ok and not dc.texts
+                  and not p.Guides and p.isValid(), f"{dc.texts} {p.Guides}")
+            iso = tessella.panelize(surf.Shape.Faces[0], method="chebyshev_net", size=1000.0)
+            check("optional guides: the iso-line net again", p.PanelCount == len(iso.panels)
+                  and p.PanelCount != with_guides, f"{p.PanelCount} {len(iso.panels)} {with_guides}")
+    finally:
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+        Gui.Selection.clearSelection()
+        FreeCAD.closeDocument(doc.Name)
+
+
 def test_progress_cancel():
     """A long panelization shows the progress dialog; Cancel leaves nothing behind."""
     import Part
@@ -1132,6 +1214,6 @@ gui_harness.run('Tessella GUI test', (test_workbench, test_command, test_command
     test_command_several_faces, test_command_faces_of_two_objects,
     test_defaults_open_without_errors,
     test_report_line_names_the_object_once, test_preview_keeps_the_gui_turning,
-    test_task_panel_guides,
+    test_task_panel_guides, test_task_panel_optional_guides,
     test_progress_cancel,
     test_preferences_page), 'tessella_gui_test_result.json')
