@@ -485,6 +485,19 @@ def test_task_panel_edit():
             FreeCAD.closeDocument(name)
 
 
+def panelize_dialog_on(doc, obj, sub="Face1"):
+    """Recompute `doc` (no undo steps before), select obj's face and run
+    Tessella_Panelize: its task panel (None if it did not open)."""
+    from freecad_workbench.gui import task_panel
+
+    doc.recompute()
+    doc.clearUndos()
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(doc.Name, obj.Name, sub)
+    Gui.runCommand("Tessella_Panelize")
+    return task_panel.active()
+
+
 def test_task_panel_guides():
     """Guide-line methods: the task panel shows a Guides row; edges are picked
     through an edges-only gate; OK links them (and the echo replays)."""
@@ -497,12 +510,7 @@ def test_task_panel_guides():
         Gui.activateWorkbench("TessellaWorkbench")
         surf = doc.addObject("Part::Feature", "Plate")
         surf.Shape = Part.makePlane(10000, 8000)
-        doc.recompute()
-        doc.clearUndos()
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
-        Gui.runCommand("Tessella_Panelize")
-        panel = task_panel.active()
+        panel = panelize_dialog_on(doc, surf)
         if not check("guides: panel open", panel is not None):
             return
         panel.method.setCurrentIndex(list(tessella.METHODS).index("guide_line_scaling"))
@@ -592,12 +600,7 @@ def test_task_panel_optional_guides():
             line = doc.addObject("Part::Feature", f"Diagonal{k}")
             line.Shape = Part.LineSegment(FreeCAD.Vector(*a, 0), FreeCAD.Vector(*b, 0)).toShape()
             lines.append(line)
-        doc.recompute()
-        doc.clearUndos()
-        Gui.Selection.clearSelection()
-        Gui.Selection.addSelection(doc.Name, surf.Name, "Face1")
-        Gui.runCommand("Tessella_Panelize")
-        panel = task_panel.active()
+        panel = panelize_dialog_on(doc, surf)
         if not check("optional guides: panel open", panel is not None):
             return
         panel.method.setCurrentIndex(list(tessella.METHODS).index("chebyshev_net"))

@@ -150,3 +150,17 @@ def close_node_pairs(nodes, tol):
                         pairs += [(i, j) for i in members
                                   if i < j and np.linalg.norm(nodes[i] - nodes[j]) <= tol]
     return pairs
+
+
+def reopened(doc, path, name):
+    """Save `doc` to `path`, close it, open it again and recompute the object
+    `name` from scratch (touched): (the reopened document, that object)."""
+    import FreeCAD
+
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(path)
+    obj = doc.getObject(name)
+    obj.touch()
+    doc.recompute()
+    return doc, obj

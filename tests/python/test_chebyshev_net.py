@@ -23,7 +23,7 @@ import Part  # noqa: E402
 import numpy as np  # noqa: E402
 
 import freecad_workbench as tessella  # noqa: E402
-from conftest import independent_coverage  # noqa: E402
+from conftest import independent_coverage, reopened  # noqa: E402
 from freecad_workbench import families  # noqa: E402
 from test_families import check_tolerance  # noqa: E402
 
@@ -356,13 +356,8 @@ def test_a_document_net_on_a_face_set_with_guides(tmp_path):
         r = p.Proxy.result(p).result
         assert p.isValid() and r.face_count == 4 and p.PanelCount < len(console.panels)
         assert check_conforming(pieces, r) > 50
-        count, path, name = p.PanelCount, str(tmp_path / "net.FCStd"), p.Name
-        doc.saveAs(path)
-        FreeCAD.closeDocument(doc.Name)
-        doc = FreeCAD.openDocument(path)
-        p = doc.getObject(name)
-        p.touch()
-        doc.recompute()
+        count = p.PanelCount
+        doc, p = reopened(doc, str(tmp_path / "net.FCStd"), p.Name)
         assert p.isValid() and p.PanelCount == count
     finally:
         FreeCAD.closeDocument(doc.Name)

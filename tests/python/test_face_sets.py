@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import freecad_workbench as tessella
-from conftest import close_node_pairs  # noqa: E402
+from conftest import close_node_pairs, reopened  # noqa: E402
 
 V = FreeCAD.Vector
 
@@ -1296,14 +1296,8 @@ def test_faces_of_several_objects_make_one_panelization(shell, tmp_path):
         p.MoreSources = [(b, ["Face1"])]
         doc.recompute()
         assert p.Proxy.result(p).result.face_count == 3 and p.PanelCount < count
-        path = str(tmp_path / "several.FCStd")
-        name, count = p.Name, p.PanelCount
-        doc.saveAs(path)
-        FreeCAD.closeDocument(doc.Name)
-        doc = FreeCAD.openDocument(path)
-        p = doc.getObject(name)
-        p.touch()
-        doc.recompute()
+        count = p.PanelCount
+        doc, p = reopened(doc, str(tmp_path / "several.FCStd"), p.Name)
         assert p.PanelCount == count and p.Proxy.result(p).result.face_count == 3
     finally:
         FreeCAD.closeDocument(doc.Name)
@@ -1334,14 +1328,7 @@ def test_document_face_set_recomputes_saves_and_reopens(shell, tmp_path):
         p.Source = (obj, [])
         doc.recompute()
         assert p.PanelCount > count and p.Proxy.result(p).result.face_count == 4
-        path = str(tmp_path / "faceset.FCStd")
-        name = p.Name
-        doc.saveAs(path)
-        FreeCAD.closeDocument(doc.Name)
-        doc = FreeCAD.openDocument(path)
-        p = doc.getObject(name)
-        p.touch()
-        doc.recompute()
+        doc, p = reopened(doc, str(tmp_path / "faceset.FCStd"), p.Name)
         assert p.isValid() and p.Proxy.result(p).result.face_count == 4
         assert p.PanelCount == len(p.Proxy.result(p).result.panels)
         # The Unfold's curved mode flattens the set's panels, each on its face.
