@@ -50,8 +50,8 @@ class Buckets {
 
  private:
   int index(double x, int axis) const {
-    const double t = (x - lo_[axis]) / size_[axis];
-    return std::clamp(static_cast<int>(std::floor(t * n_)), 0, n_ - 1);
+    const double t = std::floor((x - lo_[axis]) / size_[axis] * n_);
+    return static_cast<int>(std::clamp(t, 0.0, double(n_ - 1)));  // clamped before the cast
   }
   Vec2 lo_, size_;
   int n_ = 1;
