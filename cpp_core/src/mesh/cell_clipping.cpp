@@ -231,12 +231,12 @@ double distance(const IntPoint& a, const IntPoint& b) {
 constexpr double kSnapShare = 1e-3;
 
 // Between a node put into a trim's path (or moved onto one of its points)
-// and the next such node or trim
-// corner, the trim points lying on one of the node's own lattice edges
-// (within its reach) go: there the trim runs along the row, and its points
-// would sit on the cell edge as crossings (nodes a few millimetres apart
-// along a row, on one side of a shared edge only). Trim corners stay, and
-// so do points where the trim leaves the row (a boundary panel's outline).
+// and the next such node or trim corner, the trim points lying on one of
+// the node's own lattice edges (within its reach) go: there the trim runs
+// along the row, and its points would sit on the cell edge as crossings
+// (nodes a few millimetres apart along a row, on one side of a shared edge
+// only). Trim corners stay, and so do points where the trim leaves the row
+// (a boundary panel's outline).
 // node_edges(k): the lattice edges at the node put in at path point k.
 Path without_points_along_rows(
     const Path& path, const std::vector<double>& reach, const PointSet& corner,
