@@ -247,9 +247,12 @@ Path without_points_along_rows(
     if (reach[k] > 0 || corner.count(path[k])) put.push_back(k);
   if (put.size() < 2) return path;
   std::vector<char> drop(n, 0);
+  // Each node's lattice edges, asked once.
+  std::vector<std::vector<std::array<IntPoint, 2>>> edges(n);
+  for (std::size_t k : put)
+    if (reach[k] > 0) edges[k] = node_edges(k);
   auto on_row = [&](const IntPoint& q, std::size_t node_at) {
-    if (reach[node_at] <= 0) return false;
-    for (const auto& e : node_edges(node_at))
+    for (const auto& e : edges[node_at])
       if (segment_distance(q, e[0], e[1], nullptr) <= reach[node_at]) return true;
     return false;
   };

@@ -66,7 +66,8 @@ std::vector<Vec2> path_along_cuts(const SurfaceFace& face, const std::vector<Vec
   std::vector<CutSegment> segs;
   Vec2 lo = path.front(), hi = path.front();
   for (const auto& cut : cuts) {
-    for (std::size_t k = 0; k + 1 < cut.size() + (cut.size() > 2 ? 1 : 0); ++k) {
+    if (cut.size() < 2) continue;
+    for (std::size_t k = 0; k < cut.size(); ++k) {  // closed: the last point joins the first
       const Vec2& a = cut[k];
       const Vec2& b = cut[(k + 1) % cut.size()];
       segs.push_back({a, b - a, face.point(a.x(), a.y()), face.point(b.x(), b.y())});
@@ -80,8 +81,7 @@ std::vector<Vec2> path_along_cuts(const SurfaceFace& face, const std::vector<Vec
 
   // The nearest point of a cut segment running along direction `along`
   // (3D) within the reach of x = S(uv), if any.
-  auto onto_cut = [&](const Vec2& uv, const Vec3& along) -> std::optional<Vec2> {
-    const Vec3 x = face.point(uv.x(), uv.y());
+  auto onto_cut = [&](const Vec2& uv, const Vec3& x, const Vec3& along) -> std::optional<Vec2> {
     const SurfacePoint d = face.derivatives(uv.x(), uv.y());
     // A (u,v) box holding every point within the reach (by the first
     // derivatives, with room for their change across the box).
@@ -102,21 +102,23 @@ std::vector<Vec2> path_along_cuts(const SurfaceFace& face, const std::vector<Vec
   };
 
   // Resampled (points on the path's own (u,v) steps: its shape unchanged).
+  std::vector<Vec3> at(path.size());
+  for (std::size_t k = 0; k < path.size(); ++k) at[k] = face.point(path[k].x(), path[k].y());
   std::vector<Vec2> out{path.front()};
   for (std::size_t k = 1; k < path.size(); ++k) {
     const Vec2 a = path[k - 1], b = path[k];
-    const double length = (face.point(b.x(), b.y()) - face.point(a.x(), a.y())).norm();
+    const double length = (at[k] - at[k - 1]).norm();
     const int pieces = std::max(1, static_cast<int>(std::ceil(length / (kStepShare * size))));
     for (int q = 1; q <= pieces; ++q) out.push_back(a + (b - a) * (double(q) / pieces));
   }
   // Each point moved onto the cut it runs along (directions from the
   // points as given, before any move).
+  std::vector<Vec3> xyz(out.size());
+  for (std::size_t k = 0; k < out.size(); ++k) xyz[k] = face.point(out[k].x(), out[k].y());
   std::vector<Vec2> moved = out;
   for (std::size_t k = 0; k < out.size(); ++k) {
-    const Vec2& prev = out[k > 0 ? k - 1 : 0];
-    const Vec2& next = out[std::min(k + 1, out.size() - 1)];
-    const Vec3 along = face.point(next.x(), next.y()) - face.point(prev.x(), prev.y());
-    if (const std::optional<Vec2> q = onto_cut(out[k], along)) moved[k] = *q;
+    const Vec3 along = xyz[std::min(k + 1, out.size() - 1)] - xyz[k > 0 ? k - 1 : 0];
+    if (const std::optional<Vec2> q = onto_cut(out[k], xyz[k], along)) moved[k] = *q;
   }
   return moved;
 }
