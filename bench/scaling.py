@@ -2,7 +2,8 @@
 with an opening of bench/bench_faces.py) from about 1,000 to about 128,000
 panels, each size in its own process. Prints panels, seconds (the core
 pipeline call on the parsed face, metrics included, best of --repeat), time per
-panel, the metrics' share, and the peak memory of the process (ru_maxrss), then
+panel, the metrics' share, and the peak memory of the process (ru_maxrss; the
+doubling sizes and 10,000 and 100,000 panels), then
 the exponents fitted to time ~ panels^k and to the memory above the process's
 footprint before the call.
 
@@ -73,6 +74,8 @@ def main(argv=None):
     while n <= args.max:
         targets.append(n)
         n *= 2
+    # The issue's own sizes for the peak memory: 10,000 and 100,000 panels.
+    targets = sorted(set(targets) | {t for t in (10000, 100000) if args.min <= t <= args.max})
     rows = []
     print(f"{'panels':>8}{'seconds':>10}{'us/panel':>10}{'metrics':>9}{'threads':>8}"
           f"{'global':>8}{'peak MB':>9}{'+MB':>8}", flush=True)

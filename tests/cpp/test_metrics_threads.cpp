@@ -21,6 +21,7 @@
 #include <functional>
 #include <gp_Ax2d.hxx>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -174,32 +175,72 @@ TEST(MetricsThreads, AFailingTaskOfATreeReachesTheCallerAndStopsTheOthers) {
 }
 
 TEST(MetricsThreads, TheGridIsCutIdenticallyOnOneAndTwoThreads) {
-  // clip_grid cuts the parts of its halving as tasks on every thread.
-  for (const char* name : {"trimmed_bspline_holes", "vault_openings"}) {
-    SCOPED_TRACE(name);
-    const auto face = example(name);
-    IsoGridParams g;
-    g.u_count = 41;
-    g.v_count = 37;
-    PanelMesh a, b;
-    {
-      const ThreadBudget budget(1);
-      a = iso_grid(*face, g);
+  // clip_grid cuts the parts of its halving as tasks on every thread, and
+  // in an evaluation scope (as panelize runs it) snaps the crossings onto
+  // the trim curves on every thread too.
+  for (const bool scoped : {false, true})
+    for (const char* name : {"trimmed_bspline_holes", "vault_openings"}) {
+      SCOPED_TRACE(name);
+      SCOPED_TRACE(scoped ? "in a scope" : "no scope");
+      const auto face = example(name);
+      std::optional<SurfaceFace::FastEvaluation> fast;
+      if (scoped) fast.emplace(*face);
+      IsoGridParams g;
+      g.u_count = 41;
+      g.v_count = 37;
+      PanelMesh a, b;
+      {
+        const ThreadBudget budget(1);
+        a = iso_grid(*face, g);
+      }
+      {
+        const ThreadBudget budget(2);
+        b = iso_grid(*face, g);
+      }
+      ASSERT_GT(a.panels.size(), 500u);
+      EXPECT_EQ(a.panels, b.panels);
+      ASSERT_EQ(a.uv.size(), b.uv.size());
+      for (std::size_t v = 0; v < a.uv.size(); ++v) {
+        ASSERT_EQ(a.uv[v], b.uv[v]);
+        ASSERT_EQ(a.xyz[v], b.xyz[v]);
+      }
+      EXPECT_EQ(a.is_node, b.is_node);
+      EXPECT_EQ(a.rods, b.rods);
     }
-    {
-      const ThreadBudget budget(2);
-      b = iso_grid(*face, g);
-    }
-    ASSERT_GT(a.panels.size(), 500u);
-    EXPECT_EQ(a.panels, b.panels);
-    ASSERT_EQ(a.uv.size(), b.uv.size());
-    for (std::size_t v = 0; v < a.uv.size(); ++v) {
-      ASSERT_EQ(a.uv[v], b.uv[v]);
-      ASSERT_EQ(a.xyz[v], b.xyz[v]);
-    }
-    EXPECT_EQ(a.is_node, b.is_node);
-    EXPECT_EQ(a.rods, b.rods);
-  }
+}
+
+// snap_to_trim on several threads at once (each call takes a set of the
+// trim's projections of its own): every answer is the one a single thread
+// gives, bit for bit, whatever thread asked and in whatever order.
+TEST(MetricsThreads, TrimSnapsOnSeveralThreadsAtOnceAnswerAsOne) {
+  const auto face = example("trimmed_bspline_holes");
+  const std::vector<TrimLoop> loops = face->trim_loops(0.0002 * face->model_size());
+  ASSERT_GE(loops.size(), 2u);
+  // Chord midpoints of every loop (off the true trims by up to the deflection).
+  std::vector<std::pair<int, Vec2>> asks;
+  for (std::size_t k = 0; k < loops.size(); ++k)
+    for (std::size_t i = 0; i < loops[k].uv.size(); ++i)
+      asks.push_back({int(k), 0.5 * (loops[k].uv[i] + loops[k].uv[(i + 1) % loops[k].uv.size()])});
+  ASSERT_GT(asks.size(), 100u);
+  std::vector<Vec2> one;
+  for (const auto& [loop, uv] : asks) one.push_back(face->snap_to_trim(loop, uv));
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < asks.size(); ++i) moved += one[i] != asks[i].second ? 1 : 0;
+  EXPECT_GT(moved, asks.size() / 2);  // the chords' midpoints went onto the curves
+  constexpr int kThreads = 4;
+  std::vector<std::vector<Vec2>> got(kThreads, std::vector<Vec2>(asks.size()));
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] {
+      // Each thread in its own order: t-th of every kThreads first, and so on.
+      for (std::size_t r = 0; r < asks.size(); ++r) {
+        const std::size_t i = (r * 7 + std::size_t(t) * 13) % asks.size();
+        got[t][i] = face->snap_to_trim(asks[i].first, asks[i].second);
+      }
+    });
+  for (std::thread& th : threads) th.join();
+  for (int t = 0; t < kThreads; ++t)
+    for (std::size_t i = 0; i < asks.size(); ++i) ASSERT_EQ(got[t][i], one[i]) << t << " " << i;
 }
 
 // A doubly curved bump of few spans (its curvature bounds come from spans

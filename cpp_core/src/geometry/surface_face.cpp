@@ -106,12 +106,32 @@ struct SurfaceFace::Impl {
   mutable std::once_flag curvature_once;
   mutable std::unique_ptr<SecondDerivativeBounds> curvature;
   mutable std::unique_ptr<SurfaceSampleGrid> sample_grid;
-  // snap_to_trim's projections, per wire (explorer order) and edge, built
-  // on first use and shared under the mutex.
   mutable std::mutex trim_mutex;
   // trim_loops' (u,v) loops (no points in space) by deflection, under trim_mutex.
   mutable std::map<double, std::vector<TrimLoop>> trim_loops_uv;
-  mutable std::vector<std::vector<std::unique_ptr<PcurveProjection>>> trim_projections;
+  // snap_to_trim's projections, per wire (explorer order) and edge. OCCT's
+  // extrema are not thread-safe, so a set serves one call at a time: a call
+  // takes one from the pool (under trim_mutex) or builds one, projects
+  // without the lock and gives it back. Calls on several threads project at
+  // once (the crossings' snap was a serial tenth of a trimmed dome's
+  // panelize), and every set answers as any other (each call's extrema
+  // start afresh).
+  using TrimProjections = std::vector<std::vector<std::unique_ptr<PcurveProjection>>>;
+  mutable std::vector<std::unique_ptr<TrimProjections>> trim_projection_pool;
+  std::unique_ptr<TrimProjections> new_trim_projections() const {
+    auto set = std::make_unique<TrimProjections>();
+    for (TopExp_Explorer wx(face, TopAbs_WIRE); wx.More(); wx.Next()) {
+      set->emplace_back();
+      for (TopExp_Explorer ex(wx.Current(), TopAbs_EDGE); ex.More(); ex.Next()) {
+        double first = 0, last = 0;
+        const Handle(Geom2d_Curve) c =
+            BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), face, first, last);
+        if (c.IsNull()) continue;
+        set->back().push_back(std::make_unique<PcurveProjection>(c, first, last));
+      }
+    }
+    return set;
+  }
   // Counts n evaluations into the scope o (scope()'s answer: looked up once
   // by the caller, a thread-local read in a shared library being a call).
   void count(Objects* o, std::uint64_t n = 1) const {
@@ -350,36 +370,34 @@ bool SurfaceFace::is_inside(double u, double v) const {
 
 Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
   const Impl& s = *impl_;
-  const std::lock_guard<std::mutex> lock(s.trim_mutex);
-  if (s.trim_projections.empty()) {
-    for (TopExp_Explorer wx(s.face, TopAbs_WIRE); wx.More(); wx.Next()) {
-      s.trim_projections.emplace_back();
-      for (TopExp_Explorer ex(wx.Current(), TopAbs_EDGE); ex.More(); ex.Next()) {
-        double first = 0, last = 0;
-        const Handle(Geom2d_Curve) c =
-            BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), s.face, first, last);
-        if (c.IsNull()) continue;
-        s.trim_projections.back().push_back(std::make_unique<PcurveProjection>(c, first, last));
-      }
+  int wire = 0;
+  std::unique_ptr<Impl::TrimProjections> set;
+  {
+    const std::lock_guard<std::mutex> lock(s.trim_mutex);
+    // `loop` counts in trim_loops' order (the outer loop first, then the
+    // holes, degenerate wires left out), not the B-rep's: a face whose outer
+    // wire is not its first (an annulus of a STEP part, its hole listed
+    // first) snapped the grid's crossings with the outer circle onto the hole
+    // and left 0.4-1.8% of the face uncovered. The loops' wires are the same
+    // at any deflection.
+    if (s.trim_loops_uv.empty()) {
+      const std::vector<TrimLoop> loops = trim_loops_uv(1e-3 * s.model_size);
+      s.trim_loops_uv.emplace(1e-3 * s.model_size, loops);
+    }
+    const std::vector<TrimLoop>& loops = s.trim_loops_uv.begin()->second;
+    require_in_range("trim loop index", loop, 0, static_cast<int>(loops.size()) - 1);
+    wire = loops[static_cast<std::size_t>(loop)].wire;
+    if (!s.trim_projection_pool.empty()) {
+      set = std::move(s.trim_projection_pool.back());
+      s.trim_projection_pool.pop_back();
     }
   }
-  // `loop` counts in trim_loops' order (the outer loop first, then the holes,
-  // degenerate wires left out), not the B-rep's: a face whose outer wire is
-  // not its first (an annulus of a STEP part, its hole listed first) snapped
-  // the grid's crossings with the outer circle onto the hole and left 0.4-1.8%
-  // of the face uncovered. The loops' wires are the same at any deflection.
-  if (s.trim_loops_uv.empty()) {
-    const std::vector<TrimLoop> loops = trim_loops_uv(1e-3 * s.model_size);
-    s.trim_loops_uv.emplace(1e-3 * s.model_size, loops);
-  }
-  const std::vector<TrimLoop>& loops = s.trim_loops_uv.begin()->second;
-  require_in_range("trim loop index", loop, 0, static_cast<int>(loops.size()) - 1);
-  const int wire = loops[static_cast<std::size_t>(loop)].wire;
+  if (!set) set = s.new_trim_projections();
   Vec2 best = uv;
   double best_d = std::numeric_limits<double>::infinity();
   const gp_Pnt2d p(uv.x(), uv.y());
   std::vector<gp_Pnt2d> candidates;
-  for (const auto& edge : s.trim_projections[static_cast<std::size_t>(wire)]) {
+  for (const auto& edge : (*set)[static_cast<std::size_t>(wire)]) {
     // An edge whose every point is farther than the nearest candidate so
     // far cannot change the answer (its candidates are never strictly
     // nearer): not projected (a loop of many edges projected each crossing
@@ -391,6 +409,8 @@ Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
       if (d < best_d) best_d = d, best = Vec2(q.X(), q.Y());
     }
   }
+  const std::lock_guard<std::mutex> lock(s.trim_mutex);
+  s.trim_projection_pool.push_back(std::move(set));
   return best;
 }
 
