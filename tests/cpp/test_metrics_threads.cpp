@@ -26,11 +26,13 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "common/parallel_chunks.h"
 #include "common/task_tree.h"
+#include "mesh/boundary_pieces.h"
 #include "tessella/grid_methods.h"
 #include "tessella/panel_metrics.h"
 #include "tessella/panelize.h"
@@ -207,6 +209,49 @@ TEST(MetricsThreads, TheGridIsCutIdenticallyOnOneAndTwoThreads) {
       EXPECT_EQ(a.is_node, b.is_node);
       EXPECT_EQ(a.rods, b.rods);
     }
+}
+
+// The boundary pieces are modelled panel by panel on every thread (in an
+// evaluation scope, as panelize runs the stage): the same mesh, bend lines,
+// new nodes and report as on one thread, with an allowance that makes the
+// stage refine and split.
+TEST(MetricsThreads, BoundaryPiecesAreModelledIdenticallyOnOneAndTwoThreads) {
+  for (const char* name : {"trimmed_bspline_holes", "vault_openings"}) {
+    SCOPED_TRACE(name);
+    const auto face = example(name);
+    const SurfaceFace::FastEvaluation fast(*face);
+    IsoGridParams g;
+    g.u_count = 23;
+    g.v_count = 19;
+    const PanelMesh mesh = iso_grid(*face, g);
+    BoundaryPiecesParams bp;
+    bp.max_deviation = 2e-4 * face->model_size();
+    PanelMesh a = mesh, b = mesh;
+    BoundaryPiecesReport ra, rb;
+    {
+      const ThreadBudget budget(1);
+      ra = model_boundary_pieces(*face, a, bp);
+    }
+    {
+      const ThreadBudget budget(2);
+      rb = model_boundary_pieces(*face, b, bp);
+    }
+    EXPECT_GT(ra.modelled, 20);
+    EXPECT_GT(ra.refined, 0);
+    EXPECT_EQ(a.panels, b.panels);
+    EXPECT_EQ(a.xyz, b.xyz);
+    EXPECT_EQ(a.is_node, b.is_node);
+    EXPECT_EQ(a.bends, b.bends);
+    EXPECT_EQ(a.rods, b.rods);
+    EXPECT_EQ(ra.origin, rb.origin);
+    EXPECT_EQ(ra.changed, rb.changed);
+    EXPECT_EQ(std::make_tuple(ra.modelled, ra.bends, ra.split, ra.refined),
+              std::make_tuple(rb.modelled, rb.bends, rb.split, rb.refined));
+    // The trim points moved onto their pieces' planes: the stage did its work.
+    std::size_t moved = 0;
+    for (std::size_t v = 0; v < mesh.xyz.size(); ++v) moved += a.xyz[v] != mesh.xyz[v] ? 1 : 0;
+    EXPECT_GT(moved, 20u);
+  }
 }
 
 // snap_to_trim on several threads at once (each call takes a set of the

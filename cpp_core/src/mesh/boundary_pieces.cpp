@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <tuple>
 #include <utility>
 
+#include "common/parallel_chunks.h"
 #include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
@@ -128,9 +130,13 @@ Plane fit_plane(const std::vector<Vec3>& points, const std::vector<Vec3>& fixed)
 
 class PieceModeller {
  public:
+  // `original`: the vertex positions on the surface before the stage (the
+  // modellers of one stage share them). A modeller's panels, counts and
+  // report go to its own lists; it writes the mesh only where its panels'
+  // own trim points move or become nodes (see model_boundary_pieces).
   PieceModeller(const SurfaceFace& face, PanelMesh& mesh, const BoundaryPiecesParams& params,
-                BoundaryPiecesReport& report)
-      : face_(face), mesh_(mesh), params_(params), report_(report), original_(mesh.xyz) {}
+                BoundaryPiecesReport& report, const std::vector<Vec3>& original)
+      : face_(face), mesh_(mesh), params_(params), report_(report), original_(original) {}
 
   // Models one draft; appends the resulting panel(s) to the output lists.
   void model(Draft draft, int origin) {
@@ -266,8 +272,11 @@ class PieceModeller {
 
   void finish(Draft draft, std::vector<Diagonal> bends, const std::vector<Vec3>& placed,
               int origin) {
+    // Nodes stay where they are (placed there already): only the panel's own
+    // trim points are written (a node is shared with other panels, whose
+    // modellers may run on other threads).
     for (std::size_t c = 0; c < draft.vertices.size(); ++c)
-      mesh_.xyz[draft.vertices[c]] = placed[c];
+      if (!is_node(mesh_, draft.vertices[c])) mesh_.xyz[draft.vertices[c]] = placed[c];
     report_.bends += static_cast<int>(bends.size());
     ++report_.modelled;
     emit(std::move(draft), std::move(bends), origin, true);
@@ -467,7 +476,7 @@ class PieceModeller {
   PanelMesh& mesh_;
   const BoundaryPiecesParams& params_;
   BoundaryPiecesReport& report_;
-  const std::vector<Vec3> original_;  // vertex positions on the surface, before any move
+  const std::vector<Vec3>& original_;  // vertex positions on the surface, before any move
   bool rods_changed_ = false;
 };
 
@@ -489,22 +498,70 @@ BoundaryPiecesReport model_boundary_pieces(const SurfaceFace& face, PanelMesh& m
   for (std::size_t v = 0; v < uses.size(); ++v)
     if (!mesh.is_node[v] && uses[v] > 1) shared_point[v] = mesh.is_node[v] = 1;
 
-  PieceModeller modeller(face, mesh, params, report);
-  for (std::size_t k = 0; k < mesh.panels.size(); ++k) {
-    Draft draft{mesh.panels[k], panel_corner_uv(mesh, k)};
-    if (modelled_as_pieces(mesh, k))
-      modeller.model(std::move(draft), static_cast<int>(k));
-    else
-      modeller.keep(std::move(draft), static_cast<int>(k));
+  // Each panel is modelled on its own: its trim points are its alone (a
+  // shared one is a node here), so what a modeller writes to the mesh (its
+  // trim points' positions, the ones it makes nodes) no other panel reads,
+  // and the nodes it reads no modeller changes. The panels go to every
+  // worker (the stage was a serial tenth of a trimmed face's panelize on
+  // two threads), each in its own evaluation scope as the metrics' workers
+  // (the same projections); their panels, counts and reports are joined in
+  // panel order, as one modeller would have made them. Without a scope here
+  // the caller evaluates with OCCT: one thread.
+  const std::vector<Vec3> original = mesh.xyz;
+  const std::size_t np = mesh.panels.size();
+  struct Modelled {
+    BoundaryPiecesReport report;
+    std::vector<std::vector<int>> panels;
+    std::vector<std::vector<Vec2>> corner_uv;
+    std::vector<std::vector<Diagonal>> bends;
+    bool rods_changed = false;
+  };
+  std::vector<Modelled> by_panel(np);
+  const bool scoped = SurfaceFace::FastEvaluation::active(face);
+  ChunkQueue queue(np, 8);
+  run_chunks(queue, scoped ? worker_threads() : 1, [&](bool calling) {
+    std::optional<SurfaceFace::FastEvaluation> fast;
+    if (!calling) fast.emplace(face, true);
+    std::size_t begin = 0, end = 0;
+    while (queue.next(begin, end))
+      for (std::size_t k = begin; k < end; ++k) {
+        Modelled& out = by_panel[k];
+        PieceModeller modeller(face, mesh, params, out.report, original);
+        Draft draft{mesh.panels[k], panel_corner_uv(mesh, k)};
+        if (modelled_as_pieces(mesh, k))
+          modeller.model(std::move(draft), static_cast<int>(k));
+        else
+          modeller.keep(std::move(draft), static_cast<int>(k));
+        out.panels = std::move(modeller.panels);
+        out.corner_uv = std::move(modeller.corner_uv);
+        out.bends = std::move(modeller.bends);
+        out.rods_changed = modeller.rods_changed();
+      }
+  });
+  std::vector<std::vector<int>> panels;
+  std::vector<std::vector<Vec2>> corner_uv;
+  std::vector<std::vector<Diagonal>> bends;
+  bool rods_changed = false;
+  for (Modelled& m : by_panel) {
+    for (auto& p : m.panels) panels.push_back(std::move(p));
+    for (auto& c : m.corner_uv) corner_uv.push_back(std::move(c));
+    for (auto& b : m.bends) bends.push_back(std::move(b));
+    report.origin.insert(report.origin.end(), m.report.origin.begin(), m.report.origin.end());
+    report.changed.insert(report.changed.end(), m.report.changed.begin(), m.report.changed.end());
+    report.modelled += m.report.modelled;
+    report.bends += m.report.bends;
+    report.split += m.report.split;
+    report.refined += m.report.refined;
+    rods_changed = rods_changed || m.rods_changed;
   }
   for (std::size_t v = 0; v < shared_point.size(); ++v)
     if (shared_point[v]) mesh.is_node[v] = 0;
 
   const bool had_corner_uv = !mesh.corner_uv.empty();
-  mesh.panels = std::move(modeller.panels);
-  mesh.bends = std::move(modeller.bends);
-  if (had_corner_uv) mesh.corner_uv = std::move(modeller.corner_uv);
-  if (modeller.rods_changed()) build_rods(mesh);
+  mesh.panels = std::move(panels);
+  mesh.bends = std::move(bends);
+  if (had_corner_uv) mesh.corner_uv = std::move(corner_uv);
+  if (rods_changed) build_rods(mesh);
   return report;
 }
 
