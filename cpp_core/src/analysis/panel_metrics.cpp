@@ -1444,6 +1444,13 @@ PanelMetrics remeasure_panels(const SurfaceFace& face, const PanelMesh& mesh,
   std::vector<std::size_t> todo;
   for (std::size_t k = 0; k < np; ++k)
     if (changed[k]) todo.push_back(k);
+  // The panels of most outline points first (a boundary panel's cost grows
+  // with its pieces; in panel order the heaviest came last and one thread
+  // measured them while the other waited). Each panel's figures are its own,
+  // whatever the order and the thread.
+  std::stable_sort(todo.begin(), todo.end(), [&](std::size_t a, std::size_t b) {
+    return mesh.panels[a].size() > mesh.panels[b].size();
+  });
   for_each_panel(face, todo.size(), params.threads, false, [&](std::size_t i) {
     measure_panel(face, mesh, todo[i], params.samples, m, todo[i]);
   });
