@@ -263,18 +263,36 @@ class Merger {
 
   // ---- boundary ---------------------------------------------------------
   void find_boundary() {
-    std::map<Edge, int> directed;
+    // Every directed panel side with the last panel that has it, in edge
+    // order: a sorted array, not a map of ~4 entries a panel (the map was
+    // most of the merge's set-up).
+    std::vector<std::pair<Edge, int>> directed;
     for (std::size_t p = 0; p < m_.panels.size(); ++p) {
       const auto& poly = m_.panels[p];
       for (std::size_t k = 0; k < poly.size(); ++k)
-        directed[{poly[k], poly[(k + 1) % poly.size()]}] = static_cast<int>(p);
+        directed.push_back({{poly[k], poly[(k + 1) % poly.size()]}, static_cast<int>(p)});
     }
+    // Equal edges keep their order (panels ascending), so the last is the
+    // one a map assigned last.
+    std::stable_sort(directed.begin(), directed.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < directed.size(); ++i) {
+      if (i + 1 < directed.size() && directed[i + 1].first == directed[i].first) continue;
+      directed[kept++] = directed[i];
+    }
+    directed.resize(kept);
+    auto has = [&](const Edge& e) {
+      const auto it = std::lower_bound(directed.begin(), directed.end(), e,
+                                       [](const auto& x, const Edge& y) { return x.first < y; });
+      return it != directed.end() && it->first == e;
+    };
     const std::size_t nv = m_.vertex_count();
     next_.assign(nv, -1);
     prev_.assign(nv, -1);
     fixed_.assign(nv, 0);
     for (const auto& [e, p] : directed) {
-      if (directed.count({e.second, e.first})) continue;
+      if (has({e.second, e.first})) continue;
       owner_[e] = p;
       next_[e.first] = next_[e.first] == -1 ? e.second : -2;
       prev_[e.second] = prev_[e.second] == -1 ? e.first : -2;
