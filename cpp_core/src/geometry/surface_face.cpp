@@ -111,11 +111,12 @@ struct SurfaceFace::Impl {
   mutable std::map<double, std::vector<TrimLoop>> trim_loops_uv;
   // snap_to_trim's projections, per wire (explorer order) and edge. OCCT's
   // extrema are not thread-safe, so a set serves one call at a time: a call
-  // takes one from the pool (under trim_mutex) or builds one, projects
-  // without the lock and gives it back. Calls on several threads project at
-  // once (the crossings' snap was a serial tenth of a trimmed dome's
-  // panelize), and every set answers as any other (each call's extrema
-  // start afresh).
+  // takes one from the pool or builds one (under trim_mutex), projects
+  // without the lock and gives it back. Each set projects onto copies of
+  // the pcurves of its own (no OCCT object shared between threads). Calls
+  // on several threads project at once (the crossings' snap was a serial
+  // tenth of a trimmed dome's panelize), and every set answers as any other
+  // (the same curves; each call's extrema start afresh).
   using TrimProjections = std::vector<std::vector<std::unique_ptr<PcurveProjection>>>;
   mutable std::vector<std::unique_ptr<TrimProjections>> trim_projection_pool;
   std::unique_ptr<TrimProjections> new_trim_projections() const {
@@ -127,7 +128,8 @@ struct SurfaceFace::Impl {
         const Handle(Geom2d_Curve) c =
             BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), face, first, last);
         if (c.IsNull()) continue;
-        set->back().push_back(std::make_unique<PcurveProjection>(c, first, last));
+        const Handle(Geom2d_Curve) own = Handle(Geom2d_Curve)::DownCast(c->Copy());
+        set->back().push_back(std::make_unique<PcurveProjection>(own, first, last));
       }
     }
     return set;
@@ -387,12 +389,13 @@ Vec2 SurfaceFace::snap_to_trim(int loop, const Vec2& uv) const {
     const std::vector<TrimLoop>& loops = s.trim_loops_uv.begin()->second;
     require_in_range("trim loop index", loop, 0, static_cast<int>(loops.size()) - 1);
     wire = loops[static_cast<std::size_t>(loop)].wire;
-    if (!s.trim_projection_pool.empty()) {
+    if (s.trim_projection_pool.empty()) {
+      set = s.new_trim_projections();
+    } else {
       set = std::move(s.trim_projection_pool.back());
       s.trim_projection_pool.pop_back();
     }
   }
-  if (!set) set = s.new_trim_projections();
   Vec2 best = uv;
   double best_d = std::numeric_limits<double>::infinity();
   const gp_Pnt2d p(uv.x(), uv.y());
