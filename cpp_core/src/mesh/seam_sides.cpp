@@ -284,7 +284,7 @@ bool closed_on_itself(const SurfaceFace& face, int axis) {
   const double lo = axis == 0 ? b.u_min : b.v_min, hi = axis == 0 ? b.u_max : b.v_max;
   const double a0 = axis == 0 ? b.v_min : b.u_min, a1 = axis == 0 ? b.v_max : b.u_max;
   double seam_length = 0;
-  Vec3 previous;
+  Vec3 previous = Vec3::Zero();  // (read from the second point on)
   for (int i = 0; i <= n; ++i) {
     const double t = a0 + (a1 - a0) * i / n;
     const Vec3 side = at(lo, t);
