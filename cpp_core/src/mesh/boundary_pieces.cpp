@@ -4,11 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <tuple>
 #include <utility>
 
-#include "common/parallel_chunks.h"
+#include "geometry/parallel_in_scopes.h"
 #include "mesh/panel_model.h"
 #include "tessella/errors.h"
 #include "tessella/surface_face.h"
@@ -218,7 +217,6 @@ class PieceModeller {
         }
         mesh_.is_node[draft.vertices[spaced >= 0 ? spaced : worst]] = 1;
         ++report_.refined;
-        rods_changed_ = true;
         continue;
       }
       finish(std::move(draft), std::move(bends), placed, origin);
@@ -231,7 +229,6 @@ class PieceModeller {
   // left on the surface, triangulated in (u,v), as before this stage.
   void keep(Draft draft, int origin) { emit(std::move(draft), {}, origin, false); }
 
-  bool rods_changed() const { return rods_changed_; }
   std::vector<std::vector<int>> panels;
   std::vector<std::vector<Vec2>> corner_uv;
   std::vector<std::vector<Diagonal>> bends;
@@ -331,7 +328,6 @@ class PieceModeller {
     if (best_len == 0) return false;
     mesh_.is_node[draft.vertices[(first_node + best_start + best_len / 2) % n]] = 1;
     ++report_.refined;
-    rods_changed_ = true;
     return true;
   }
 
@@ -384,7 +380,6 @@ class PieceModeller {
     }
     if (best_i < 0) return false;
     ++report_.split;
-    rods_changed_ = true;
     for (const std::vector<int>& part :
          split_polygon(int(draft.vertices.size()), {{best_i, best_j}})) {
       Draft sub;
@@ -477,7 +472,6 @@ class PieceModeller {
   const BoundaryPiecesParams& params_;
   BoundaryPiecesReport& report_;
   const std::vector<Vec3>& original_;  // vertex positions on the surface, before any move
-  bool rods_changed_ = false;
 };
 
 }  // namespace
@@ -503,45 +497,31 @@ BoundaryPiecesReport model_boundary_pieces(const SurfaceFace& face, PanelMesh& m
   // trim points' positions, the ones it makes nodes) no other panel reads,
   // and the nodes it reads no modeller changes. The panels go to every
   // worker (the stage was a serial tenth of a trimmed face's panelize on
-  // two threads), each in its own evaluation scope as the metrics' workers
-  // (the same projections); their panels, counts and reports are joined in
-  // panel order, as one modeller would have made them. Without a scope here
-  // the caller evaluates with OCCT: one thread.
+  // two threads); their panels, counts and reports are joined in panel
+  // order, as one modeller would have made them.
   const std::vector<Vec3> original = mesh.xyz;
-  const std::size_t np = mesh.panels.size();
   struct Modelled {
     BoundaryPiecesReport report;
     std::vector<std::vector<int>> panels;
     std::vector<std::vector<Vec2>> corner_uv;
     std::vector<std::vector<Diagonal>> bends;
-    bool rods_changed = false;
   };
-  std::vector<Modelled> by_panel(np);
-  const bool scoped = SurfaceFace::FastEvaluation::active(face);
-  ChunkQueue queue(np, 8);
-  run_chunks(queue, scoped ? worker_threads() : 1, [&](bool calling) {
-    std::optional<SurfaceFace::FastEvaluation> fast;
-    if (!calling) fast.emplace(face, true);
-    std::size_t begin = 0, end = 0;
-    while (queue.next(begin, end))
-      for (std::size_t k = begin; k < end; ++k) {
-        Modelled& out = by_panel[k];
-        PieceModeller modeller(face, mesh, params, out.report, original);
-        Draft draft{mesh.panels[k], panel_corner_uv(mesh, k)};
-        if (modelled_as_pieces(mesh, k))
-          modeller.model(std::move(draft), static_cast<int>(k));
-        else
-          modeller.keep(std::move(draft), static_cast<int>(k));
-        out.panels = std::move(modeller.panels);
-        out.corner_uv = std::move(modeller.corner_uv);
-        out.bends = std::move(modeller.bends);
-        out.rods_changed = modeller.rods_changed();
-      }
+  std::vector<Modelled> by_panel(mesh.panels.size());
+  for_each_in_scopes(face, by_panel.size(), 8, [&](std::size_t k) {
+    Modelled& out = by_panel[k];
+    PieceModeller modeller(face, mesh, params, out.report, original);
+    Draft draft{mesh.panels[k], panel_corner_uv(mesh, k)};
+    if (modelled_as_pieces(mesh, k))
+      modeller.model(std::move(draft), static_cast<int>(k));
+    else
+      modeller.keep(std::move(draft), static_cast<int>(k));
+    out.panels = std::move(modeller.panels);
+    out.corner_uv = std::move(modeller.corner_uv);
+    out.bends = std::move(modeller.bends);
   });
   std::vector<std::vector<int>> panels;
   std::vector<std::vector<Vec2>> corner_uv;
   std::vector<std::vector<Diagonal>> bends;
-  bool rods_changed = false;
   for (Modelled& m : by_panel) {
     for (auto& p : m.panels) panels.push_back(std::move(p));
     for (auto& c : m.corner_uv) corner_uv.push_back(std::move(c));
@@ -552,7 +532,6 @@ BoundaryPiecesReport model_boundary_pieces(const SurfaceFace& face, PanelMesh& m
     report.bends += m.report.bends;
     report.split += m.report.split;
     report.refined += m.report.refined;
-    rods_changed = rods_changed || m.rods_changed;
   }
   for (std::size_t v = 0; v < shared_point.size(); ++v)
     if (shared_point[v]) mesh.is_node[v] = 0;
@@ -561,7 +540,8 @@ BoundaryPiecesReport model_boundary_pieces(const SurfaceFace& face, PanelMesh& m
   mesh.panels = std::move(panels);
   mesh.bends = std::move(bends);
   if (had_corner_uv) mesh.corner_uv = std::move(corner_uv);
-  if (rods_changed) build_rods(mesh);
+  // A split or a new node made new rods.
+  if (report.split > 0 || report.refined > 0) build_rods(mesh);
   return report;
 }
 

@@ -22,12 +22,12 @@
 #include <functional>
 #include <limits>
 #include <map>
-#include <optional>
 #include <unordered_map>
 #include <utility>
 
 #include "common/parallel_chunks.h"
 #include "common/task_tree.h"
+#include "geometry/parallel_in_scopes.h"
 #include "geometry/segment_closest.h"
 #include "geometry/trim_deflection.h"
 #include "mesh/clip_to_box.h"
@@ -613,26 +613,16 @@ PanelMesh clip_grid(const SurfaceFace& face, const std::vector<double>& u_lines,
     if (!grid_node && !exact_uv.count(p)) off_grid.push_back(v);
   }
   // Each crossing snaps on its own (OCCT's extrema on the trim's pcurves, a
-  // tenth of a trimmed dome's panelize when it ran on one thread), so on
-  // every worker, each in its own evaluation scope: the scopes' span
-  // polynomials give the same points as the caller's. Without a scope here
-  // (a method called alone) the caller evaluates with OCCT: one thread.
-  const bool scoped = SurfaceFace::FastEvaluation::active(face);
-  ChunkQueue snaps(off_grid.size(), 16);
-  run_chunks(snaps, scoped ? threads : 1, [&](bool calling) {
-    std::optional<SurfaceFace::FastEvaluation> fast;
-    if (!calling) fast.emplace(face, true);
-    std::size_t begin = 0, end = 0;
-    while (snaps.next(begin, end))
-      for (std::size_t k = begin; k < end; ++k) {
-        const std::size_t v = off_grid[k];
-        const Vec2 q = mesh.uv[v];
-        const int best_loop = trim_segments.nearest_loop((q - origin).cwiseProduct(scale));
-        if (best_loop < 0) continue;
-        const Vec2 snapped = face.snap_to_trim(best_loop, q);
-        mesh.uv[v] = snapped;
-        mesh.xyz[v] = face.point(snapped.x(), snapped.y());
-      }
+  // tenth of a trimmed dome's panelize when it ran on one thread): on every
+  // worker.
+  for_each_in_scopes(face, off_grid.size(), 16, [&](std::size_t k) {
+    const std::size_t v = off_grid[k];
+    const Vec2 q = mesh.uv[v];
+    const int best_loop = trim_segments.nearest_loop((q - origin).cwiseProduct(scale));
+    if (best_loop < 0) return;
+    const Vec2 snapped = face.snap_to_trim(best_loop, q);
+    mesh.uv[v] = snapped;
+    mesh.xyz[v] = face.point(snapped.x(), snapped.y());
   });
 
   // Nodes (rod ends): grid nodes and grid/trim crossings (on a grid line),

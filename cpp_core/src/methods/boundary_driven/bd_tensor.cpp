@@ -1,9 +1,8 @@
 #include "methods/boundary_driven/bd_tensor.h"
 
 #include <cmath>
-#include <optional>
 
-#include "common/parallel_chunks.h"
+#include "geometry/parallel_in_scopes.h"
 #include "mesh/seam_sides.h"
 #include "tessella/errors.h"
 
@@ -122,21 +121,12 @@ BdTensorGrid sample_bd_tensor(const BdTensor& tensor, const SurfaceFace& face, i
   g.step = Vec2((b.u_max - b.u_min) / (nu - 1), (b.v_max - b.v_min) / (nv - 1));
   g.c4s4.resize(static_cast<std::size_t>(nu) * nv);
   // Rows on every core (each grid point costs a pass over all boundary
-  // samples). Only inside a span-cached scope: the other threads evaluate
-  // through scopes of their own, the same numbers bit for bit; without one
-  // the calling thread would evaluate otherwise than they do.
-  const int threads = SurfaceFace::FastEvaluation::active(face) ? worker_threads() : 1;
-  ChunkQueue rows(static_cast<std::size_t>(nu), 4);
-  run_chunks(rows, threads, [&](bool calling) {
-    std::optional<SurfaceFace::FastEvaluation> fast;
-    if (!calling) fast.emplace(face, true);
-    std::size_t begin = 0, end = 0;
-    while (rows.next(begin, end))
-      for (std::size_t i = begin; i < end; ++i)
-        for (int j = 0; j < nv; ++j) {
-          const Vec2 uv = g.lo + Vec2(static_cast<int>(i) * g.step.x(), j * g.step.y());
-          g.c4s4[i * nv + j] = idw_c4s4(tensor, frame_at(face, uv));
-        }
+  // samples).
+  for_each_in_scopes(face, static_cast<std::size_t>(nu), 4, [&](std::size_t i) {
+    for (int j = 0; j < nv; ++j) {
+      const Vec2 uv = g.lo + Vec2(static_cast<int>(i) * g.step.x(), j * g.step.y());
+      g.c4s4[i * nv + j] = idw_c4s4(tensor, frame_at(face, uv));
+    }
   });
   return g;
 }
