@@ -184,8 +184,11 @@ def main(argv=None):
         if label.startswith("tessella"):
             measure = alone.get((name, label[9:]), float("nan"))
             # Times per element add: 1 / rest = 1 / whole - 1 / measure.
-            rest_inverse = 1 / ratio - 1 / measure
-            rest = 1 / rest_inverse if rest_inverse > 0 else float("inf")
+            # (No Gmsh: every ratio is nan, and so is the rest.)
+            rest = float("nan")
+            if ratio > 0 and measure > 0:
+                rest_inverse = 1 / ratio - 1 / measure
+                rest = 1 / rest_inverse if rest_inverse > 0 else float("inf")
             print(f"  {name:<20}{label[9:]:<18}{ratio:>6.2f}{measure:>9.2f}{rest:>7.2f}")
     return 0
 
