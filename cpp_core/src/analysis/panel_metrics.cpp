@@ -1205,10 +1205,8 @@ PanelDeviation measure_panel_deviation(const SurfaceFace& face, const std::vecto
   grid_s.reserve(total);
   step.reserve(piece_n.size());
   piece_grid.reserve(piece_n.size());
-  if (tris.empty())
-    sample_piece(-1, piece_n[0]);
-  else
-    for (std::size_t k = 0; k < tris.size(); ++k) sample_piece(static_cast<int>(k), piece_n[k]);
+  for (std::size_t k = 0; k < piece_n.size(); ++k)
+    sample_piece(tris.empty() ? -1 : static_cast<int>(k), piece_n[k]);
   // Project the samples in order of their cheap bounds while one may still
   // matter: the answer is the largest sample and the ascents from the
   // largest samples of three distinct places (at least 70% of the largest,
